@@ -1,0 +1,221 @@
+#include "env/env.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "env/world/error.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kActionDt = Env::kPhysicsSubsteps / 120.0;
+constexpr double kBaseSpeed = 0.5, kTurnSpeed = 1.0;  // m/s, rad/s at |action| = 1
+constexpr double kTorsoSpeed = 0.1, kJointSpeed = 1.0;
+constexpr int kProprioSize = 30;
+const std::vector<std::string> kKnownObservations = {"rgb", "depth", "proprio", "is_grasping"};
+
+// Uniform in [-1, 1) from 53 random bits: the same numbers on every platform,
+// unlike std::uniform_real_distribution.
+double symmetric_uniform(std::mt19937_64& rng) {
+  return 2.0 * static_cast<double>(rng() >> 11) * 0x1.0p-53 - 1.0;
+}
+
+bool wants(const EnvConfig& c, const char* name) {
+  return std::find(c.observations.begin(), c.observations.end(), name) != c.observations.end();
+}
+
+}  // namespace
+
+std::shared_ptr<const Scene> load_scene(const EnvConfig& config) {
+  SceneOptions options;
+  options.robot = config.robot;
+  return Scene::load(config.scene, options);
+}
+
+Env::Env(const EnvConfig& config) : Env(config, load_scene(config)) {}
+
+Env::Env(const EnvConfig& config, std::shared_ptr<const Scene> scene)
+    : config_(config), scene_(std::move(scene)) {
+  if (config_.width <= 0 || config_.height <= 0) {
+    throw Error("env config: image size " + std::to_string(config_.width) + "x" +
+                std::to_string(config_.height) + " must be positive");
+  }
+  if (config_.max_episode_steps <= 0) throw Error("env config: max_episode_steps must be positive");
+  if (scene_->has_robot() != config_.robot) {
+    throw Error("env config: scene '" + scene_->name() + "' was compiled " +
+                (scene_->has_robot() ? "with" : "without") + " a robot, the config says otherwise");
+  }
+  std::vector<std::pair<std::string, Space>> fields;
+  for (const std::string& name : config_.observations) {
+    if (std::find(kKnownObservations.begin(), kKnownObservations.end(), name) ==
+        kKnownObservations.end()) {
+      throw Error("env config: unknown observation '" + name +
+                  "' (known: rgb, depth, proprio, is_grasping)");
+    }
+    if (!config_.robot && (name == "proprio" || name == "is_grasping")) {
+      throw Error("env config: observation '" + name + "' needs the robot");
+    }
+  }
+  // A fixed order, whatever the config's: the layout of batched buffers.
+  const double inf = std::numeric_limits<double>::infinity();
+  if (wants(config_, "rgb")) {
+    fields.push_back({"rgb", Space::box({config_.height, config_.width, 3}, DType::uint8, 0, 255)});
+  }
+  if (wants(config_, "depth")) {
+    fields.push_back({"depth", Space::box({config_.height, config_.width}, DType::float32, 0, inf)});
+  }
+  if (wants(config_, "proprio")) {
+    fields.push_back({"proprio", Space::box({kProprioSize}, DType::float32, -inf, inf)});
+  }
+  if (wants(config_, "is_grasping")) {
+    fields.push_back({"is_grasping", Space::box({1}, DType::float32, 0, 1)});
+  }
+  observation_space_ = Space::dict(std::move(fields));
+  action_space_ = Space::box({config_.robot ? kLowLevelActionSize : 0}, DType::float32, -1, 1);
+  obs_ = ArrayDict(observation_space_, 1);
+  world_ = std::make_unique<World>(scene_);
+  world_->set_lighting(config_.lighting);
+}
+
+Env::~Env() = default;
+
+void Env::check_open() const {
+  if (closed_) throw Error("env: used after close()");
+}
+
+void Env::close() {
+  if (closed_) return;
+  renderer_.reset();
+  world_.reset();
+  closed_ = true;
+}
+
+Info Env::make_info() const {
+  Info info;
+  info.elapsed_steps = elapsed_;
+  info.diverged = diverged_;
+  info.is_grasping = world_->grasped_object() >= 0;
+  return info;
+}
+
+Info Env::reset_state(std::optional<uint64_t> seed) {
+  check_open();
+  if (seed) rng_.seed(*seed);
+  Pose2 start = scene_->robot_start();
+  start.x += config_.start_jitter * symmetric_uniform(rng_);
+  start.y += config_.start_jitter * symmetric_uniform(rng_);
+  start.yaw += 10 * config_.start_jitter * symmetric_uniform(rng_);
+  world_->reset(start);
+  elapsed_ = 0;
+  episode_over_ = false;
+  diverged_ = false;
+  return make_info();
+}
+
+Env::Outcome Env::advance(std::span<const float> action) {
+  check_open();
+  if (episode_over_) throw Error("env: step() after the episode ended; call reset() first");
+  if (action.size() != static_cast<size_t>(action_space_.shape[0])) {
+    throw Error("env: action has " + std::to_string(action.size()) + " values, expected " +
+                std::to_string(action_space_.shape[0]));
+  }
+  for (size_t i = 0; i < action.size(); ++i) {
+    if (!std::isfinite(action[i])) {
+      throw Error("env: action[" + std::to_string(i) + "] is " + std::to_string(action[i]));
+    }
+  }
+  if (const Robot* r = world_->robot()) {
+    auto a = [&](int i) { return std::clamp(static_cast<double>(action[i]), -1.0, 1.0); };
+    World& w = *world_;
+    w.command_base_velocity(a(0) * kBaseSpeed, a(1) * kBaseSpeed, a(2) * kTurnSpeed);
+    // Velocity commands integrate from the current target, not the measured
+    // position, so a zero action holds a joint where it was commanded.
+    auto integrate = [&](const RobotJoint& j, double velocity) {
+      w.command_position(j, w.commanded_position(j) + velocity * kActionDt);
+    };
+    integrate(r->torso, a(3) * kTorsoSpeed);
+    for (int i = 0; i < Robot::kArmJoints; ++i) integrate(r->arm[i], a(4 + i) * kJointSpeed);
+    const double finger = (a(11) + 1.0) / 2.0 * Robot::kGripperOpen;
+    w.command_position(r->gripper_left, finger);
+    w.command_position(r->gripper_right, finger);
+    integrate(r->head_pan, a(12) * kJointSpeed);
+    integrate(r->head_tilt, a(13) * kJointSpeed);
+  }
+  const World::StepReport report = world_->step(kPhysicsSubsteps);
+  ++elapsed_;
+  diverged_ = report.diverged;
+  Outcome out;
+  out.truncated = report.diverged || elapsed_ >= config_.max_episode_steps;
+  out.info = make_info();
+  out.info.grasp_refused = report.grasp_refused;
+  episode_over_ = out.terminated || out.truncated;
+  return out;
+}
+
+std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {
+  check_open();
+  const bool rgb = obs.contains("rgb"), depth = obs.contains("depth");
+  if (!rgb && !depth) return {};
+  return {CameraView{world_->model(), world_->data(), scene_->camera(),
+                     rgb ? static_cast<std::uint8_t*>(obs["rgb"].item(index)) : nullptr,
+                     depth ? static_cast<float*>(obs["depth"].item(index)) : nullptr}};
+}
+
+void Env::write_state(ArrayDict& obs, int index) const {
+  const World& w = *world_;
+  const Robot* r = w.robot();
+  if (!r) return;
+  const mjData* d = w.data();
+  const bool grasping = w.grasped_object() >= 0;
+  if (obs.contains("proprio")) {
+    float* p = static_cast<float*>(obs["proprio"].item(index));
+    const Pose2 base = w.base_pose();
+    const double c = std::cos(base.yaw), s = std::sin(base.yaw);
+    const double vx = d->qvel[r->base_x.dof], vy = d->qvel[r->base_y.dof];
+    int k = 0;
+    for (double v : {base.x, base.y, s, c, c * vx + s * vy, -s * vx + c * vy,
+                     d->qvel[r->base_yaw.dof]}) {
+      p[k++] = static_cast<float>(v);
+    }
+    std::vector<const RobotJoint*> joints = {&r->torso};
+    for (const RobotJoint& j : r->arm) joints.push_back(&j);
+    joints.push_back(&r->head_pan);
+    joints.push_back(&r->head_tilt);
+    for (const RobotJoint* j : joints) p[k++] = static_cast<float>(d->qpos[j->qpos]);
+    for (const RobotJoint* j : joints) p[k++] = static_cast<float>(d->qvel[j->dof]);
+    p[k++] = static_cast<float>(d->qpos[r->gripper_left.qpos]);
+    p[k++] = static_cast<float>(d->qpos[r->gripper_right.qpos]);
+    p[k++] = grasping ? 1.0f : 0.0f;
+  }
+  if (obs.contains("is_grasping")) {
+    *static_cast<float*>(obs["is_grasping"].item(index)) = grasping ? 1.0f : 0.0f;
+  }
+}
+
+void Env::observe() {
+  std::vector<CameraView> views = camera_views(obs_, 0);
+  if (!views.empty()) {
+    if (!renderer_) {
+      renderer_ = std::make_unique<Renderer>(world_->model(), config_.width, config_.height);
+    }
+    renderer_->render(views);
+  }
+  write_state(obs_, 0);
+}
+
+Env::ResetResult Env::reset(std::optional<uint64_t> seed) {
+  Info info = reset_state(seed);
+  observe();
+  return {obs_, info};
+}
+
+Env::StepResult Env::step(std::span<const float> action) {
+  Outcome out = advance(action);
+  observe();
+  return {obs_, out.reward, out.terminated, out.truncated, out.info};
+}
+
+}  // namespace chore

@@ -1,0 +1,125 @@
+// chore::Env: one environment with a Gym-like reset/step interface.
+//
+//   chore::Env env({.scene = "apartment"});
+//   auto [obs, info] = env.reset(42);
+//   auto step = env.step(action);   // obs, reward, terminated, truncated, info
+//
+// Observations are a Dict of arrays with a batch dimension of 1, owned by the
+// env and overwritten by the next reset/step (as EnvPool's are).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <random>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "env/spaces.hpp"
+#include "env/world/renderer.hpp"
+#include "env/world/world.hpp"
+
+namespace chore {
+
+struct EnvConfig {
+  std::string scene = "apartment";
+  int width = 128, height = 128;
+  // Any of "rgb", "depth", "proprio", "is_grasping".
+  std::vector<std::string> observations = {"rgb", "depth", "proprio", "is_grasping"};
+  Lighting lighting = Lighting::full;
+  int max_episode_steps = 500;  // then the episode is truncated
+  bool robot = true;            // false: a fixed camera, no robot (benchmarks)
+  // Reset places the robot at the scene's start pose plus a seeded offset up to
+  // this far (m) in x and y and 10x this (rad) in heading.
+  double start_jitter = 0.1;
+};
+
+struct Info {
+  int env_id = 0;
+  int64_t elapsed_steps = 0;
+  bool diverged = false;       // MuJoCo became unstable; the episode was truncated
+  bool grasp_refused = false;  // the gripper closed on an object over the mass limit
+  bool is_grasping = false;
+  // Activity scores (0 until an activity is attached).
+  bool success = false;
+  double q = 0.0;
+};
+
+// The low-level (RL-VMC) action: 14 numbers in [-1, 1] (values outside are
+// clipped; NaN is an error).
+//   0-2  base velocity: forward, left (x 0.5 m/s), turn (x 1 rad/s), robot frame
+//   3    torso lift velocity (x 0.1 m/s), integrated into a position target
+//   4-10 arm joint velocities (x 1 rad/s), integrated into position targets
+//   11   gripper: -1 closed .. +1 open (absolute finger position)
+//   12-13 head pan, tilt velocities (x 1 rad/s), integrated into position targets
+constexpr int kLowLevelActionSize = 14;
+
+class Env {
+ public:
+  // Physics steps of 1/120 s per env step of 1/30 s (the seed's time steps).
+  static constexpr int kPhysicsSubsteps = 4;
+
+  explicit Env(const EnvConfig& config);
+  // Shares an already compiled scene (it must match config.scene and config.robot).
+  Env(const EnvConfig& config, std::shared_ptr<const Scene> scene);
+  ~Env();
+
+  const Space& observation_space() const { return observation_space_; }
+  const Space& action_space() const { return action_space_; }
+  const EnvConfig& config() const { return config_; }
+
+  struct ResetResult {
+    const ArrayDict& obs;
+    Info info;
+  };
+  struct StepResult {
+    const ArrayDict& obs;
+    double reward;
+    bool terminated, truncated;
+    Info info;
+  };
+  // With a seed the episode is fixed by it; without one the env's random
+  // stream continues (as Gymnasium's reset() without seed).
+  ResetResult reset(std::optional<uint64_t> seed = std::nullopt);
+  StepResult step(std::span<const float> action);
+  // Idempotent; any other call after it throws chore::Error.
+  void close();
+  bool closed() const { return closed_; }
+
+  // The pieces of reset/step, for VectorEnv to batch rendering across envs.
+  Info reset_state(std::optional<uint64_t> seed);
+  struct Outcome {
+    double reward = 0;
+    bool terminated = false, truncated = false;
+    Info info;
+  };
+  Outcome advance(std::span<const float> action);
+  // The camera views writing into element `index` of `obs` (empty when no
+  // image is observed), and the non-image observations written there.
+  std::vector<CameraView> camera_views(ArrayDict& obs, int index);
+  void write_state(ArrayDict& obs, int index) const;
+
+  World& world() { return *world_; }
+  const World& world() const { return *world_; }
+
+ private:
+  void check_open() const;
+  Info make_info() const;
+  void observe();  // renders and writes into obs_ with this env's own renderer
+
+  EnvConfig config_;
+  std::shared_ptr<const Scene> scene_;
+  std::unique_ptr<World> world_;
+  std::unique_ptr<Renderer> renderer_;  // made on first use, on the calling thread
+  Space observation_space_, action_space_;
+  ArrayDict obs_;
+  std::mt19937_64 rng_;
+  int64_t elapsed_ = 0;
+  bool episode_over_ = true, closed_ = false, diverged_ = false;
+};
+
+// Compiles config.scene (with or without robot) for one or more envs to share.
+std::shared_ptr<const Scene> load_scene(const EnvConfig& config);
+
+}  // namespace chore

@@ -1,0 +1,364 @@
+#include "env/vector_env.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "env/world/error.hpp"
+
+namespace chore {
+namespace {
+
+// Cameras per render pass (one row of tiles): enough to amortise the
+// readback, small enough to keep the offscreen buffer modest.
+constexpr int kMaxTiles = 16;
+
+// One batch of results: what recv() returns, written in place by the workers.
+struct Block {
+  ArrayDict obs, final_obs;
+  std::vector<float> rewards;
+  std::vector<std::uint8_t> terminated, truncated;
+  std::vector<int> env_ids;
+  std::vector<Info> infos, final_infos;
+  int done = 0;  // rows written; guarded by the pool's mutex
+
+  Block(const Space& space, int rows, bool with_final)
+      : obs(space, rows), rewards(rows), terminated(rows), truncated(rows), env_ids(rows),
+        infos(rows) {
+    if (with_final) {
+      final_obs = ArrayDict(space, rows);
+      final_infos.resize(rows);
+    }
+  }
+
+  Batch view(bool with_final) const {
+    return Batch{&obs, rewards, terminated, truncated, env_ids, infos,
+                 with_final ? &final_obs : nullptr, final_infos};
+  }
+};
+
+struct Task {
+  std::vector<int> envs;
+  bool reset = false;
+};
+
+struct Row {
+  Block* block;
+  int index;
+};
+
+}  // namespace
+
+struct VectorEnv::Impl {
+  VectorEnvConfig config;
+  int num_envs, batch, action_size;
+  bool same_step;
+  std::vector<std::unique_ptr<Env>> envs;
+  std::vector<std::vector<float>> actions;             // per env, set by send()
+  std::vector<std::optional<uint64_t>> seeds;          // per env, set by reset()
+  std::vector<std::uint8_t> in_flight, needs_reset;
+  std::vector<std::unique_ptr<Block>> ring;
+  std::unique_ptr<Block> reset_block;
+  int64_t claimed = 0;     // rows claimed in the ring so far
+  int64_t returned = 0;    // blocks returned by recv()
+  int64_t pending = 0;     // rows sent and not yet returned
+  bool was_reset = false, closed = false, stopping = false;
+  Block* held = nullptr;   // the block the caller is reading
+
+  std::mutex mutex;
+  std::condition_variable work_ready, rows_done;
+  std::deque<Task> queue;
+  std::exception_ptr error;
+  std::vector<std::thread> workers;
+
+  explicit Impl(const VectorEnvConfig& c) : config(c) {
+    num_envs = c.num_envs;
+    if (num_envs <= 0) throw Error("vector env: num_envs must be at least 1, got " + std::to_string(num_envs));
+    if (c.num_threads <= 0 || c.num_threads > num_envs) {
+      throw Error("vector env: num_threads must be in 1.." + std::to_string(num_envs) +
+                  " (one env per thread at most), got " + std::to_string(c.num_threads));
+    }
+    batch = c.batch_size == 0 ? num_envs : c.batch_size;
+    if (batch < 1 || batch > num_envs) {
+      throw Error("vector env: batch_size must be in 1.." + std::to_string(num_envs) + ", got " +
+                  std::to_string(c.batch_size));
+    }
+    same_step = c.autoreset == AutoReset::same_step;
+    const std::shared_ptr<const Scene> scene = load_scene(c.env);
+    for (int i = 0; i < num_envs; ++i) envs.push_back(std::make_unique<Env>(c.env, scene));
+    action_size = static_cast<int>(envs[0]->action_space().element_count());
+    actions.assign(num_envs, std::vector<float>(action_size, 0.f));
+    seeds.resize(num_envs);
+    in_flight.assign(num_envs, 0);
+    needs_reset.assign(num_envs, 0);
+    // Rows not yet returned span at most ceil(N/B) + 1 blocks; one more is held.
+    const int blocks = (num_envs + batch - 1) / batch + 2;
+    for (int b = 0; b < blocks; ++b) {
+      ring.push_back(std::make_unique<Block>(envs[0]->observation_space(), batch, same_step));
+    }
+    reset_block = std::make_unique<Block>(envs[0]->observation_space(), num_envs, false);
+    for (int t = 0; t < c.num_threads; ++t) workers.emplace_back([this] { work(); });
+  }
+
+  ~Impl() { stop(); }
+
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (stopping) return;
+      stopping = true;
+    }
+    work_ready.notify_all();
+    for (std::thread& t : workers) t.join();
+  }
+
+  void work() {
+    std::unique_ptr<Renderer> renderer;  // this thread's EGL context
+    for (;;) {
+      Task task;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        work_ready.wait(lock, [&] { return stopping || !queue.empty(); });
+        if (queue.empty()) return;
+        task = std::move(queue.front());
+        queue.pop_front();
+      }
+      std::vector<Row> rows = claim(task);
+      try {
+        run(task, rows, renderer);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+      }
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (size_t i = 0; i < rows.size(); ++i) {
+          rows[i].block->done++;
+          in_flight[task.envs[i]] = 0;
+        }
+      }
+      rows_done.notify_all();
+    }
+  }
+
+  std::vector<Row> claim(const Task& task) {
+    std::vector<Row> rows;
+    std::lock_guard<std::mutex> lock(mutex);
+    for (int env : task.envs) {
+      if (task.reset) {
+        rows.push_back({reset_block.get(), env});
+        continue;
+      }
+      Block* block = ring[(claimed / batch) % ring.size()].get();
+      // With batch == num_envs every round holds each env once: keep env order.
+      const int index = batch == num_envs ? env : static_cast<int>(claimed % batch);
+      claimed++;
+      rows.push_back({block, index});
+    }
+    return rows;
+  }
+
+  // Env i always draws in tile i % tiles(), whichever worker renders it, so
+  // that images do not depend on the thread count (see CameraView::tile).
+  int tiles() const { return std::max(1, std::min({kMaxTiles, num_envs, 8192 / config.env.width})); }
+
+  void add_views(std::vector<CameraView>& views, int env, ArrayDict& obs, int index) {
+    for (CameraView v : envs[env]->camera_views(obs, index)) {
+      v.tile = env % tiles();
+      views.push_back(v);
+    }
+  }
+
+  void render(std::vector<CameraView>& views, std::unique_ptr<Renderer>& renderer) {
+    if (views.empty()) return;
+    if (!renderer) {
+      renderer = std::make_unique<Renderer>(envs[0]->world().model(), config.env.width,
+                                            config.env.height, tiles());
+    }
+    renderer->render(views);
+    views.clear();
+  }
+
+  void run(const Task& task, const std::vector<Row>& rows, std::unique_ptr<Renderer>& renderer) {
+    std::vector<CameraView> views;
+    std::vector<size_t> ended;  // same_step: rows whose episode ended this step
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const int e = task.envs[i];
+      Env& env = *envs[e];
+      Block& b = *rows[i].block;
+      const int r = rows[i].index;
+      b.env_ids[r] = e;
+      Env::Outcome out;
+      if (task.reset || needs_reset[e]) {
+        out.info = env.reset_state(task.reset ? seeds[e] : std::nullopt);
+        needs_reset[e] = 0;
+      } else {
+        out = env.advance(actions[e]);
+        if (out.terminated || out.truncated) {
+          if (same_step) {
+            ended.push_back(i);
+          } else {
+            needs_reset[e] = 1;
+          }
+        }
+      }
+      out.info.env_id = e;
+      b.rewards[r] = static_cast<float>(out.reward);
+      b.terminated[r] = out.terminated;
+      b.truncated[r] = out.truncated;
+      b.infos[r] = out.info;
+    }
+    // same_step: observe the last state of ended episodes, then reset them.
+    for (size_t i : ended) {
+      Block& b = *rows[i].block;
+      Env& env = *envs[task.envs[i]];
+      add_views(views, task.envs[i], b.final_obs, rows[i].index);
+      env.write_state(b.final_obs, rows[i].index);
+      b.final_infos[rows[i].index] = b.infos[rows[i].index];
+    }
+    render(views, renderer);
+    for (size_t i : ended) {
+      Block& b = *rows[i].block;
+      Info info = envs[task.envs[i]]->reset_state(std::nullopt);
+      info.env_id = task.envs[i];
+      b.infos[rows[i].index] = info;
+    }
+    for (size_t i = 0; i < rows.size(); ++i) {
+      add_views(views, task.envs[i], rows[i].block->obs, rows[i].index);
+      envs[task.envs[i]]->write_state(rows[i].block->obs, rows[i].index);
+    }
+    render(views, renderer);
+  }
+
+  // Splits env ids into one contiguous share per worker.
+  void dispatch(std::span<const int> ids, bool reset) {
+    const int threads = config.num_threads;
+    const size_t share = (ids.size() + threads - 1) / threads;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      for (size_t first = 0; first < ids.size(); first += share) {
+        Task task;
+        task.reset = reset;
+        task.envs.assign(ids.begin() + first, ids.begin() + std::min(ids.size(), first + share));
+        for (int e : task.envs) in_flight[e] = 1;
+        queue.push_back(std::move(task));
+      }
+    }
+    work_ready.notify_all();
+  }
+
+  void check_open() const {
+    if (closed) throw Error("vector env: used after close()");
+  }
+
+  void rethrow_error() {
+    if (error) {
+      std::exception_ptr e = error;
+      error = nullptr;
+      std::rethrow_exception(e);
+    }
+  }
+};
+
+VectorEnv::VectorEnv(const VectorEnvConfig& config) : impl_(std::make_unique<Impl>(config)) {}
+VectorEnv::~VectorEnv() = default;
+
+int VectorEnv::num_envs() const { return impl_->num_envs; }
+int VectorEnv::batch_size() const { return impl_->batch; }
+const Space& VectorEnv::single_observation_space() const { return impl_->envs[0]->observation_space(); }
+const Space& VectorEnv::single_action_space() const { return impl_->envs[0]->action_space(); }
+
+Batch VectorEnv::reset(std::optional<uint64_t> seed) {
+  Impl& m = *impl_;
+  m.check_open();
+  std::vector<int> ids(m.num_envs);
+  {
+    std::lock_guard<std::mutex> lock(m.mutex);
+    if (m.pending > 0) throw Error("vector env: reset() while envs are in flight; recv() them first");
+    for (int i = 0; i < m.num_envs; ++i) {
+      ids[i] = i;
+      m.seeds[i] = seed ? std::optional<uint64_t>(*seed + i) : std::nullopt;
+      m.needs_reset[i] = 0;
+    }
+    m.reset_block->done = 0;
+  }
+  m.dispatch(ids, true);
+  std::unique_lock<std::mutex> lock(m.mutex);
+  m.rows_done.wait(lock, [&] { return m.reset_block->done == m.num_envs; });
+  m.rethrow_error();
+  m.was_reset = true;
+  return m.reset_block->view(false);
+}
+
+void VectorEnv::send(std::span<const float> actions, std::span<const int> env_ids) {
+  Impl& m = *impl_;
+  m.check_open();
+  if (!m.was_reset) throw Error("vector env: send() before reset()");
+  if (actions.size() != env_ids.size() * m.action_size) {
+    throw Error("vector env: got " + std::to_string(actions.size()) + " action values for " +
+                std::to_string(env_ids.size()) + " envs of action size " +
+                std::to_string(m.action_size));
+  }
+  for (size_t k = 0; k < actions.size(); ++k) {
+    if (!std::isfinite(actions[k])) {
+      throw Error("vector env: action value " + std::to_string(actions[k]) + " for env " +
+                  std::to_string(env_ids[k / m.action_size]) + " (index " +
+                  std::to_string(k % m.action_size) + ")");
+    }
+  }
+  {
+    std::lock_guard<std::mutex> lock(m.mutex);
+    std::vector<std::uint8_t> seen(m.num_envs, 0);
+    for (int e : env_ids) {
+      if (e < 0 || e >= m.num_envs) throw Error("vector env: env id " + std::to_string(e) + " out of range");
+      if (m.in_flight[e] || seen[e]) throw Error("vector env: env " + std::to_string(e) + " is already in flight");
+      seen[e] = 1;
+    }
+    for (size_t k = 0; k < env_ids.size(); ++k) {
+      std::copy_n(actions.begin() + k * m.action_size, m.action_size, m.actions[env_ids[k]].begin());
+    }
+    m.pending += static_cast<int64_t>(env_ids.size());
+  }
+  m.dispatch(env_ids, false);
+}
+
+Batch VectorEnv::recv() {
+  Impl& m = *impl_;
+  m.check_open();
+  std::unique_lock<std::mutex> lock(m.mutex);
+  if (m.pending < m.batch) {
+    throw Error("vector env: recv() would wait forever: " + std::to_string(m.pending) +
+                " results pending, batch_size is " + std::to_string(m.batch));
+  }
+  if (m.held) m.held->done = 0;  // the caller is done with the previous batch
+  Block* block = m.ring[m.returned % m.ring.size()].get();
+  m.rows_done.wait(lock, [&] { return block->done == m.batch; });
+  m.rethrow_error();
+  m.returned++;
+  m.pending -= m.batch;
+  m.held = block;
+  return block->view(m.same_step);
+}
+
+Batch VectorEnv::step(std::span<const float> actions) {
+  Impl& m = *impl_;
+  if (m.batch != m.num_envs) {
+    throw Error("vector env: step() needs batch_size == num_envs; use send()/recv()");
+  }
+  std::vector<int> ids(m.num_envs);
+  for (int i = 0; i < m.num_envs; ++i) ids[i] = i;
+  send(actions, ids);
+  return recv();
+}
+
+void VectorEnv::close() {
+  if (impl_->closed) return;
+  impl_->stop();
+  impl_->closed = true;
+}
+
+}  // namespace chore

@@ -1,0 +1,81 @@
+// chore::VectorEnv: N environments stepped by a pool of T worker threads, with
+// EnvPool's synchronous and asynchronous interfaces.
+//
+//   step(actions)        all N envs, results in env order
+//   send(actions, ids)   start those envs stepping ...
+//   recv()               ... the first batch_size to finish, with their env ids
+//
+// Workers write observations straight into batched buffers ((B, H, W, 3) uint8
+// RGB, (B, H, W) float32 depth, ...); each worker renders all the envs of its
+// share in one pass (tiles of one offscreen buffer, one readback). Env i is
+// seeded with seed + i, so results do not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "env/env.hpp"
+
+namespace chore {
+
+// What happens after an episode ends (Gymnasium's names):
+//   next_step: the env's next step() resets it and returns the first observation
+//              with reward 0 (its action is ignored);
+//   same_step: the step that ends the episode resets at once; the returned
+//              observation is the new episode's first, and the last
+//              observation and info of the old one are in final_obs/final_info.
+enum class AutoReset { next_step, same_step };
+
+struct VectorEnvConfig {
+  EnvConfig env;
+  int num_envs = 1;
+  int num_threads = 1;  // 1 <= num_threads <= num_envs
+  int batch_size = 0;   // recv() returns this many envs; 0 means num_envs
+  AutoReset autoreset = AutoReset::next_step;
+};
+
+// Views into the vector env's buffers, valid until the next reset/step/recv.
+struct Batch {
+  const ArrayDict* obs;                // (size, ...) per field
+  std::span<const float> rewards;
+  std::span<const std::uint8_t> terminated, truncated;
+  std::span<const int> env_ids;        // env id of each row
+  std::span<const Info> infos;
+  // same_step only: for rows whose episode ended, its last observation and info.
+  const ArrayDict* final_obs;
+  std::span<const Info> final_infos;
+  int size() const { return static_cast<int>(env_ids.size()); }
+};
+
+class VectorEnv {
+ public:
+  explicit VectorEnv(const VectorEnvConfig& config);
+  ~VectorEnv();
+  VectorEnv(const VectorEnv&) = delete;
+  VectorEnv& operator=(const VectorEnv&) = delete;
+
+  int num_envs() const;
+  int batch_size() const;
+  const Space& single_observation_space() const;
+  const Space& single_action_space() const;
+
+  // Resets every env (env i with seed + i; without a seed, each env's random
+  // stream continues). No env may be in flight. Rows are in env order.
+  Batch reset(std::optional<uint64_t> seed = std::nullopt);
+  // All envs, actions row-major (num_envs x action size); needs batch_size == num_envs.
+  Batch step(std::span<const float> actions);
+  // Starts the given envs stepping; actions row-major (ids.size() x action size).
+  void send(std::span<const float> actions, std::span<const int> env_ids);
+  // Waits for the first batch_size results.
+  Batch recv();
+  // Stops the workers; idempotent.
+  void close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace chore

@@ -1,0 +1,55 @@
+// Headless OpenGL rendering through EGL: a GPU's EGL device when there is one,
+// else surfaceless Mesa (llvmpipe). One Renderer per thread: it owns an EGL
+// context current on the thread that made it, and MuJoCo's render context.
+//
+// Several cameras are drawn per pass as tiles of one offscreen buffer (a row of
+// tiles) and read back once: on llvmpipe rasterisation happens at readback, so
+// the per-frame overhead is paid once per pass rather than once per camera.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+struct mjModel_;
+struct mjData_;
+
+namespace chore {
+
+struct CameraView {
+  const mjModel_* model;
+  mjData_* data;          // mjv_updateScene needs it non-const; it is not changed
+  int camera;             // camera id in `model`
+  std::uint8_t* rgb;      // height x width x 3, top row first; nullptr to skip
+  float* depth;           // height x width metres along the optical axis; nullptr to skip
+  // Where in the offscreen buffer it is drawn (0 .. max_tiles-1). llvmpipe's
+  // rasteriser rounds differently at different offsets (a few pixels differ by
+  // one level), so an environment that must render bit-identically keeps its tile.
+  int tile = 0;
+};
+
+class Renderer {
+ public:
+  // `model` fixes the meshes and textures; every view must share them (copies
+  // of one scene's model). Throws chore::Error when no EGL display can be opened.
+  Renderer(const mjModel_* model, int width, int height, int max_tiles = 1);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  void render(std::span<const CameraView> views);
+
+  int width() const;
+  int height() const;
+  int max_tiles() const;
+  // "surfaceless" or "device": which EGL platform this process uses.
+  static const char* platform();
+
+ private:
+  void render_pass(const std::vector<const CameraView*>& pass);
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace chore

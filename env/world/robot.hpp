@@ -1,0 +1,38 @@
+// The robot's joints, actuators and frames in a compiled scene, found by the
+// names of assets/robots/tiago.xml (docs/assets.md lists them).
+#pragma once
+
+#include <array>
+
+struct mjModel_;
+
+namespace chore {
+
+struct RobotJoint {
+  int joint = -1;     // joint id
+  int qpos = -1;      // address in qpos
+  int dof = -1;       // address in qvel
+  int actuator = -1;  // actuator driving it
+  double low = 0, high = 0;  // joint range
+};
+
+struct Robot {
+  static constexpr int kArmJoints = 7;
+  // Throws chore::Error naming the first missing element.
+  static Robot bind(const mjModel_* model);
+
+  RobotJoint base_x, base_y, base_yaw;
+  RobotJoint torso;
+  std::array<RobotJoint, kArmJoints> arm;
+  RobotJoint gripper_left, gripper_right;
+  RobotJoint head_pan, head_tilt;
+  int gripper_body = -1, left_finger_body = -1, right_finger_body = -1;
+  int gripper_site = -1, lidar_site = -1, camera = -1;
+
+  // Home configuration at reset: torso down, arm tucked, head level, gripper open.
+  static constexpr double kHomeTorso = 0.0;
+  static const std::array<double, kArmJoints> kTuckedArm;
+  static constexpr double kGripperOpen = 0.045;  // per finger (m)
+};
+
+}  // namespace chore

@@ -1,0 +1,81 @@
+// A scene compiled once into an immutable mjModel: rooms, walls, furniture,
+// objects, lights and (optionally) the robot. Environments copy the model; the
+// Scene itself is shared read-only between them (MuJoCo's Model/Data split).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+struct mjModel_;
+
+namespace chore {
+
+// Root of the asset library: $CHORE_ASSETS if set, else the source tree's assets/.
+std::string default_assets_dir();
+
+struct Room {
+  std::string name;  // "<type>_<index>", the name BDDL's (inroom obj room) uses
+  std::string type;
+  std::vector<std::array<double, 4>> rects;  // xmin, ymin, xmax, ymax
+};
+
+struct SceneObject {
+  std::string name;      // instance name, unique in the scene
+  std::string model;     // object model file (assets/objects/<model>.json)
+  std::string category;
+  std::string synset;
+  bool fixed = false;    // welded to the world (furniture) or a free body
+  int body = -1;         // root body id
+  int grasp_weld = -1;   // equality id of the gripper weld (free objects only)
+  std::vector<int> joints;  // articulated joints (drawers, doors)
+};
+
+struct Pose2 {
+  double x = 0, y = 0, yaw = 0;
+};
+
+struct SceneOptions {
+  bool robot = true;       // false: no robot, a fixed camera stands in (Table A.10 "- Robot")
+  std::string assets_dir;  // empty: default_assets_dir()
+};
+
+class Scene {
+ public:
+  // `name` is a scene in <assets>/scenes/<name>.json, or a path to a .json file.
+  static std::shared_ptr<const Scene> load(const std::string& name, const SceneOptions& options = {});
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  const mjModel_* model() const { return model_; }
+  const std::string& name() const { return name_; }
+  const std::string& path() const { return path_; }
+  const std::vector<Room>& rooms() const { return rooms_; }
+  const std::vector<SceneObject>& objects() const { return objects_; }
+  const SceneObject* find_object(std::string_view name) const;
+  // The room whose floor contains (x, y), or nullptr outside every room.
+  const Room* room_at(double x, double y) const;
+  const Pose2& robot_start() const { return robot_start_; }
+  bool has_robot() const { return has_robot_; }
+  int camera() const { return camera_; }                    // the egocentric camera
+  int overview_camera() const { return overview_camera_; }  // third-person, top-down
+  const std::vector<int>& ceiling_lights() const { return ceiling_lights_; }
+  const std::string& mjcf() const { return mjcf_; }         // the generated MJCF text
+
+ private:
+  Scene() = default;
+  mjModel_* model_ = nullptr;
+  std::string name_, path_, mjcf_;
+  std::vector<Room> rooms_;
+  std::vector<SceneObject> objects_;
+  Pose2 robot_start_;
+  bool has_robot_ = true;
+  int camera_ = -1, overview_camera_ = -1;
+  std::vector<int> ceiling_lights_;
+};
+
+}  // namespace chore

@@ -1,0 +1,75 @@
+// One simulated world: a private copy of the scene's model (MuJoCo 2.2.2 keeps
+// eq_active and light_active on mjModel, which grasping and lighting change)
+// and its mjData. Physics runs at 1/120 s; assistive grasping runs after every
+// physics step, as OmniGibson's does.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "env/world/robot.hpp"
+#include "env/world/scene.hpp"
+
+struct mjData_;
+
+namespace chore {
+
+// "full": ceiling lights and lamps; "lamps_only": the paper's dim condition.
+enum class Lighting { full, lamps_only };
+
+class World {
+ public:
+  // Objects heavier than this (kg) are refused by the assistive grasp (OmniGibson's limit).
+  static constexpr double kGraspMassLimit = 10.0;
+
+  explicit World(std::shared_ptr<const Scene> scene);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const Scene& scene() const { return *scene_; }
+  const mjModel_* model() const { return model_; }
+  mjModel_* model() { return model_; }
+  const mjData_* data() const { return data_; }
+  mjData_* data() { return data_; }
+  // nullptr when the scene was built without a robot.
+  const Robot* robot() const { return robot_ ? &*robot_ : nullptr; }
+
+  // Back to the scene's initial state with the robot's base at `base`, arm
+  // tucked, gripper open, no grasp, zero velocities.
+  void reset(const Pose2& base);
+  void set_lighting(Lighting lighting);
+
+  // Robot commands, held until changed. Base velocity is in the robot frame
+  // (m/s, m/s, rad/s) and is re-projected to the world every physics step.
+  void command_base_velocity(double forward, double left, double turn);
+  // Position target of an actuated joint, clamped to its range.
+  void command_position(const RobotJoint& joint, double target);
+  double commanded_position(const RobotJoint& joint) const;
+
+  struct StepReport {
+    bool diverged = false;      // MuJoCo found bad accelerations and reset the state
+    bool grasp_refused = false; // the gripper closed on an object over the mass limit
+  };
+  // Runs `substeps` physics steps of 1/120 s.
+  StepReport step(int substeps);
+
+  // Index into scene().objects() of the object held by the gripper, or -1.
+  int grasped_object() const { return grasped_; }
+  Pose2 base_pose() const;
+  double time() const;
+
+ private:
+  void update_grasp(StepReport& report);
+  void attach(int object);
+  void release();
+
+  std::shared_ptr<const Scene> scene_;
+  mjModel_* model_ = nullptr;
+  mjData_* data_ = nullptr;
+  std::optional<Robot> robot_;
+  double base_command_[3] = {0, 0, 0};
+  int grasped_ = -1;
+};
+
+}  // namespace chore

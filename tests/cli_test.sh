@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The CLI's exit codes and messages: 0 on success, 2 with a message naming the
+# problem for bad arguments and bad input.
+set -uo pipefail
+chore="$1"
+data="$(cd "$(dirname "${BASH_SOURCE[0]}")/data" && pwd)"
+failures=0
+
+expect() {  # expect CODE PATTERN -- command...
+  local code="$1" pattern="$2"
+  shift 3
+  local out
+  out="$("$@" 2>&1)"
+  local got=$?
+  if [[ $got -ne $code ]] || ! grep -q -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $got (want $code), output lacks '$pattern':"
+    echo "$out" | tail -5
+    failures=$((failures + 1))
+  else
+    echo "ok: $*"
+  fi
+}
+
+expect 2 "subcommand" -- "$chore"
+expect 2 "no_such_command" -- "$chore" no_such_command
+expect 2 "steps" -- "$chore" bench --steps 0
+expect 2 "unknown scene 'no_such_scene'" -- "$chore" bench --scenes no_such_scene --steps 1 --repeats 1
+expect 2 "CHORE_EGL='bogus'" -- env CHORE_EGL=bogus "$chore" bench --scenes "$data/scenes/box_room.json" --steps 1 --repeats 1
+expect 0 '"vector_env"' -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2 --json
+expect 0 "Full Feature Set" -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2
+
+echo "$((7 - failures)) passed, $failures failed"
+[[ $failures -eq 0 ]]

@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <functional>
+#include <set>
+
+#include "env/world/error.hpp"
+#include "env/world/scene.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Scene, ApartmentHasFiveNamedRoomsAndAboutSixtyObjects) {
+  auto scene = Scene::load("apartment");
+  std::set<std::string> rooms;
+  for (const Room& r : scene->rooms()) rooms.insert(r.name);
+  EXPECT_EQ(rooms, (std::set<std::string>{"bathroom_0", "bedroom_0", "entryway_0", "kitchen_0",
+                                          "living_room_0"}));
+  EXPECT_GE(scene->objects().size(), 50u);
+  EXPECT_LE(scene->objects().size(), 70u);
+  // Every object stands in some room, and the robot starts inside the apartment.
+  for (const SceneObject& o : scene->objects()) {
+    const double* p = scene->model()->body_pos + 3 * o.body;
+    EXPECT_NE(scene->room_at(p[0], p[1]), nullptr) << o.name;
+  }
+  EXPECT_NE(scene->room_at(scene->robot_start().x, scene->robot_start().y), nullptr);
+}
+
+TEST(Scene, RoomAtAnswersFromTheFloorRectangles) {
+  auto scene = Scene::load(test::box_room());
+  ASSERT_NE(scene->room_at(0, 0), nullptr);
+  EXPECT_EQ(scene->room_at(0, 0)->name, "living_room_0");
+  EXPECT_EQ(scene->room_at(2.9, -2.9)->type, "living_room");
+  EXPECT_EQ(scene->room_at(3.5, 0), nullptr);
+}
+
+TEST(Scene, StaticGeometryIsOneDrawnMeshAndMovingPartsKeepTheirGeoms) {
+  auto scene = Scene::load(test::box_room());
+  const mjModel* m = scene->model();
+  int drawn_static = 0, hidden_static = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->body_weldid[m->geom_bodyid[g]] != 0) continue;  // moves
+    (m->geom_group[g] == 0 ? drawn_static : hidden_static)++;
+  }
+  EXPECT_EQ(drawn_static, 1);       // the merged static mesh
+  EXPECT_GE(hidden_static, 1 + 4 + 2);  // floor, 4 walls, 2 fixed objects for collision
+  const SceneObject* block = scene->find_object("small_block_1");
+  ASSERT_NE(block, nullptr);
+  EXPECT_FALSE(block->fixed);
+  EXPECT_GE(block->grasp_weld, 0);
+  EXPECT_EQ(m->geom_group[m->body_geomadr[block->body]], 0);  // drawn itself
+  const SceneObject* panel = scene->find_object("red_panel_1");
+  EXPECT_TRUE(panel->fixed);
+  EXPECT_EQ(m->body_jntnum[panel->body], 0);
+}
+
+TEST(Scene, UnknownSceneNamesTheKnownOnes) {
+  const std::string e = error_of([] { Scene::load("no_such_scene"); });
+  EXPECT_NE(e.find("unknown scene 'no_such_scene'"), std::string::npos) << e;
+  EXPECT_NE(e.find("apartment"), std::string::npos) << e;
+}
+
+TEST(Scene, MalformedJsonGivesFileLineAndColumn) {
+  const auto dir = test::scratch_dir("malformed_json");
+  test::write_file(dir / "bad.json", "{\n  \"name\": \"bad\",\n  \"rooms\": [ oops ]\n}\n");
+  const std::string e = error_of([&] { Scene::load((dir / "bad.json").string()); });
+  EXPECT_NE(e.find("bad.json:3:"), std::string::npos) << e;
+}
+
+TEST(Scene, MissingFieldAndUnknownModelAreNamed) {
+  const auto dir = test::scratch_dir("bad_fields");
+  const std::string head =
+      R"({"rooms": [{"name": "r_0", "type": "r", "rects": [[0, 0, 2, 2]]}], "walls": [], "robot": {"pos": [1, 1]}, )";
+  test::write_file(dir / "a.json", head + R"("objects": [{"name": "x", "pos": [1, 1, 0]}]})");
+  std::string e = error_of([&] { Scene::load((dir / "a.json").string()); });
+  EXPECT_NE(e.find("objects[0]: missing field 'model'"), std::string::npos) << e;
+  test::write_file(dir / "b.json", head + R"("objects": [{"name": "x", "model": "teapot_9000", "pos": [1, 1, 0]}]})");
+  e = error_of([&] { Scene::load((dir / "b.json").string()); });
+  EXPECT_NE(e.find("unknown object model 'teapot_9000'"), std::string::npos) << e;
+  test::write_file(dir / "c.json", head + R"("objects": [{"name": "x", "model": "apple", "pos": [1, 1]}]})");
+  e = error_of([&] { Scene::load((dir / "c.json").string()); });
+  EXPECT_NE(e.find("objects[0].pos: expected an array of 3 numbers"), std::string::npos) << e;
+}
+
+TEST(Scene, MalformedRobotMjcfNamesTheFile) {
+  const auto dir = test::scratch_dir("bad_robot");
+  std::filesystem::create_directories(dir / "robots");
+  std::filesystem::create_directory_symlink(default_assets_dir() + "/objects", dir / "objects");
+  test::write_file(dir / "robots" / "tiago.xml", "<mujoco>\n<worldbody>\n<body name=\"robot\">\n</mujoco>\n");
+  SceneOptions options;
+  options.assets_dir = dir.string();
+  const std::string e = error_of([&] { Scene::load(test::box_room(), options); });
+  EXPECT_NE(e.find("tiago.xml: invalid robot MJCF"), std::string::npos) << e;
+}
+
+TEST(Scene, WithoutRobotAFixedCameraStandsIn) {
+  SceneOptions options;
+  options.robot = false;
+  auto scene = Scene::load(test::box_room(), options);
+  EXPECT_FALSE(scene->has_robot());
+  EXPECT_EQ(mj_name2id(scene->model(), mjOBJ_BODY, "robot"), -1);
+  ASSERT_GE(scene->camera(), 0);
+  EXPECT_STREQ(mj_id2name(scene->model(), mjOBJ_CAMERA, scene->camera()), "scene_camera");
+}
+
+}  // namespace
+}  // namespace chore

@@ -1,0 +1,37 @@
+// Shared helpers for the test suites: test data paths and scratch directories.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace chore::test {
+
+inline std::string data_path(const std::string& relative) {
+  return std::string(CHORE_TEST_DATA) + "/" + relative;
+}
+
+inline std::string box_room() { return data_path("scenes/box_room.json"); }
+
+// A fresh directory under the build tree for files a test writes and a person
+// may want to look at (pictures).
+inline std::filesystem::path output_dir() {
+  std::filesystem::path dir(CHORE_TEST_OUTPUT);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A scratch directory, emptied on creation.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  std::filesystem::path dir = output_dir() / ("scratch_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+}  // namespace chore::test

@@ -1,0 +1,192 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <set>
+
+#include "env/env.hpp"
+#include "env/vector_env.hpp"
+#include "env/world/error.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+VectorEnvConfig config(int envs, int threads, int max_steps = 500) {
+  VectorEnvConfig c;
+  c.env.scene = test::box_room();
+  c.env.max_episode_steps = max_steps;
+  c.num_envs = envs;
+  c.num_threads = threads;
+  return c;
+}
+
+std::vector<float> random_actions(std::mt19937& rng, int envs) {
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<float> a(envs * kLowLevelActionSize);
+  for (float& x : a) x = u(rng);
+  return a;
+}
+
+// Everything a step returns, as bytes, for exact comparison.
+std::vector<unsigned char> snapshot(const Batch& b) {
+  std::vector<unsigned char> out;
+  for (const Array& a : b.obs->arrays()) out.insert(out.end(), a.bytes.begin(), a.bytes.end());
+  auto add = [&](const void* p, size_t n) {
+    out.insert(out.end(), static_cast<const unsigned char*>(p), static_cast<const unsigned char*>(p) + n);
+  };
+  add(b.rewards.data(), b.rewards.size_bytes());
+  add(b.terminated.data(), b.terminated.size_bytes());
+  add(b.truncated.data(), b.truncated.size_bytes());
+  add(b.env_ids.data(), b.env_ids.size_bytes());
+  for (const Info& i : b.infos) add(&i.elapsed_steps, sizeof i.elapsed_steps);
+  return out;
+}
+
+TEST(VectorEnv, ResultsDoNotDependOnTheThreadCount) {
+  // Short episodes so that autoresets happen inside the comparison.
+  VectorEnv one(config(4, 1, 6)), two(config(4, 2, 6));
+  EXPECT_EQ(snapshot(one.reset(5)), snapshot(two.reset(5)));
+  std::mt19937 rng(3);
+  for (int i = 0; i < 15; ++i) {
+    const auto actions = random_actions(rng, 4);
+    EXPECT_EQ(snapshot(one.step(actions)), snapshot(two.step(actions))) << "step " << i;
+  }
+}
+
+TEST(VectorEnv, EnvIIsTheSingleEnvSeededWithSeedPlusI) {
+  VectorEnv vec(config(3, 2));
+  Env env0(config(3, 2).env), env2(config(3, 2).env);
+  Batch b = vec.reset(100);
+  env0.reset(100);
+  env2.reset(102);
+  std::mt19937 rng(9);
+  for (int i = 0; i < 5; ++i) {
+    const auto actions = random_actions(rng, 3);
+    b = vec.step(actions);
+    auto s0 = env0.step(std::span<const float>(actions).first(kLowLevelActionSize));
+    // Env 0 draws in tile 0 as a single env does: everything is identical.
+    for (const Array& a : b.obs->arrays()) {
+      EXPECT_EQ(std::memcmp(a.item(0), s0.obs[a.name].item(0), a.item_bytes()), 0) << a.name;
+    }
+    // Env 2 draws in tile 2: the state is identical (images may differ by a
+    // rounding level on a few edge pixels, see CameraView::tile).
+    auto s2 = env2.step(std::span<const float>(actions).subspan(2 * kLowLevelActionSize, kLowLevelActionSize));
+    EXPECT_EQ(std::memcmp((*b.obs)["proprio"].item(2), s2.obs["proprio"].item(0),
+                          s2.obs["proprio"].item_bytes()), 0);
+  }
+}
+
+TEST(VectorEnv, AsyncRecvReturnsTheFirstBatchReadyWithEnvIds) {
+  VectorEnvConfig c = config(4, 2);
+  c.batch_size = 2;
+  VectorEnv vec(c);
+  vec.reset(0);
+  EXPECT_THROW(vec.step(std::vector<float>(4 * kLowLevelActionSize)), Error);  // needs batch == N
+  std::vector<int> ids = {0, 1, 2, 3};
+  vec.send(std::vector<float>(4 * kLowLevelActionSize, 0.f), ids);
+  std::set<int> seen;
+  for (int k = 0; k < 2; ++k) {
+    Batch b = vec.recv();
+    ASSERT_EQ(b.size(), 2);
+    EXPECT_EQ((*b.obs)["rgb"].shape[0], 2);
+    for (int i = 0; i < 2; ++i) {
+      seen.insert(b.env_ids[i]);
+      EXPECT_EQ(b.infos[i].env_id, b.env_ids[i]);
+      EXPECT_EQ(b.infos[i].elapsed_steps, 1);
+    }
+  }
+  EXPECT_EQ(seen, (std::set<int>{0, 1, 2, 3}));
+  EXPECT_THROW(vec.recv(), Error);  // nothing in flight: would wait forever
+  // Envs go on independently: step env 3 twice more, then the rest once.
+  std::vector<int> three = {3};
+  vec.send(std::vector<float>(kLowLevelActionSize, 0.f), three);
+  EXPECT_THROW(vec.send(std::vector<float>(kLowLevelActionSize, 0.f), three), Error);  // in flight
+  std::vector<int> rest = {0, 1};
+  vec.send(std::vector<float>(2 * kLowLevelActionSize, 0.f), rest);
+  std::vector<int64_t> steps(4, 1);
+  for (int k = 0; k < 1; ++k) {
+    Batch b = vec.recv();
+    for (int i = 0; i < b.size(); ++i) steps[b.env_ids[i]] = b.infos[i].elapsed_steps;
+  }
+  int done = 0;
+  for (int e = 0; e < 4; ++e) done += steps[e] == 2;
+  EXPECT_EQ(done, 2);
+}
+
+TEST(VectorEnv, NextStepAutoresetResetsOnTheFollowingStep) {
+  VectorEnv vec(config(2, 1, 3));
+  vec.reset(0);
+  std::vector<float> zero(2 * kLowLevelActionSize, 0.f);
+  vec.step(zero);
+  vec.step(zero);
+  Batch b = vec.step(zero);
+  EXPECT_TRUE(b.truncated[0] && b.truncated[1]);
+  EXPECT_EQ(b.infos[0].elapsed_steps, 3);
+  EXPECT_EQ(b.final_obs, nullptr);
+  b = vec.step(zero);  // the reset step
+  EXPECT_FALSE(b.truncated[0] || b.terminated[0]);
+  EXPECT_EQ(b.rewards[0], 0.f);
+  EXPECT_EQ(b.infos[0].elapsed_steps, 0);
+  EXPECT_EQ(vec.step(zero).infos[0].elapsed_steps, 1);
+}
+
+TEST(VectorEnv, SameStepAutoresetKeepsTheFinalObservation) {
+  VectorEnvConfig c = config(2, 2, 3);
+  c.autoreset = AutoReset::same_step;
+  VectorEnv vec(c);
+  Env single(c.env);
+  vec.reset(0);
+  single.reset(1);
+  std::vector<float> zero(2 * kLowLevelActionSize, 0.f);
+  std::vector<float> one_zero(kLowLevelActionSize, 0.f);
+  Batch b = vec.step(zero);
+  for (int i = 0; i < 2; ++i) single.step(one_zero);
+  b = vec.step(zero);
+  b = vec.step(zero);
+  auto last = single.step(one_zero);
+  EXPECT_TRUE(b.truncated[1]);
+  EXPECT_EQ(b.infos[1].elapsed_steps, 0);        // already the new episode
+  EXPECT_EQ(b.final_infos[1].elapsed_steps, 3);  // the one that ended
+  ASSERT_NE(b.final_obs, nullptr);
+  EXPECT_EQ(std::memcmp(b.final_obs->operator[]("proprio").item(1), last.obs["proprio"].item(0),
+                        last.obs["proprio"].item_bytes()), 0);
+  // The new episode continues env 1's random stream, as a single env's reset().
+  auto next = single.reset();
+  EXPECT_EQ(std::memcmp((*b.obs)["proprio"].item(1), next.obs["proprio"].item(0),
+                        next.obs["proprio"].item_bytes()), 0);
+}
+
+TEST(VectorEnv, BadConfigurationsAndActionsAreClearErrors) {
+  auto message = [](const VectorEnvConfig& c) {
+    try {
+      VectorEnv v(c);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(message(config(0, 1)).find("num_envs must be at least 1"), std::string::npos);
+  EXPECT_NE(message(config(2, 3)).find("num_threads must be in 1..2"), std::string::npos);
+  VectorEnv vec(config(2, 1));
+  EXPECT_THROW(vec.step(std::vector<float>(2 * kLowLevelActionSize)), Error);  // before reset
+  vec.reset(0);
+  std::vector<float> bad(2 * kLowLevelActionSize, 0.f);
+  bad[kLowLevelActionSize + 2] = INFINITY;
+  try {
+    vec.step(bad);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("for env 1 (index 2)"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(vec.step(std::vector<float>(5)), Error);
+  // Nothing was sent: the next good step works and counts one step.
+  EXPECT_EQ(vec.step(std::vector<float>(2 * kLowLevelActionSize, 0.f)).infos[0].elapsed_steps, 1);
+  vec.close();
+  vec.close();
+  EXPECT_THROW(vec.reset(0), Error);
+}
+
+}  // namespace
+}  // namespace chore

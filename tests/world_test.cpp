@@ -1,0 +1,128 @@
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include "env/env.hpp"
+#include "env/world/error.hpp"
+#include "env/world/mujoco_errors.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+EnvConfig box_room_config() {
+  EnvConfig c;
+  c.scene = test::box_room();
+  c.start_jitter = 0;
+  c.observations = {"proprio", "is_grasping"};
+  return c;
+}
+
+TEST(MujocoErrors, ErrorsBecomeChoreErrorsNotExit) {
+  install_mujoco_handlers();
+  EXPECT_THROW(mju_error("boom"), Error);
+  // A real failure inside the engine: the data stack overflows.
+  auto scene = Scene::load(test::box_room());
+  mjData* d = mj_makeData(scene->model());
+  d->pstack = d->nstack - 4;
+  EXPECT_THROW(mj_stackAlloc(d, 1000), Error);
+  mj_deleteData(d);
+}
+
+TEST(World, DivergingSimulationTruncatesWithAFlag) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.world();
+  const SceneObject* block = w.scene().find_object("small_block_1");
+  const int dof = w.model()->jnt_dofadr[w.model()->body_jntadr[block->body]];
+  w.data()->qvel[dof] = 1e30;  // beyond mjMAXVAL: MuJoCo resets and warns
+  std::vector<float> zero(kLowLevelActionSize, 0.f);
+  auto step = env.step(zero);
+  EXPECT_TRUE(step.truncated);
+  EXPECT_FALSE(step.terminated);
+  EXPECT_TRUE(step.info.diverged);
+  EXPECT_THROW(env.step(zero), Error);  // must reset first
+  EXPECT_FALSE(env.reset(0).info.diverged);
+}
+
+// Puts a free object between the open fingers, with gravity off so that it
+// stays there while the gripper closes.
+int place_between_fingers(World& w, const char* name) {
+  const SceneObject* o = w.scene().find_object(name);
+  const mjModel* m = w.model();
+  const int qpos = m->jnt_qposadr[m->body_jntadr[o->body]];
+  const double* site = w.data()->site_xpos + 3 * w.robot()->gripper_site;
+  // The model origin is the block's bottom centre: lower it by its half height.
+  w.data()->qpos[qpos + 0] = site[0];
+  w.data()->qpos[qpos + 1] = site[1];
+  w.data()->qpos[qpos + 2] = site[2] - 0.025;
+  w.model()->opt.gravity[2] = 0;
+  mj_forward(w.model(), w.data());
+  return o->body;
+}
+
+std::vector<float> gripper_action(float gripper, float torso = 0) {
+  std::vector<float> a(kLowLevelActionSize, 0.f);
+  a[11] = gripper;
+  a[3] = torso;
+  return a;
+}
+
+TEST(World, AssistiveGraspHoldsAnObjectBothFingersTouchUntilOpened) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.world();
+  const int body = place_between_fingers(w, "small_block_1");
+  for (int i = 0; i < 15 && w.grasped_object() < 0; ++i) env.step(gripper_action(-1));
+  ASSERT_GE(w.grasped_object(), 0);
+  EXPECT_EQ(w.scene().objects()[w.grasped_object()].name, "small_block_1");
+  EXPECT_EQ(env.step(gripper_action(-1)).obs["is_grasping"].data<float>()[0], 1.0f);
+  // With gravity back, the held block moves with the hand as the torso rises.
+  w.model()->opt.gravity[2] = -9.81;
+  const double* hand = w.data()->xpos + 3 * w.robot()->gripper_body;
+  const double* obj = w.data()->xpos + 3 * body;
+  const double offset_before = obj[2] - hand[2], z_before = obj[2];
+  for (int i = 0; i < 30; ++i) env.step(gripper_action(-1, 1));
+  EXPECT_GT(obj[2] - z_before, 0.05);  // lifted with the torso
+  EXPECT_NEAR(obj[2] - hand[2], offset_before, 0.01);
+  // Opening releases it and it falls.
+  for (int i = 0; i < 30; ++i) env.step(gripper_action(1));
+  EXPECT_LT(w.grasped_object(), 0);
+  EXPECT_LT(obj[2], z_before);
+}
+
+TEST(World, ObjectsOverTheMassLimitAreRefused) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.world();
+  place_between_fingers(w, "heavy_block_1");
+  bool refused = false;
+  for (int i = 0; i < 15; ++i) refused |= env.step(gripper_action(-1)).info.grasp_refused;
+  EXPECT_TRUE(refused);
+  EXPECT_LT(w.grasped_object(), 0);
+}
+
+TEST(World, ZeroActionHoldsTheRobotStill) {
+  Env env(box_room_config());
+  auto start = env.reset(0);
+  std::vector<float> before(start.obs["proprio"].data<float>(), start.obs["proprio"].data<float>() + 30);
+  std::vector<float> zero(kLowLevelActionSize, 0.f);
+  const float* p = nullptr;
+  for (int i = 0; i < 90; ++i) p = env.step(zero).obs["proprio"].data<float>();
+  for (int k : {0, 1, 2, 3}) EXPECT_NEAR(p[k], before[k], 1e-3) << "base " << k;
+  for (int k = 7; k < 17; ++k) EXPECT_NEAR(p[k], before[k], 0.01) << "joint " << k;
+}
+
+TEST(World, BaseVelocityActionDrivesTheRobot) {
+  Env env(box_room_config());
+  env.reset(0);
+  std::vector<float> forward(kLowLevelActionSize, 0.f);
+  forward[0] = 1.0f;  // 0.5 m/s
+  const float* p = nullptr;
+  for (int i = 0; i < 30; ++i) p = env.step(forward).obs["proprio"].data<float>();
+  EXPECT_NEAR(p[0], 0.5, 0.08);  // one second forward along +x
+  EXPECT_NEAR(p[1], 0.0, 0.02);
+  EXPECT_NEAR(p[4], 0.5, 0.05);  // forward velocity in the robot frame
+}
+
+}  // namespace
+}  // namespace chore

@@ -1,0 +1,28 @@
+// `chore bench`: the idle benchmark of the seed's Table A.10. The robot stands
+// still with a zero action; each step runs physics (4 x 1/120 s), the
+// extended-state update (when the scene's activity has one) and renders the
+// egocentric camera. Reports env steps per second.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace chore {
+
+struct BenchOptions {
+  std::vector<std::string> scenes = {"apartment"};
+  int steps = 600;     // measured steps per repetition
+  int repeats = 3;     // the median is reported
+  int width = 128, height = 128;
+  int vector_envs = 8; // envs of the vector-env throughput rows
+};
+
+// Runs the benchmark and returns its results; `log` gets progress lines.
+nlohmann::json run_bench(const BenchOptions& options, std::ostream& log);
+// The Table A.10-shaped text table of run_bench's results.
+std::string format_bench(const nlohmann::json& results);
+
+}  // namespace chore

@@ -1,0 +1,52 @@
+// The `chore` command line: benchmarks now; train, eval, activity and video
+// subcommands join as their layers land. Bad arguments and bad input files
+// exit with status 2 and a message naming what is wrong.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "env/world/error.hpp"
+#include "training/bench.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
+  app.require_subcommand(1);
+
+  chore::BenchOptions bench;
+  bool bench_json = false;
+  CLI::App* bench_cmd = app.add_subcommand("bench", "Idle benchmark (seed Table A.10 protocol)");
+  bench_cmd->add_option("--scenes", bench.scenes, "Scenes to benchmark")->capture_default_str();
+  bench_cmd->add_option("--steps", bench.steps, "Steps per repetition")->check(CLI::PositiveNumber)->capture_default_str();
+  bench_cmd->add_option("--repeats", bench.repeats, "Repetitions (median reported)")->check(CLI::PositiveNumber)->capture_default_str();
+  bench_cmd->add_option("--width", bench.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
+  bench_cmd->add_option("--height", bench.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
+  bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")->check(CLI::Range(2, 256))->capture_default_str();
+  bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    if (*bench_cmd) {
+      const nlohmann::json results = chore::run_bench(bench, std::cerr);
+      if (bench_json) {
+        std::cout << results.dump(2) << std::endl;
+      } else {
+        std::cout << chore::format_bench(results);
+      }
+    }
+  } catch (const chore::Error& e) {
+    std::cerr << "chore: error: " << e.what() << std::endl;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "chore: internal error: " << e.what() << std::endl;
+    return 1;
+  }
+  return 0;
+}
