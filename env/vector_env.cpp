@@ -6,6 +6,7 @@
 #include <deque>
 #include <exception>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "env/world/error.hpp"
@@ -13,8 +14,7 @@
 namespace chore {
 namespace {
 
-// Cameras per render pass (one row of tiles): enough to amortise the
-// readback, small enough to keep the offscreen buffer modest.
+// Cameras per render pass on a GPU (one row of tiles).
 constexpr int kMaxTiles = 16;
 
 // One batch of results: what recv() returns, written in place by the workers.
@@ -57,6 +57,7 @@ struct VectorEnv::Impl {
   VectorEnvConfig config;
   int num_envs, batch, action_size;
   bool same_step;
+  int tile_count = 1;  // cameras per render pass
   std::vector<std::unique_ptr<Env>> envs;
   std::vector<std::vector<float>> actions;             // per env, set by send()
   std::vector<std::optional<uint64_t>> seeds;          // per env, set by reset()
@@ -88,6 +89,10 @@ struct VectorEnv::Impl {
                   std::to_string(c.batch_size));
     }
     same_step = c.autoreset == AutoReset::same_step;
+    if (c.render_tiles < 0) throw Error("vector env: render_tiles must be >= 0");
+    const int wanted = c.render_tiles > 0 ? c.render_tiles
+                       : std::string(Renderer::platform()) == "device" ? kMaxTiles : 1;
+    tile_count = std::max(1, std::min({wanted, num_envs, 8192 / std::max(1, c.env.width)}));
     const std::shared_ptr<const Scene> scene = load_scene(c.env);
     for (int i = 0; i < num_envs; ++i) envs.push_back(std::make_unique<Env>(c.env, scene));
     action_size = static_cast<int>(envs[0]->action_space().element_count());
@@ -164,7 +169,7 @@ struct VectorEnv::Impl {
 
   // Env i always draws in tile i % tiles(), whichever worker renders it, so
   // that images do not depend on the thread count (see CameraView::tile).
-  int tiles() const { return std::max(1, std::min({kMaxTiles, num_envs, 8192 / config.env.width})); }
+  int tiles() const { return tile_count; }
 
   void add_views(std::vector<CameraView>& views, int env, ArrayDict& obs, int index) {
     for (CameraView v : envs[env]->camera_views(obs, index)) {

@@ -6,9 +6,9 @@
 //   recv()               ... the first batch_size to finish, with their env ids
 //
 // Workers write observations straight into batched buffers ((B, H, W, 3) uint8
-// RGB, (B, H, W) float32 depth, ...); each worker renders all the envs of its
-// share in one pass (tiles of one offscreen buffer, one readback). Env i is
-// seeded with seed + i, so results do not depend on the thread count.
+// RGB, (B, H, W) float32 depth, ...); each worker renders the envs of its share
+// in passes of `render_tiles` cameras. Env i is seeded with seed + i, so
+// results do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +34,11 @@ struct VectorEnvConfig {
   int num_threads = 1;  // 1 <= num_threads <= num_envs
   int batch_size = 0;   // recv() returns this many envs; 0 means num_envs
   AutoReset autoreset = AutoReset::next_step;
+  // Cameras drawn per render pass (tiles of one offscreen buffer, one readback).
+  // 0 chooses: 1 on llvmpipe, where per-geom draw calls dominate and wider
+  // passes measured slower (docs/benchmarks.md); 16 on a GPU, where each
+  // readback is a synchronisation.
+  int render_tiles = 0;
 };
 
 // Views into the vector env's buffers, valid until the next reset/step/recv.

@@ -45,13 +45,17 @@ std::vector<unsigned char> snapshot(const Batch& b) {
 }
 
 TEST(VectorEnv, ResultsDoNotDependOnTheThreadCount) {
-  // Short episodes so that autoresets happen inside the comparison.
-  VectorEnv one(config(4, 1, 6)), two(config(4, 2, 6));
-  EXPECT_EQ(snapshot(one.reset(5)), snapshot(two.reset(5)));
-  std::mt19937 rng(3);
-  for (int i = 0; i < 15; ++i) {
-    const auto actions = random_actions(rng, 4);
-    EXPECT_EQ(snapshot(one.step(actions)), snapshot(two.step(actions))) << "step " << i;
+  for (int tiles : {1, 4}) {
+    // Short episodes so that autoresets happen inside the comparison.
+    VectorEnvConfig c1 = config(4, 1, 6), c2 = config(4, 2, 6);
+    c1.render_tiles = c2.render_tiles = tiles;
+    VectorEnv one(c1), two(c2);
+    EXPECT_EQ(snapshot(one.reset(5)), snapshot(two.reset(5)));
+    std::mt19937 rng(3);
+    for (int i = 0; i < 12; ++i) {
+      const auto actions = random_actions(rng, 4);
+      EXPECT_EQ(snapshot(one.step(actions)), snapshot(two.step(actions))) << "step " << i << " tiles " << tiles;
+    }
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include "env/world/error.hpp"
 #include "env/world/mujoco_errors.hpp"
+#include "env/world/scene.hpp"
 
 namespace chore {
 namespace {
@@ -140,9 +141,9 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles)
   mjv_defaultScene(&s.scene);
   mjv_makeScene(model, &s.scene, model->ngeom + 64);
   mjv_defaultOption(&s.option);
-  // Group 0 holds what cameras see; collision geoms (group 3) stay hidden.
+  // Drawn: group 0 and, per view, the ceilings; collision geoms stay hidden.
   for (int g = 0; g < mjNGROUP; ++g) {
-    s.option.geomgroup[g] = g == 0;
+    s.option.geomgroup[g] = g == kStaticGroup;
     s.option.sitegroup[g] = 0;
   }
   mjv_defaultCamera(&s.camera);
@@ -251,6 +252,7 @@ void Renderer::render_pass(const std::vector<const CameraView*>& pass) {
   bool want_rgb = false, want_depth = false;
   for (const CameraView* v : pass) {
     s.camera.fixedcamid = v->camera;
+    s.option.geomgroup[kCeilingGroup] = v->ceiling;
     mjv_updateScene(v->model, v->data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
     cull_to_frustum(s.scene, double(s.width) / s.height);
     const mjrRect viewport = {v->tile * s.width, 0, s.width, s.height};

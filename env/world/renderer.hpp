@@ -27,6 +27,7 @@ struct CameraView {
   // rasteriser rounds differently at different offsets (a few pixels differ by
   // one level), so an environment that must render bit-identically keeps its tile.
   int tile = 0;
+  bool ceiling = true;  // false for views from above the scene
 };
 
 class Renderer {

@@ -309,7 +309,9 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
 
   const double wall_height = j.number("wall_height", 2.6);
   const double wall_thickness = j.number("wall_thickness", 0.1);
-  StaticMesh mesh;
+  StaticMesh mesh("static_visual", kStaticGroup);
+  // Ceilings in their own group, so that views from above can leave them out.
+  StaticMesh ceilings("ceiling_visual", kCeilingGroup);
   std::string world;    // <worldbody> children
   std::string welds;    // <equality> children
   std::string lights;
@@ -340,7 +342,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
                fmt(Eigen::Vector3d(floor.translation())) + "\"/>\n";
       Eigen::Isometry3d ceiling = floor;
       ceiling.translation().z() = wall_height + 0.05;
-      mesh.add_box(ceiling, half, kCeilingColor);
+      ceilings.add_box(ceiling, half, kCeilingColor);
     }
     if (room.rects.empty()) r.fail("a room needs at least one rect");
     scene->rooms_.push_back(std::move(room));
@@ -446,12 +448,15 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
              fmt(std::sin(p.yaw)) + " " + fmt(-std::cos(p.yaw)) + " 0 0 0 1\" fovy=\"58\"/>\n";
   }
 
+  // <size>: MuJoCo 2.2.2 preallocates for njmax constraint rows; each mjData
+  // costs ~25 MB at 500 rows and ~780 MB at 8000. A scene at rest has ~100
+  // contacts (~400 rows with pyramidal friction cones).
   std::string xml =
       "<mujoco model=\"" + scene->name_ + "\">\n"
       "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"
       "  <option timestep=\"" + fmt(kTimestep) + "\" integrator=\"Euler\" solver=\"Newton\" "
       "iterations=\"30\" tolerance=\"1e-6\"/>\n"
-      "  <size nconmax=\"2000\" njmax=\"8000\"/>\n"
+      "  <size nconmax=\"400\" njmax=\"1500\"/>\n"
       "  <visual>\n"
       "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
       "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"
@@ -461,12 +466,15 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       "  <statistic extent=\"" + fmt(kExtent) + "\" center=\"" +
       fmt(Eigen::Vector3d(center.x(), center.y(), 1.0)) + "\"/>\n"
       "  <default>\n"
-      "    <geom contype=\"1\" conaffinity=\"1\" group=\"3\" friction=\"0.8 0.02 0.001\"/>\n"
-      "    <default class=\"visual\"><geom contype=\"0\" conaffinity=\"0\" group=\"0\" mass=\"0\"/></default>\n"
-      "    <default class=\"object\"><geom group=\"0\"/></default>\n"
+      "    <geom contype=\"1\" conaffinity=\"1\" group=\"" + std::to_string(kCollisionGroup) +
+      "\" friction=\"0.8 0.02 0.001\"/>\n"
+      "    <default class=\"visual\"><geom contype=\"0\" conaffinity=\"0\" group=\"" +
+      std::to_string(kStaticGroup) + "\" mass=\"0\"/></default>\n"
+      "    <default class=\"object\"><geom group=\"" + std::to_string(kStaticGroup) +
+      "\"/></default>\n"
       "  </default>\n"
-      "  <asset>\n" + mesh.mjcf_assets() + "  </asset>\n"
-      "  <worldbody>\n" + (mesh.empty() ? "" : StaticMesh::mjcf_geom()) + lights + world +
+      "  <asset>\n" + mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n"
+      "  <worldbody>\n" + mesh.mjcf_geom() + ceilings.mjcf_geom() + lights + world +
       "  </worldbody>\n";
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
@@ -479,6 +487,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   mjModel* model = compile_mjcf(xml, path);
   scene->model_ = model;  // owned from here: ~Scene frees it on any later error
   mesh.paint_palette(model);
+  ceilings.paint_palette(model);
 
   for (SceneObject& object : scene->objects_) {
     object.body = mj_name2id(model, mjOBJ_BODY, object.name.c_str());

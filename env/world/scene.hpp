@@ -17,6 +17,13 @@ namespace chore {
 // Root of the asset library: $CHORE_ASSETS if set, else the source tree's assets/.
 std::string default_assets_dir();
 
+// Geom groups: what cameras draw (group 0: robot, objects, the merged static
+// scene), ceilings (group 1, drawn by egocentric views only) and collision-only
+// geoms (group 3, never drawn).
+constexpr int kStaticGroup = 0;
+constexpr int kCeilingGroup = 1;
+constexpr int kCollisionGroup = 3;
+
 struct Room {
   std::string name;  // "<type>_<index>", the name BDDL's (inroom obj room) uses
   std::string type;

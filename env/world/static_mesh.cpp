@@ -185,29 +185,30 @@ std::string StaticMesh::mjcf_assets() const {
     texcoords.push_back(uv[1]);
   }
   for (const auto& f : faces_) faces.insert(faces.end(), f.begin(), f.end());
-  return "    <texture name=\"static_palette\" type=\"2d\" builtin=\"flat\" width=\"" +
+  return "    <texture name=\"" + name_ + "\" type=\"2d\" builtin=\"flat\" width=\"" +
          std::to_string(texture_width()) + "\" height=\"" + std::to_string(texture_height()) +
          "\" rgb1=\"1 1 1\"/>\n"
-         "    <material name=\"static_palette\" texture=\"static_palette\" specular=\"0.05\" "
-         "shininess=\"0.1\"/>\n"
-         "    <mesh name=\"static_visual\" vertex=\"" + format_numbers(positions) +
+         "    <material name=\"" + name_ + "\" texture=\"" + name_ +
+         "\" specular=\"0.05\" shininess=\"0.1\"/>\n"
+         "    <mesh name=\"" + name_ + "\" vertex=\"" + format_numbers(positions) +
          "\" normal=\"" + format_numbers(normals) + "\" texcoord=\"" + format_numbers(texcoords) +
          "\" face=\"" + format_numbers(faces) + "\"/>\n";
 }
 
-std::string StaticMesh::mjcf_geom() {
-  return "    <geom name=\"static_visual\" class=\"visual\" type=\"mesh\" mesh=\"static_visual\" "
-         "material=\"static_palette\"/>\n";
+std::string StaticMesh::mjcf_geom() const {
+  if (empty()) return "";
+  return "    <geom name=\"" + name_ + "\" class=\"visual\" group=\"" + std::to_string(group_) +
+         "\" type=\"mesh\" mesh=\"" + name_ + "\" material=\"" + name_ + "\"/>\n";
 }
 
 void StaticMesh::paint_palette(mjModel_* model) const {
   if (empty()) return;
-  const int id = mj_name2id(model, mjOBJ_TEXTURE, "static_palette");
+  const int id = mj_name2id(model, mjOBJ_TEXTURE, name_.c_str());
   if (id < 0 || model->tex_width[id] != texture_width() ||
       model->tex_height[id] != texture_height()) {
-    throw Error("static mesh: palette texture missing from the compiled model");
+    throw Error("static mesh '" + name_ + "': palette texture missing from the compiled model");
   }
-  unsigned char* texels = model->tex_rgb + 3 * model->tex_adr[id];
+  unsigned char* texels = model->tex_rgb + model->tex_adr[id];  // tex_adr counts bytes
   for (const auto& [rgb, index] : palette_) {
     const int bx = index % kBlocksPerRow, by = index / kBlocksPerRow;
     for (int y = by * kBlock; y < (by + 1) * kBlock; ++y) {

@@ -19,6 +19,10 @@ using Rgb = std::array<double, 3>;
 
 class StaticMesh {
  public:
+  // `name` names the MJCF mesh, texture and material; `group` is the geom group
+  // that draws it.
+  StaticMesh(std::string name, int group) : name_(std::move(name)), group_(group) {}
+
   // Shapes in MuJoCo's conventions (half sizes), placed by `pose`.
   void add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half, const Rgb& color);
   void add_cylinder(const Eigen::Isometry3d& pose, double radius, double half_height,
@@ -34,7 +38,7 @@ class StaticMesh {
   // <texture>, <material> and <mesh> elements for the <asset> section.
   std::string mjcf_assets() const;
   // The one <geom> that draws it (visual only).
-  static std::string mjcf_geom();
+  std::string mjcf_geom() const;
   // MuJoCo's builtin texture is flat white; this paints the palette into it.
   void paint_palette(mjModel_* model) const;
 
@@ -53,6 +57,8 @@ class StaticMesh {
   int texture_width() const;
   int texture_height() const;
 
+  std::string name_;
+  int group_;
   std::vector<Vertex> vertices_;
   std::vector<std::array<int, 3>> faces_;
   std::map<std::array<int, 3>, int> palette_;  // 8-bit rgb -> index

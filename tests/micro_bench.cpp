@@ -1,0 +1,86 @@
+// Google Benchmark micro-benchmarks of the pieces of an env step:
+//   build/tests/chore_micro_bench [--benchmark_filter=...]
+// Not part of ctest: timings belong to benchmark programs, not tests.
+#include <benchmark/benchmark.h>
+#include <mujoco/mujoco.h>
+
+#include "env/env.hpp"
+#include "env/world/renderer.hpp"
+
+namespace chore {
+namespace {
+
+std::shared_ptr<const Scene> apartment() {
+  static auto scene = Scene::load("apartment");
+  return scene;
+}
+
+EnvConfig rgbd() {
+  EnvConfig c;
+  c.scene = "apartment";
+  return c;
+}
+
+// One physics step of 1/120 s of the apartment with the robot standing still.
+void BM_PhysicsStep(benchmark::State& state) {
+  World world(apartment());
+  for (auto _ : state) world.step(1);
+}
+BENCHMARK(BM_PhysicsStep);
+
+// One 128x128 RGB-D frame of the head camera, readback included.
+void BM_RenderRgbd(benchmark::State& state) {
+  Env env(rgbd(), apartment());
+  env.reset(0);
+  ArrayDict out(env.observation_space(), 1);
+  Renderer renderer(env.world().model(), 128, 128, 1);
+  std::vector<CameraView> views = env.camera_views(out, 0);
+  for (auto _ : state) renderer.render(views);
+}
+BENCHMARK(BM_RenderRgbd);
+
+// N cameras in one pass (tiles, one readback); reported per frame.
+void BM_RenderTiled(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<std::unique_ptr<Env>> envs;
+  ArrayDict out(Env(rgbd(), apartment()).observation_space(), n);
+  std::vector<CameraView> views;
+  for (int i = 0; i < n; ++i) {
+    envs.push_back(std::make_unique<Env>(rgbd(), apartment()));
+    envs.back()->reset(0);  // the same view in every tile: only the batching differs
+    for (CameraView v : envs.back()->camera_views(out, i)) {
+      v.tile = i;
+      views.push_back(v);
+    }
+  }
+  Renderer renderer(envs[0]->world().model(), 128, 128, n);
+  for (auto _ : state) renderer.render(views);
+  state.SetItemsProcessed(state.iterations() * n);
+}
+BENCHMARK(BM_RenderTiled)->Arg(1)->Arg(4)->Arg(8)->Arg(16);
+
+// Writing proprioception into a batch slot.
+void BM_WriteState(benchmark::State& state) {
+  Env env(rgbd(), apartment());
+  env.reset(0);
+  ArrayDict out(env.observation_space(), 8);
+  int i = 0;
+  for (auto _ : state) env.write_state(out, i++ % 8);
+}
+BENCHMARK(BM_WriteState);
+
+// A whole env step (physics x4 + render + state), as `chore bench` times it.
+void BM_EnvStep(benchmark::State& state) {
+  Env env(rgbd(), apartment());
+  env.reset(0);
+  std::vector<float> zero(kLowLevelActionSize, 0.f);
+  for (auto _ : state) {
+    if (env.step(zero).truncated) env.reset(0);
+  }
+}
+BENCHMARK(BM_EnvStep);
+
+}  // namespace
+}  // namespace chore
+
+BENCHMARK_MAIN();
