@@ -5,9 +5,11 @@ set -uo pipefail
 chore="$1"
 data="$(cd "$(dirname "${BASH_SOURCE[0]}")/data" && pwd)"
 failures=0
+checks=0
 
 expect() {  # expect CODE PATTERN -- command...
   local code="$1" pattern="$2"
+  checks=$((checks + 1))
   shift 3
   local out
   out="$("$@" 2>&1)"
@@ -26,8 +28,14 @@ expect 2 "no_such_command" -- "$chore" no_such_command
 expect 2 "steps" -- "$chore" bench --steps 0
 expect 2 "unknown scene 'no_such_scene'" -- "$chore" bench --scenes no_such_scene --steps 1 --repeats 1
 expect 2 "CHORE_EGL='bogus'" -- env CHORE_EGL=bogus "$chore" bench --scenes "$data/scenes/box_room.json" --steps 1 --repeats 1
+# Asking for a GPU EGL device where there is none is an error, not a crash.
+if ! ls /dev/dri/renderD* /dev/nvidia0 >/dev/null 2>&1; then
+  expect 2 "no GPU EGL device" -- env CHORE_EGL=device "$chore" bench --scenes "$data/scenes/box_room.json" --steps 1 --repeats 1
+else
+  expect 0 "Full Feature Set" -- env CHORE_EGL=device "$chore" bench --scenes "$data/scenes/box_room.json" --steps 1 --repeats 1 --envs 2
+fi
 expect 0 '"vector_env"' -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2 --json
 expect 0 "Full Feature Set" -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2
 
-echo "$((7 - failures)) passed, $failures failed"
+echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

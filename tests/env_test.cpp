@@ -10,9 +10,10 @@
 namespace chore {
 namespace {
 
+// With the seeded start jitter: different seeds, different episodes.
 EnvConfig box_room_config() {
-  EnvConfig c;
-  c.scene = test::box_room();
+  EnvConfig c = test::box_room_config();
+  c.start_jitter = EnvConfig().start_jitter;
   return c;
 }
 

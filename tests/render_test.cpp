@@ -14,13 +14,6 @@
 namespace chore {
 namespace {
 
-EnvConfig box_room_config() {
-  EnvConfig c;
-  c.scene = test::box_room();
-  c.start_jitter = 0;
-  return c;
-}
-
 void save_png(const Array& rgb, int index, int h, int w, const std::string& name) {
   cv::Mat img(h, w, CV_8UC3, const_cast<void*>(rgb.item(index)));
   cv::Mat bgr;
@@ -39,7 +32,7 @@ std::array<double, 2> project(const mjModel* m, const mjData* d, int cam, const 
 }
 
 TEST(Render, DepthMatchesRayCastsWithinOneCentimetre) {
-  Env env(box_room_config());
+  Env env(test::box_room_config());
   auto r = env.reset(0);
   const mjModel* m = env.world().model();
   const mjData* d = env.world().data();
@@ -71,7 +64,7 @@ TEST(Render, DepthMatchesRayCastsWithinOneCentimetre) {
 }
 
 TEST(Render, ColouredObjectsAppearWhereTheyStand) {
-  Env env(box_room_config());
+  Env env(test::box_room_config());
   auto r = env.reset(0);
   const Array& rgb = r.obs["rgb"];
   save_png(rgb, 0, 128, 128, "box_room_head_camera.png");
@@ -106,7 +99,7 @@ double mean_brightness(Env& env) {
 }
 
 TEST(Render, LampsOnlyLightingIsDarkerThanFull) {
-  EnvConfig c = box_room_config();
+  EnvConfig c = test::box_room_config();
   Env full(c);
   c.lighting = Lighting::lamps_only;
   Env lamps(c);
@@ -117,7 +110,7 @@ TEST(Render, LampsOnlyLightingIsDarkerThanFull) {
 }
 
 TEST(Render, ATileRendersTheSameWhateverElseIsInThePass) {
-  EnvConfig c = box_room_config();
+  EnvConfig c = test::box_room_config();
   c.start_jitter = 0.1;
   Env a(c), b(c), e(c);
   a.reset(0);

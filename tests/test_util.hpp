@@ -5,6 +5,8 @@
 #include <fstream>
 #include <string>
 
+#include "env/env.hpp"
+
 namespace chore::test {
 
 inline std::string data_path(const std::string& relative) {
@@ -12,6 +14,14 @@ inline std::string data_path(const std::string& relative) {
 }
 
 inline std::string box_room() { return data_path("scenes/box_room.json"); }
+
+// The box room with the robot exactly at its start pose (no seeded jitter).
+inline EnvConfig box_room_config() {
+  EnvConfig c;
+  c.scene = box_room();
+  c.start_jitter = 0;
+  return c;
+}
 
 // A fresh directory under the build tree for files a test writes and a person
 // may want to look at (pictures).

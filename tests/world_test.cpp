@@ -10,9 +10,7 @@ namespace chore {
 namespace {
 
 EnvConfig box_room_config() {
-  EnvConfig c;
-  c.scene = test::box_room();
-  c.start_jitter = 0;
+  EnvConfig c = test::box_room_config();
   c.observations = {"proprio", "is_grasping"};
   return c;
 }

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <string>
 
 #include "env/world/error.hpp"
 #include "training/bench.hpp"
@@ -23,6 +24,20 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")->check(CLI::Range(2, 256))->capture_default_str();
   bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
 
+  // CLI11 would only say "a subcommand is required": name the unknown one.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+      found |= sub->get_name() == argv[1];
+    }
+    if (!found) {
+      std::cerr << "chore: error: unknown subcommand '" << argv[1] << "' (known: " << known
+                << ")" << std::endl;
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
