@@ -19,7 +19,7 @@
 namespace chore {
 namespace {
 
-std::mutex egl_mutex;  // EGL initialisation and context creation are not thread-safe in Mesa
+std::mutex egl_mutex;  // context creation and destruction are not thread-safe in Mesa
 
 struct Display {
   EGLDisplay display = EGL_NO_DISPLAY;
@@ -80,7 +80,9 @@ Display open_display() {
 const Display& display() {
   // Not a function-local static initialised once and for all: a failure
   // (bad $CHORE_EGL) must be reported again to the next caller, not cached.
+  static std::mutex mutex;
   static Display d;
+  std::lock_guard<std::mutex> lock(mutex);
   if (d.display == EGL_NO_DISPLAY) d = open_display();
   return d;
 }

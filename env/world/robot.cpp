@@ -33,7 +33,8 @@ RobotJoint bind_joint(const mjModel* m, const std::string& name, bool actuated =
 
 }  // namespace
 
-const std::array<double, Robot::kArmJoints> Robot::kTuckedArm = {0.2, -1.34, -0.2, 1.94, -1.57, 1.37, 0.0};
+// The arm folded in front of the torso, within the base footprint (assets/robots/tiago.xml).
+const std::array<double, Robot::kArmJoints> Robot::kTuckedArm = {0.12, -1.45, -1.06, 2.13, 1.23, -1.26, -1.00};
 
 Robot Robot::bind(const mjModel* m) {
   Robot r;
