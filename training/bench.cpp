@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <thread>
 
 #include "env/env.hpp"
@@ -49,40 +50,62 @@ double env_steps_per_second(const EnvConfig& config, const BenchOptions& o) {
   return median(rates);
 }
 
-// Steps per second of a vector env at 1 and at 2 threads. The machines are
-// shared and noisy: the two are measured in alternating blocks, and the
-// speed-up is the median of the per-block ratios.
+// Steps per second of a vector env: synchronous steps at 1 and 2 threads, and
+// EnvPool-style asynchronous stepping at 2 threads (batch_size = envs / 2: the
+// caller sends the batch it received back at once, so no worker waits for the
+// slowest env of a round). The machines are shared and noisy: the three are
+// measured in alternating blocks and the speed-ups are medians of per-block ratios.
 struct VectorRates {
-  double one, two, speedup;
+  double one, two, two_async, speedup, speedup_async;
 };
 
 VectorRates vector_rates(const EnvConfig& env, int envs, const BenchOptions& o) {
-  std::vector<std::unique_ptr<VectorEnv>> vecs;
-  for (int threads : {1, 2}) {
+  auto make = [&](int threads, int batch) {
     VectorEnvConfig config;
     config.env = env;
     config.num_envs = envs;
     config.num_threads = threads;
-    vecs.push_back(std::make_unique<VectorEnv>(config));
-  }
-  std::vector<float> zero(envs * vecs[0]->single_action_space().element_count(), 0.f);
-  for (auto& v : vecs) {
+    config.batch_size = batch;
+    auto v = std::make_unique<VectorEnv>(config);
     v->reset(0);
-    for (int i = 0; i < 10; ++i) v->step(zero);
-  }
+    return v;
+  };
+  auto sync1 = make(1, 0), sync2 = make(2, 0), async2 = make(2, envs / 2);
+  const size_t action_size = sync1->single_action_space().element_count();
+  const std::vector<float> zero(envs * action_size, 0.f);
   const int rounds = std::max(1, o.steps / envs);
-  auto measure = [&](VectorEnv& v) {
-    const auto start = Clock::now();
-    for (int i = 0; i < rounds; ++i) v.step(zero);
+  auto rate = [&](const Clock::time_point& start) {
     return double(rounds) * envs / std::chrono::duration<double>(Clock::now() - start).count();
   };
-  std::vector<double> ones, twos, ratios;
+  auto measure_sync = [&](VectorEnv& v) {
+    const auto start = Clock::now();
+    for (int i = 0; i < rounds; ++i) v.step(zero);
+    return rate(start);
+  };
+  std::vector<int> all(envs);
+  for (int i = 0; i < envs; ++i) all[i] = i;
+  async2->send(zero, all);  // from here on, every env is in flight or just received
+  auto measure_async = [&]() {
+    const auto start = Clock::now();
+    for (int i = 0; i < 2 * rounds; ++i) {
+      const Batch b = async2->recv();
+      const std::vector<int> ids(b.env_ids.begin(), b.env_ids.end());
+      async2->send(std::span<const float>(zero).first(ids.size() * action_size), ids);
+    }
+    return rate(start);
+  };
+  measure_sync(*sync1);  // warm-up
+  measure_sync(*sync2);
+  measure_async();
+  std::vector<double> ones, twos, asyncs, ratios, async_ratios;
   for (int r = 0; r < std::max(3, o.repeats); ++r) {
-    ones.push_back(measure(*vecs[0]));
-    twos.push_back(measure(*vecs[1]));
+    ones.push_back(measure_sync(*sync1));
+    twos.push_back(measure_sync(*sync2));
+    asyncs.push_back(measure_async());
     ratios.push_back(twos.back() / ones.back());
+    async_ratios.push_back(asyncs.back() / ones.back());
   }
-  return {median(ones), median(twos), median(ratios)};
+  return {median(ones), median(twos), median(asyncs), median(ratios), median(async_ratios)};
 }
 
 }  // namespace
@@ -114,7 +137,11 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
     config.observations = {"rgb", "depth", "proprio", "is_grasping"};
     log << "bench: " << scene << " / vector env, 1 and 2 threads ..." << std::endl;
     const VectorRates v = vector_rates(config, o.vector_envs, o);
-    out["vector_env"][scene] = {{"1", v.one}, {"2", v.two}, {"speedup", v.speedup}};
+    out["vector_env"][scene] = {{"1", v.one},
+                                {"2", v.two},
+                                {"2_async", v.two_async},
+                                {"speedup", v.speedup},
+                                {"speedup_async", v.speedup_async}};
   }
   return out;
 }
@@ -149,15 +176,17 @@ std::string format_bench(const nlohmann::json& r) {
     }
     text += "\n";
   }
-  text += "\nVectorEnv throughput, " + r["image"].get<std::string>() +
-          " RGB-D + proprioception, zero action, sync step (median; speed-up: median of\n"
-          "alternating 1-thread / 2-thread blocks)\n";
+  text += "\nVectorEnv, " + r["image"].get<std::string>() +
+          " RGB-D + proprioception, zero action, env steps per second (speed-up: median of\n"
+          "per-block ratios to 1 thread, blocks alternating)\n";
+  std::snprintf(buf, sizeof buf, "%-14s%18s%26s%28s\n", "scene", "1 thread, sync",
+                "2 threads, sync", "2 threads, async (B=N/2)");
+  text += buf;
   for (const std::string& s : scenes) {
     const auto& v = r["vector_env"][s];
-    std::snprintf(buf, sizeof buf,
-                  "%-24s 1 thread: %6.0f steps/s   2 threads: %6.0f steps/s   speed-up %.2fx\n",
-                  s.c_str(), v["1"].get<double>(), v["2"].get<double>(),
-                  v["speedup"].get<double>());
+    std::snprintf(buf, sizeof buf, "%-14s%18.0f%18.0f (%.2fx)%20.0f (%.2fx)\n", s.c_str(),
+                  v["1"].get<double>(), v["2"].get<double>(), v["speedup"].get<double>(),
+                  v["2_async"].get<double>(), v["speedup_async"].get<double>());
     text += buf;
   }
   return text;
