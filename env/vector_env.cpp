@@ -239,10 +239,12 @@ struct VectorEnv::Impl {
     render(views, renderer);
   }
 
-  // Splits env ids into one contiguous share per worker.
+  // Splits env ids into tasks of at most one render pass each (one env on
+  // llvmpipe): idle workers take the next task, so an env that costs more
+  // (a view with more geoms) does not hold up a whole share.
   void dispatch(std::span<const int> ids, bool reset) {
-    const int threads = config.num_threads;
-    const size_t share = (ids.size() + threads - 1) / threads;
+    const size_t per_worker = (ids.size() + config.num_threads - 1) / config.num_threads;
+    const size_t share = std::max<size_t>(1, std::min<size_t>(per_worker, tile_count));
     {
       std::lock_guard<std::mutex> lock(mutex);
       for (size_t first = 0; first < ids.size(); first += share) {

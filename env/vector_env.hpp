@@ -6,8 +6,8 @@
 //   recv()               ... the first batch_size to finish, with their env ids
 //
 // Workers write observations straight into batched buffers ((B, H, W, 3) uint8
-// RGB, (B, H, W) float32 depth, ...); each worker renders the envs of its share
-// in passes of `render_tiles` cameras. Env i is seeded with seed + i, so
+// RGB, (B, H, W) float32 depth, ...); a worker takes up to `render_tiles` envs
+// at a time and renders their cameras in one pass. Env i is seeded with seed + i, so
 // results do not depend on the thread count.
 #pragma once
 
