@@ -144,12 +144,28 @@ TEST(Render, ATileRendersTheSameWhateverElseIsInThePass) {
   EXPECT_EQ(std::memcmp(one["rgb"].item(0), together["rgb"].item(0), one["rgb"].item_bytes()), 0);
 }
 
-TEST(Render, ApartmentHeadCameraPicture) {
+TEST(Render, ApartmentPictures) {
   EnvConfig c;
   c.width = c.height = 256;
   Env env(c);
   auto r = env.reset(0);
   save_png(r.obs["rgb"], 0, 256, 256, "apartment_head_camera.png");
+  // The whole apartment from above, ceilings left out (docs/images/).
+  Renderer top(env.world().model(), 512, 512, 1);
+  ArrayDict overview(Space::dict({{"rgb", Space::box({512, 512, 3}, DType::uint8, 0, 255)}}), 1);
+  std::vector<CameraView> view = {{env.world().model(), env.world().data(),
+                                   env.world().scene().overview_camera(),
+                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0,
+                                   false}};
+  top.render(view);
+  save_png(overview["rgb"], 0, 512, 512, "apartment_overview.png");
+  // From above, the floors of the rooms show, not the ceiling's single colour.
+  std::set<int> top_colours;
+  for (size_t i = 0; i + 2 < overview["rgb"].bytes.size(); i += 3) {
+    const auto& b = overview["rgb"].bytes;
+    top_colours.insert((b[i] >> 4) << 8 | (b[i + 1] >> 4) << 4 | b[i + 2] >> 4);
+  }
+  EXPECT_GT(top_colours.size(), 50u);
   // A furnished room is not a flat image: many distinct colours.
   const Array& rgb = r.obs["rgb"];
   std::set<int> colours;
