@@ -103,6 +103,15 @@ TEST(Scene, MalformedRobotMjcfNamesTheFile) {
   EXPECT_NE(e.find("tiago.xml: invalid robot MJCF"), std::string::npos) << e;
 }
 
+TEST(Scene, MissingRobotFileNamesThePath) {
+  const auto dir = test::scratch_dir("no_robot_file");
+  std::filesystem::create_directory_symlink(default_assets_dir() + "/objects", dir / "objects");
+  SceneOptions options;
+  options.assets_dir = dir.string();
+  const std::string e = error_of([&] { Scene::load(test::box_room(), options); });
+  EXPECT_NE(e.find("robots/tiago.xml: cannot open robot file"), std::string::npos) << e;
+}
+
 TEST(Scene, WithoutRobotAFixedCameraStandsIn) {
   SceneOptions options;
   options.robot = false;
