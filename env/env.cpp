@@ -17,12 +17,6 @@ constexpr double kTorsoSpeed = 0.1, kJointSpeed = 1.0;
 constexpr int kProprioSize = 30;
 const std::vector<std::string> kKnownObservations = {"rgb", "depth", "proprio", "is_grasping"};
 
-// Uniform in [-1, 1) from 53 random bits: the same numbers on every platform,
-// unlike std::uniform_real_distribution.
-double symmetric_uniform(std::mt19937_64& rng) {
-  return 2.0 * static_cast<double>(rng() >> 11) * 0x1.0p-53 - 1.0;
-}
-
 bool wants(const EnvConfig& c, const char* name) {
   return std::find(c.observations.begin(), c.observations.end(), name) != c.observations.end();
 }
@@ -105,9 +99,9 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   check_open();
   if (seed) rng_.seed(*seed);
   Pose2 start = scene_->robot_start();
-  start.x += config_.start_jitter * symmetric_uniform(rng_);
-  start.y += config_.start_jitter * symmetric_uniform(rng_);
-  start.yaw += 10 * config_.start_jitter * symmetric_uniform(rng_);
+  start.x += config_.start_jitter * uniform(rng_, -1, 1);
+  start.y += config_.start_jitter * uniform(rng_, -1, 1);
+  start.yaw += 10 * config_.start_jitter * uniform(rng_, -1, 1);
   world_->reset(start);
   elapsed_ = 0;
   episode_over_ = false;

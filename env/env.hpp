@@ -11,12 +11,12 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <random>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "env/spaces.hpp"
+#include "env/world/random.hpp"
 #include "env/world/renderer.hpp"
 #include "env/world/world.hpp"
 
@@ -114,7 +114,7 @@ class Env {
   std::unique_ptr<Renderer> renderer_;  // made on first use, on the calling thread
   Space observation_space_, action_space_;
   ArrayDict obs_;
-  std::mt19937_64 rng_;
+  Rng rng_;
   int64_t elapsed_ = 0;
   bool episode_over_ = true, closed_ = false, diverged_ = false;
 };

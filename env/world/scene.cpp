@@ -489,8 +489,20 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   mesh.paint_palette(model);
   ceilings.paint_palette(model);
 
-  for (SceneObject& object : scene->objects_) {
+  scene->body_object_.assign(model->nbody, -1);
+  for (size_t i = 0; i < scene->objects_.size(); ++i) {
+    SceneObject& object = scene->objects_[i];
     object.body = mj_name2id(model, mjOBJ_BODY, object.name.c_str());
+    for (int b = 0; b < model->nbody; ++b) {
+      // Objects are children of the world: their links share the root body.
+      if (model->body_rootid[b] == object.body) scene->body_object_[b] = static_cast<int>(i);
+    }
+    for (int g = 0; g < model->ngeom; ++g) {
+      const bool collides = model->geom_contype[g] || model->geom_conaffinity[g];
+      if (collides && model->body_rootid[model->geom_bodyid[g]] == object.body) {
+        object.geoms.push_back(g);
+      }
+    }
     if (options.robot && !object.fixed) {
       object.grasp_weld = mj_name2id(model, mjOBJ_EQUALITY, ("grasp_" + object.name).c_str());
     }
@@ -500,6 +512,13 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
         object.joints.push_back(jnt);
       }
     }
+  }
+  for (const Room& room : scene->rooms_) {
+    std::vector<int> floors;
+    for (size_t k = 0; k < room.rects.size(); ++k) {
+      floors.push_back(mj_name2id(model, mjOBJ_GEOM, ("floor_" + room.name + "_" + std::to_string(k)).c_str()));
+    }
+    scene->floor_geoms_.push_back(std::move(floors));
   }
   for (int l = 0; l < model->nlight; ++l) {
     const char* lname = mj_id2name(model, mjOBJ_LIGHT, l);

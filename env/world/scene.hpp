@@ -39,6 +39,7 @@ struct SceneObject {
   int body = -1;         // root body id
   int grasp_weld = -1;   // equality id of the gripper weld (free objects only)
   std::vector<int> joints;  // articulated joints (drawers, doors)
+  std::vector<int> geoms;   // collision geoms of the object and its links
 };
 
 struct Pose2 {
@@ -64,6 +65,10 @@ class Scene {
   const std::vector<Room>& rooms() const { return rooms_; }
   const std::vector<SceneObject>& objects() const { return objects_; }
   const SceneObject* find_object(std::string_view name) const;
+  // Index into objects() of the object a body belongs to, or -1 (robot, world).
+  int object_of_body(int body) const { return body_object_[body]; }
+  // Collision geoms of each room's floor, in rooms() order.
+  const std::vector<int>& floor_geoms(int room) const { return floor_geoms_[room]; }
   // The room whose floor contains (x, y), or nullptr outside every room.
   const Room* room_at(double x, double y) const;
   const Pose2& robot_start() const { return robot_start_; }
@@ -79,6 +84,8 @@ class Scene {
   std::string name_, path_, mjcf_;
   std::vector<Room> rooms_;
   std::vector<SceneObject> objects_;
+  std::vector<int> body_object_;
+  std::vector<std::vector<int>> floor_geoms_;
   Pose2 robot_start_;
   bool has_robot_ = true;
   int camera_ = -1, overview_camera_ = -1;

@@ -1,0 +1,48 @@
+// Geometric queries about scene objects: axis-aligned bounding boxes and ray
+// casts restricted to one object's collision geoms. The predicate checkers
+// (predicates.hpp) and samplers (sampling.hpp) are built on these.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "env/world/world.hpp"
+
+namespace chore {
+
+struct Aabb {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
+
+  Eigen::Vector3d center() const { return (lo + hi) / 2; }
+  Eigen::Vector3d extent() const { return hi - lo; }
+  bool contains(const Eigen::Vector3d& p) const {
+    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  }
+  void grow(const Aabb& other) {
+    lo = lo.cwiseMin(other.lo);
+    hi = hi.cwiseMax(other.hi);
+  }
+  // Euclidean distance between the closest points of two boxes (0 if they overlap).
+  static double gap(const Aabb& a, const Aabb& b);
+};
+
+// World-frame box of one geom (primitive shapes; meshes by their bounding sphere).
+Aabb geom_aabb(const World& world, int geom);
+// World-frame box of an object's collision geoms (links included).
+Aabb object_aabb(const World& world, int object);
+
+// Distance along the unit ray (p, dir) to the nearest of `geoms`, or -1 if
+// none is hit within max_distance.
+double ray_to_geoms(const World& world, const std::vector<int>& geoms, const Eigen::Vector3d& p,
+                    const Eigen::Vector3d& dir, double max_distance);
+// The same against one object's geoms.
+double ray_to_object(const World& world, int object, const Eigen::Vector3d& p,
+                     const Eigen::Vector3d& dir, double max_distance);
+
+// Whether any geom of object `a` is in contact with any geom of object `b`
+// (b = -1: with any geom of `geoms_b` instead).
+bool in_contact(const World& world, int a, int b);
+bool in_contact_with_geoms(const World& world, int a, const std::vector<int>& geoms);
+
+}  // namespace chore

@@ -1,0 +1,200 @@
+#include "env/world/sampling.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "env/world/error.hpp"
+#include "env/world/object_geometry.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kDropHeight = 0.005;  // placed this far above the support
+constexpr double kClearance = 0.005;   // kept from a container's top or a cover's underside
+const Eigen::Vector3d kDown(0, 0, -1), kUp(0, 0, 1);
+
+// The pose-independent size of a free object, measured once per sample call.
+struct Footprint {
+  double radius;  // horizontal radius of its box: fits any yaw
+  double height;
+  double bottom;  // body origin height above the box bottom
+};
+
+int free_joint_qpos(const World& w, int a) {
+  const SceneObject& o = w.scene().objects()[a];
+  const mjModel* m = w.model();
+  if (o.fixed || m->body_jntnum[o.body] < 1 || m->jnt_type[m->body_jntadr[o.body]] != mjJNT_FREE) {
+    throw Error("sampling: object '" + o.name + "' is not a free object; its pose cannot be sampled");
+  }
+  return m->jnt_qposadr[m->body_jntadr[o.body]];
+}
+
+Footprint footprint(const World& w, int a) {
+  const Aabb box = object_aabb(w, a);
+  const double origin_z = w.data()->xpos[3 * w.scene().objects()[a].body + 2];
+  return {0.5 * box.extent().head<2>().norm(), box.extent().z(), origin_z - box.lo.z()};
+}
+
+void place(World& w, int a, double x, double y, double z, double yaw) {
+  const int q = free_joint_qpos(w, a);
+  const SceneObject& o = w.scene().objects()[a];
+  const int dof = w.model()->jnt_dofadr[w.model()->body_jntadr[o.body]];
+  double* qpos = w.data()->qpos + q;
+  qpos[0] = x;
+  qpos[1] = y;
+  qpos[2] = z;
+  qpos[3] = std::cos(yaw / 2);
+  qpos[4] = 0;
+  qpos[5] = 0;
+  qpos[6] = std::sin(yaw / 2);
+  std::fill_n(w.data()->qvel + dof, 6, 0.0);
+  mj_forward(w.model(), w.data());
+}
+
+// Collision geoms of the world except those of the excluded objects.
+std::vector<int> geoms_except(const World& w, int a, int b = -1) {
+  const mjModel* m = w.model();
+  std::vector<int> out;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+    const int o = w.scene().object_of_body(m->geom_bodyid[g]);
+    if (o >= 0 && (o == a || o == b)) continue;
+    out.push_back(g);
+  }
+  return out;
+}
+
+bool touches_anything(const World& w, int a) {
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  for (int c = 0; c < d->ncon; ++c) {
+    const mjContact& con = d->contact[c];
+    if (w.scene().object_of_body(m->geom_bodyid[con.geom1]) == a ||
+        w.scene().object_of_body(m->geom_bodyid[con.geom2]) == a) {
+      return true;
+    }
+  }
+  return false;
+}
+
+void settle(World& w, const SampleOptions& options) {
+  w.step(static_cast<int>(std::lround(options.settle_seconds / w.model()->opt.timestep)));
+}
+
+// Places `a` with its bottom on height `support` at (x, y), random heading;
+// false if it would overlap anything.
+bool try_place(World& w, int a, const Footprint& f, double x, double y, double support, Rng& rng) {
+  place(w, a, x, y, support + kDropHeight + f.bottom, uniform(rng, -M_PI, M_PI));
+  return !touches_anything(w, a);
+}
+
+// A uniform point of the box's footprint shrunk by r (its centre if too small).
+Eigen::Vector2d point_in(const Aabb& box, double r, Rng& rng) {
+  Eigen::Vector2d p;
+  for (int i = 0; i < 2; ++i) {
+    const double lo = box.lo[i] + r, hi = box.hi[i] - r;
+    p[i] = lo < hi ? uniform(rng, lo, hi) : (box.lo[i] + box.hi[i]) / 2;
+  }
+  return p;
+}
+
+template <class Candidate>
+bool search(World& w, const SampleOptions& options, Candidate candidate) {
+  for (int attempt = 0; attempt < options.attempts; ++attempt) {
+    if (candidate()) {
+      settle(w, options);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+bool sample_ontop(World& w, int a, int b, Rng& rng, const SampleOptions& options) {
+  const Footprint f = footprint(w, a);
+  const Aabb box = object_aabb(w, b);
+  const std::vector<int> others = geoms_except(w, a);
+  return search(w, options, [&] {
+    const Eigen::Vector2d p = point_in(box, f.radius, rng);
+    const Eigen::Vector3d start(p.x(), p.y(), box.hi.z() + 0.01);
+    // The first surface below must be b's: nothing else lies there.
+    const double to_b = ray_to_object(w, b, start, kDown, 10);
+    if (to_b < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_b - 1e-9) return false;
+    return try_place(w, a, f, p.x(), p.y(), start.z() - to_b, rng);
+  });
+}
+
+bool sample_inside(World& w, int a, int b, Rng& rng, const SampleOptions& options) {
+  const Footprint f = footprint(w, a);
+  const Aabb box = object_aabb(w, b);
+  const std::vector<int> others = geoms_except(w, a);
+  return search(w, options, [&] {
+    const Eigen::Vector2d p = point_in(box, f.radius + 0.01, rng);
+    // A height inside b's box from which a support of b lies below.
+    const double top = box.hi.z() - kClearance - f.height;
+    if (top <= box.lo.z()) return false;
+    const Eigen::Vector3d start(p.x(), p.y(), uniform(rng, box.lo.z(), top) + f.height);
+    const double to_b = ray_to_object(w, b, start, kDown, 10);
+    if (to_b < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_b - 1e-9) return false;
+    const double support = start.z() - to_b;
+    if (support + kDropHeight + f.height > box.hi.z() - kClearance) return false;
+    return try_place(w, a, f, p.x(), p.y(), support, rng);
+  });
+}
+
+bool sample_under(World& w, int a, int b, Rng& rng, const SampleOptions& options) {
+  const Footprint f = footprint(w, a);
+  const Aabb box = object_aabb(w, b);
+  const std::vector<int> others = geoms_except(w, a, b);
+  return search(w, options, [&] {
+    const Eigen::Vector2d p = point_in(box, 0, rng);
+    // The underside of b above this point, then the support below it.
+    const Eigen::Vector3d low(p.x(), p.y(), 0.001);
+    const double to_cover = ray_to_object(w, b, low, kUp, 10);
+    if (to_cover < 0) return false;
+    const Eigen::Vector3d start(p.x(), p.y(), low.z() + to_cover - 0.001);
+    const double to_support = ray_to_geoms(w, others, start, kDown, 10);
+    if (to_support < 0) return false;
+    const double support = start.z() - to_support;
+    if (support + kDropHeight + f.height > start.z() - kClearance) return false;
+    return try_place(w, a, f, p.x(), p.y(), support, rng);
+  });
+}
+
+bool sample_onfloor(World& w, int a, int room, Rng& rng, const SampleOptions& options) {
+  const Footprint f = footprint(w, a);
+  const Room& r = w.scene().rooms()[room];
+  const std::vector<int>& floors = w.scene().floor_geoms(room);
+  const std::vector<int> others = geoms_except(w, a);
+  return search(w, options, [&] {
+    const auto& rect = r.rects[uniform_index(rng, static_cast<int>(r.rects.size()))];
+    Aabb area;
+    area.lo = Eigen::Vector3d(rect[0], rect[1], 0);
+    area.hi = Eigen::Vector3d(rect[2], rect[3], 0);
+    const Eigen::Vector2d p = point_in(area, f.radius, rng);
+    // Open floor: the first surface below head height is this room's floor.
+    const Eigen::Vector3d start(p.x(), p.y(), 2.0);
+    const double to_floor = ray_to_geoms(w, floors, start, kDown, 10);
+    if (to_floor < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_floor - 1e-9) return false;
+    return try_place(w, a, f, p.x(), p.y(), start.z() - to_floor, rng);
+  });
+}
+
+void sample_open(World& w, int a, bool open, Rng& rng) {
+  const SceneObject& o = w.scene().objects()[a];
+  const mjModel* m = w.model();
+  if (o.joints.empty()) throw Error("sampling: object '" + o.name + "' has no joints to open");
+  for (int j : o.joints) w.data()->qpos[m->jnt_qposadr[j]] = m->jnt_range[2 * j];
+  if (open) {
+    const int j = o.joints[uniform_index(rng, static_cast<int>(o.joints.size()))];
+    const double lo = m->jnt_range[2 * j], hi = m->jnt_range[2 * j + 1];
+    w.data()->qpos[m->jnt_qposadr[j]] = lo + uniform(rng, 0.3, 1.0) * (hi - lo);
+  }
+  for (int j : o.joints) w.data()->qvel[m->jnt_dofadr[j]] = 0;
+  mj_forward(m, w.data());
+}
+
+}  // namespace chore

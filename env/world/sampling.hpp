@@ -1,0 +1,28 @@
+// Logical predicates as sampling functions (seed Table A.9): each finds a
+// physical state of a free object that makes the predicate true, by a ray-cast
+// search for a support surface, a collision test and a short physical settle,
+// as BEHAVIOR's samplers do. They never consult the checking functions
+// (predicates.hpp): the tests measure how often the checkers agree.
+#pragma once
+
+#include "env/world/random.hpp"
+#include "env/world/world.hpp"
+
+namespace chore {
+
+struct SampleOptions {
+  int attempts = 100;           // candidate poses before giving up
+  double settle_seconds = 0.25; // physics after placing (objects drop from 5 mm)
+};
+
+// Each returns false when no valid pose was found in options.attempts tries;
+// `a` must be a free object (chore::Error otherwise).
+bool sample_ontop(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
+bool sample_inside(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
+bool sample_under(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
+bool sample_onfloor(World& world, int a, int room, Rng& rng, const SampleOptions& options = {});
+// Sets an articulated object open (one joint, at random, between 30% and 100%
+// of its range) or closed (every joint at its lower limit).
+void sample_open(World& world, int a, bool open, Rng& rng);
+
+}  // namespace chore
