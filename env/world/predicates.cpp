@@ -86,4 +86,109 @@ bool is_open(const World& w, int a) {
 
 bool grasped(const World& w, int a) { return w.grasped_object() == a; }
 
+bool infov(const World& w, int a) {
+  const Robot* r = w.robot();
+  if (!r) return false;
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  const int cam = r->camera;
+  const Eigen::Vector3d c = object_aabb(w, a).center();
+  double rel[3], local[3];
+  mju_sub3(rel, c.data(), d->cam_xpos + 3 * cam);
+  mju_rotVecMatT(local, rel, d->cam_xmat + 9 * cam);  // camera frame: looks along -z
+  const double depth = -local[2];
+  const double half = std::tan(m->cam_fovy[cam] * M_PI / 360.0);
+  if (depth <= 0 || std::abs(local[1]) > half * depth || std::abs(local[0]) > half * depth) {
+    return false;  // square images: the same half-angle both ways
+  }
+  // Unoccluded: the first geom along the line of sight belongs to a.
+  Eigen::Vector3d dir = c - Eigen::Vector3d(d->cam_xpos[3 * cam], d->cam_xpos[3 * cam + 1], d->cam_xpos[3 * cam + 2]);
+  const double distance = dir.norm();
+  dir /= distance;
+  const mjtByte groups[mjNGROUP] = {1, 0, 0, 1, 0, 0};  // drawn objects and collision geoms
+  int geom = -1;
+  const double hit = mj_ray(m, d, d->cam_xpos + 3 * cam, dir.data(), groups, 0, m->cam_bodyid[cam], &geom);
+  return hit >= 0 && geom >= 0 && w.scene().object_of_body(m->geom_bodyid[geom]) == a;
+}
+
+bool inreach(const World& w, int a) {
+  const Robot* r = w.robot();
+  if (!r) return false;
+  const int shoulder = w.model()->jnt_bodyid[r->arm[0].joint];
+  const double* s = w.data()->xpos + 3 * shoulder;
+  Aabb point;
+  point.lo = point.hi = Eigen::Vector3d(s[0], s[1], s[2]);
+  return Aabb::gap(object_aabb(w, a), point) <= 1.0;
+}
+
+bool insameroom(const World& w, int a, int b) {
+  const Eigen::Vector3d ca = object_aabb(w, a).center(), cb = object_aabb(w, b).center();
+  const Room* ra = w.scene().room_at(ca.x(), ca.y());
+  return ra && ra == w.scene().room_at(cb.x(), cb.y());
+}
+
+namespace {
+
+// The state and abilities of a tracked object, or nulls.
+template <class Test>
+bool state_test(const World& w, int a, Test test) {
+  const ObjectAbilities* ab = w.states().abilities(a);
+  return ab && test(*ab, w.states().state(a));
+}
+
+}  // namespace
+
+bool cooked(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) {
+    return ab.temperature && s.max_temperature >= ab.cook_temperature;
+  });
+}
+bool burnt(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) {
+    return ab.temperature && s.max_temperature >= ab.burn_temperature;
+  });
+}
+bool frozen(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) {
+    return ab.temperature && s.temperature <= ab.freeze_temperature;
+  });
+}
+bool hot(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) {
+    return ab.temperature && s.temperature >= ab.hot_temperature;
+  });
+}
+bool on_fire(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) {
+    return ab.temperature && s.temperature >= ab.ignition_temperature;
+  });
+}
+bool soaked(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) {
+    return ab.soakable && s.soaked >= ObjectStates::kSoakedLevel;
+  });
+}
+bool saturated(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.soakable && s.soaked >= 1.0; });
+}
+bool covered(const World& w, int a, const std::string& substance) {
+  return state_test(w, a, [&](const auto& ab, const auto& s) {
+    const auto it = s.dirt.find(substance);
+    return ab.covered && it != s.dirt.end() &&
+           static_cast<int>(it->second.size()) >= ObjectStates::kCoveredParticles;
+  });
+}
+bool filled(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.holds_liquid && s.liquid_level > 0; });
+}
+bool toggled_on(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.toggleable && s.toggled; });
+}
+bool sliced(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.sliceable && s.sliced; });
+}
+bool broken(const World& w, int a) {
+  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.breakable && s.broken; });
+}
+
 }  // namespace chore

@@ -5,6 +5,8 @@
 // world.scene().objects(); rooms are indices into world.scene().rooms().
 #pragma once
 
+#include <string>
+
 #include "env/world/world.hpp"
 
 namespace chore {
@@ -26,5 +28,24 @@ bool inroom(const World& world, int a, int room);
 // Any articulated joint of a is past 5% of its range from closed (its lower limit).
 bool is_open(const World& world, int a);
 bool grasped(const World& world, int a);
+// The robot's camera sees part of a (its box centre, unoccluded, in the frustum).
+bool infov(const World& world, int a);
+// a's box is within the arm's reach (1 m) of the robot's shoulder axis.
+bool inreach(const World& world, int a);
+bool insameroom(const World& world, int a, int b);
+
+// Predicates on extended states (false for objects that do not keep the state).
+bool cooked(const World& world, int a);   // highest temperature reached >= cook temperature
+bool burnt(const World& world, int a);    // highest temperature reached >= burn temperature
+bool frozen(const World& world, int a);   // temperature <= freeze temperature
+bool hot(const World& world, int a);      // temperature >= hot temperature (OmniGibson "heated")
+bool on_fire(const World& world, int a);  // temperature >= ignition temperature
+bool soaked(const World& world, int a);   // water absorbed >= half
+bool saturated(const World& world, int a);
+bool covered(const World& world, int a, const std::string& substance);
+bool filled(const World& world, int a);   // holds liquid
+bool toggled_on(const World& world, int a);
+bool sliced(const World& world, int a);
+bool broken(const World& world, int a);
 
 }  // namespace chore

@@ -197,4 +197,80 @@ void sample_open(World& w, int a, bool open, Rng& rng) {
   mj_forward(m, w.data());
 }
 
+void sample_state(World& w, const std::string& predicate, int a, bool value) {
+  const std::string& name = w.scene().objects()[a].name;
+  const ObjectAbilities* ab = w.states().abilities(a);
+  auto require = [&](bool has, const char* state) {
+    if (!ab || !has) {
+      throw Error("sampling: object '" + name + "' does not keep " + state + " (needed by '" +
+                  predicate + "')");
+    }
+  };
+  ObjectState* s = ab ? &w.states().state(a) : nullptr;
+  // Past a threshold by this much when true, back to room conditions when false.
+  constexpr double kMargin = 10;
+  if (predicate == "cooked" || predicate == "burnt") {
+    require(ab && ab->temperature, "Temperature");
+    const double threshold = predicate == "cooked" ? ab->cook_temperature : ab->burn_temperature;
+    s->max_temperature = value ? std::max(s->max_temperature, threshold + kMargin)
+                               : std::min(s->max_temperature, threshold - kMargin);
+    s->temperature = std::min(s->temperature, s->max_temperature);
+  } else if (predicate == "frozen" || predicate == "hot" || predicate == "on_fire") {
+    require(ab && ab->temperature, "Temperature");
+    double target = kRoomTemperature;
+    if (value && predicate == "frozen") target = ab->freeze_temperature - kMargin;
+    if (value && predicate == "hot") target = ab->hot_temperature + kMargin;
+    if (value && predicate == "on_fire") {
+      if (!std::isfinite(ab->ignition_temperature)) {
+        throw Error("sampling: object '" + name + "' cannot be on fire (not flammable)");
+      }
+      target = ab->ignition_temperature + kMargin;
+    }
+    s->temperature = target;
+    s->max_temperature = std::max(s->max_temperature, target);
+  } else if (predicate == "soaked" || predicate == "saturated") {
+    require(ab && ab->soakable, "SoakedLevel");
+    s->soaked = value ? 1.0 : 0.0;
+  } else if (predicate == "filled") {
+    require(ab && ab->holds_liquid, "a liquid level");
+    s->liquid_level = value ? 0.5 : 0.0;
+  } else if (predicate == "toggled_on") {
+    require(ab && ab->toggleable, "ToggledState");
+    s->toggled = value;
+  } else if (predicate == "sliced") {
+    require(ab && ab->sliceable, "SlicedState");
+    s->sliced = value;
+  } else if (predicate == "broken") {
+    require(ab && ab->breakable, "BrokenState");
+    s->broken = value;
+  } else {
+    throw Error("sampling: no state sampler for predicate '" + predicate + "'");
+  }
+}
+
+bool sample_covered(World& w, int a, const std::string& substance, bool value, Rng& rng,
+                    int particles) {
+  const ObjectAbilities* ab = w.states().abilities(a);
+  if (!ab || !ab->covered) {
+    throw Error("sampling: object '" + w.scene().objects()[a].name + "' does not keep CoveredLevel");
+  }
+  std::vector<Eigen::Vector3d>& dirt = w.states().state(a).dirt[substance];
+  dirt.clear();
+  if (!value) return true;
+  const Aabb box = object_aabb(w, a);
+  const std::vector<int> all = geoms_except(w, -1);
+  const int body = w.scene().objects()[a].body;
+  const Eigen::Vector3d origin(w.data()->xpos[3 * body], w.data()->xpos[3 * body + 1],
+                               w.data()->xpos[3 * body + 2]);
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
+  for (int attempt = 0; attempt < 20 * particles && static_cast<int>(dirt.size()) < particles; ++attempt) {
+    const Eigen::Vector2d p = point_in(box, 0, rng);
+    const Eigen::Vector3d start(p.x(), p.y(), box.hi.z() + 0.05);
+    const double to_a = ray_to_object(w, a, start, kDown, 10);
+    if (to_a < 0 || ray_to_geoms(w, all, start, kDown, 10) < to_a - 1e-9) continue;
+    dirt.push_back(r.transpose() * (start + kDown * to_a - origin));
+  }
+  return static_cast<int>(dirt.size()) == particles;
+}
+
 }  // namespace chore

@@ -5,6 +5,8 @@
 // (predicates.hpp): the tests measure how often the checkers agree.
 #pragma once
 
+#include <string>
+
 #include "env/world/random.hpp"
 #include "env/world/world.hpp"
 
@@ -24,5 +26,16 @@ bool sample_onfloor(World& world, int a, int room, Rng& rng, const SampleOptions
 // Sets an articulated object open (one joint, at random, between 30% and 100%
 // of its range) or closed (every joint at its lower limit).
 void sample_open(World& world, int a, bool open, Rng& rng);
+
+// A unary predicate on extended states made `value`: cooked, burnt, frozen, hot,
+// on_fire, soaked, saturated, filled, toggled_on, sliced, broken. It writes the
+// state the checker reads, as OmniGibson's samplers do (cooked: the highest
+// temperature reached is past the cook temperature). chore::Error for an
+// unknown predicate or an object that does not keep that state.
+void sample_state(World& world, const std::string& predicate, int a, bool value);
+// Dirt particles of `substance` on a's upward-facing surfaces (value true:
+// `particles` of them, found by rays from above that hit a first), or none.
+bool sample_covered(World& world, int a, const std::string& substance, bool value, Rng& rng,
+                    int particles = 20);
 
 }  // namespace chore

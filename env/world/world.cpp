@@ -27,6 +27,7 @@ World::~World() {
 
 void World::reset(const Pose2& base) {
   release();
+  states_.reset();
   mj_resetData(model_, data_);
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
   if (robot_) {
@@ -99,7 +100,9 @@ World::StepReport World::step(int substeps) {
       return report;
     }
     if (robot_) update_grasp(report);
+    if (state_updates_) states_.after_physics_step(*this, model_->opt.timestep);
   }
+  if (state_updates_) states_.after_env_step(*this, substeps * model_->opt.timestep);
   return report;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "env/world/object_states.hpp"
 #include "env/world/robot.hpp"
 #include "env/world/scene.hpp"
 
@@ -54,6 +55,12 @@ class World {
   // Runs `substeps` physics steps of 1/120 s.
   StepReport step(int substeps);
 
+  // Extended object states (temperature, soaked, dirt, toggles, ...).
+  ObjectStates& states() { return states_; }
+  const ObjectStates& states() const { return states_; }
+  // Off: states stay as they are (Table A.10's "- Object State Update" row).
+  void set_state_updates(bool enabled) { state_updates_ = enabled; }
+
   // Index into scene().objects() of the object held by the gripper, or -1.
   int grasped_object() const { return grasped_; }
   Pose2 base_pose() const;
@@ -70,6 +77,8 @@ class World {
   std::optional<Robot> robot_;
   double base_command_[3] = {0, 0, 0};
   int grasped_ = -1;
+  ObjectStates states_;
+  bool state_updates_ = true;
 };
 
 }  // namespace chore

@@ -1,0 +1,142 @@
+#include "env/world/object_states.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "env/world/object_geometry.hpp"
+#include "env/world/predicates.hpp"
+#include "env/world/world.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kSoakSeconds = 0.5;     // in water this long: saturated
+constexpr double kCoolingRate = 0.01;    // towards room temperature, per second
+
+Eigen::Vector3d to_world(const World& w, int object, const Eigen::Vector3d& local) {
+  const int body = w.scene().objects()[object].body;
+  const double* x = w.data()->xpos + 3 * body;
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
+  return Eigen::Vector3d(x[0], x[1], x[2]) + r * local;
+}
+
+bool overlaps(const Aabb& a, const Aabb& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
+
+}  // namespace
+
+void ObjectStates::configure(int object, const ObjectAbilities& abilities) {
+  abilities_[object] = abilities;
+  states_[object] = ObjectState{};
+}
+
+void ObjectStates::add_substance(const Substance& substance) {
+  substances_[substance.name] = substance;
+}
+
+const ObjectAbilities* ObjectStates::abilities(int object) const {
+  const auto it = abilities_.find(object);
+  return it == abilities_.end() ? nullptr : &it->second;
+}
+
+const Substance* ObjectStates::substance(const std::string& name) const {
+  const auto it = substances_.find(name);
+  return it == substances_.end() ? nullptr : &it->second;
+}
+
+void ObjectStates::reset() {
+  for (auto& [object, state] : states_) state = ObjectState{};
+}
+
+void ObjectStates::after_physics_step(const World& w, double dt) {
+  if (states_.empty()) return;
+  // Soaking: a soakable object overlapping the water of a container.
+  for (const auto& [container, ca] : abilities_) {
+    const double level = states_[container].liquid_level;
+    if (!ca.holds_liquid || level <= 0) continue;
+    Aabb water = object_aabb(w, container);
+    water.lo.head<2>().array() += 0.01;
+    water.hi.head<2>().array() -= 0.01;
+    water.hi.z() = water.lo.z() + level * (water.hi.z() - water.lo.z());
+    for (const auto& [object, oa] : abilities_) {
+      if (object == container || !oa.soakable) continue;
+      if (overlaps(object_aabb(w, object), water)) {
+        double& soaked = states_[object].soaked;
+        soaked = std::min(1.0, soaked + dt / kSoakSeconds);
+      }
+    }
+  }
+  // Contacts: cleaning, breaking, slicing.
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  for (int c = 0; c < d->ncon; ++c) {
+    const mjContact& con = d->contact[c];
+    const int o1 = w.scene().object_of_body(m->geom_bodyid[con.geom1]);
+    const int o2 = w.scene().object_of_body(m->geom_bodyid[con.geom2]);
+    const ObjectAbilities* a1 = o1 >= 0 ? abilities(o1) : nullptr;
+    const ObjectAbilities* a2 = o2 >= 0 ? abilities(o2) : nullptr;
+    if (!a1 && !a2) continue;
+    double force[6];
+    mj_contactForce(m, d, c, force);
+    const double normal = std::abs(force[0]);
+    for (const auto& [self, mine, other, theirs] :
+         {std::tuple{o1, a1, o2, a2}, std::tuple{o2, a2, o1, a1}}) {
+      if (!mine) continue;
+      ObjectState& s = states_[self];
+      if (mine->breakable && normal > mine->break_force) s.broken = true;
+      if (mine->sliceable && theirs && theirs->slicer && normal > mine->slice_force) s.sliced = true;
+      if (mine->cleaning_tool && other >= 0 && theirs && theirs->covered) {
+        const Eigen::Vector3d p(con.pos[0], con.pos[1], con.pos[2]);
+        for (auto& [name, particles] : states_[other].dirt) {
+          const Substance* sub = substance(name);
+          if (sub && sub->needs_soaked_tool && s.soaked < kSoakedLevel) continue;
+          std::erase_if(particles, [&](const Eigen::Vector3d& local) {
+            return (to_world(w, other, local) - p).head<2>().norm() < kCleaningRadius;
+          });
+        }
+      }
+    }
+  }
+}
+
+void ObjectStates::after_env_step(const World& w, double dt) {
+  if (states_.empty()) return;
+  // Toggling: the hand held at the toggle point (top centre) for a few steps.
+  if (const Robot* r = w.robot()) {
+    const double* hand = w.data()->site_xpos + 3 * r->gripper_site;
+    for (auto& [object, s] : states_) {
+      if (!abilities_[object].toggleable) continue;
+      const Aabb box = object_aabb(w, object);
+      const Eigen::Vector3d point(box.center().x(), box.center().y(), box.hi.z());
+      const bool near = (point - Eigen::Vector3d(hand[0], hand[1], hand[2])).norm() < kToggleDistance;
+      s.toggle_steps = near ? s.toggle_steps + 1 : 0;
+      if (s.toggle_steps == kToggleSteps) s.toggled = !s.toggled;
+    }
+  }
+  // Heat: each source in force pulls temperatures towards its own.
+  for (auto& [object, s] : states_) {
+    if (!abilities_[object].temperature) continue;
+    bool heated = false;
+    for (const auto& [source, sa] : abilities_) {
+      for (const std::optional<ThermalSource>& t : {sa.heat_source, sa.cold_source}) {
+        if (!t || source == object) continue;
+        const ObjectState& ss = states_[source];
+        if (t->requires_toggled_on && !ss.toggled) continue;
+        if (t->requires_closed && is_open(w, source)) continue;
+        const bool near = t->requires_inside
+                              ? inside(w, object, source)
+                              : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
+        if (!near) continue;
+        s.temperature += (t->temperature - s.temperature) * std::min(1.0, t->rate * dt);
+        heated = true;
+      }
+    }
+    if (!heated) s.temperature += (kRoomTemperature - s.temperature) * std::min(1.0, kCoolingRate * dt);
+    s.max_temperature = std::max(s.max_temperature, s.temperature);
+  }
+}
+
+}  // namespace chore

@@ -1,0 +1,98 @@
+// Extended object states (seed Table A.7) and their update rules. The world
+// keeps them only for the objects whose properties need them (Table A.5); the
+// activity layer says which, from the synset knowledge base, through
+// ObjectAbilities. Updated after every physics step (contacts, liquids,
+// cleaning) and every env step (heat).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chore {
+
+class World;
+
+constexpr double kRoomTemperature = 23.0;  // degrees C
+
+// A heat or cold source (stove, oven, fridge): it drives the temperature of
+// objects near it (or inside it) towards its own, at `rate` per second.
+struct ThermalSource {
+  double temperature = 200;
+  double rate = 0.04;          // fraction of the difference closed per second
+  double distance = 0.2;       // m from the source's box; 0 with requires_inside
+  bool requires_toggled_on = false;
+  bool requires_closed = false;
+  bool requires_inside = false;
+};
+
+// What the world tracks for one object. Thresholds default to BEHAVIOR's.
+struct ObjectAbilities {
+  bool temperature = false;  // cookable, freezable, burnable, ...
+  double cook_temperature = 70, burn_temperature = 200, freeze_temperature = 0;
+  double hot_temperature = 40, ignition_temperature = std::numeric_limits<double>::infinity();
+  bool soakable = false;
+  bool cleaning_tool = false;
+  bool covered = false;       // dirt (dustyable, stainable) can lie on it
+  bool toggleable = false;
+  bool sliceable = false, slicer = false;
+  bool breakable = false;
+  double break_force = 100;   // N of contact force
+  double slice_force = 10;    // N (seed: F_sliced)
+  std::optional<ThermalSource> heat_source, cold_source;
+  bool holds_liquid = false;  // a container or source of water (sink, bucket)
+};
+
+// A kind of dirt: stains need a soaked cleaning tool, dust any cleaning tool.
+struct Substance {
+  std::string name;
+  bool needs_soaked_tool = false;
+};
+
+struct ObjectState {
+  double temperature = kRoomTemperature, max_temperature = kRoomTemperature;
+  double soaked = 0;        // 0 .. 1: water absorbed (1 = saturated)
+  double liquid_level = 0;  // 0 .. 1 of the container's inner height (holds_liquid)
+  std::map<std::string, std::vector<Eigen::Vector3d>> dirt;  // particles in the object's frame
+  bool toggled = false;
+  int toggle_steps = 0;     // consecutive env steps the hand is at the toggle point
+  bool sliced = false, broken = false;
+};
+
+class ObjectStates {
+ public:
+  // Thresholds of the predicates on these states.
+  static constexpr int kCoveredParticles = 5;  // covered while at least this many remain
+  static constexpr double kSoakedLevel = 0.5;
+  static constexpr double kToggleDistance = 0.1;  // m from the toggle point
+  static constexpr int kToggleSteps = 5;
+  static constexpr double kCleaningRadius = 0.06; // m around a tool's contact
+
+  void configure(int object, const ObjectAbilities& abilities);
+  void add_substance(const Substance& substance);
+  const ObjectAbilities* abilities(int object) const;  // nullptr: nothing tracked
+  const Substance* substance(const std::string& name) const;
+
+  ObjectState& state(int object) { return states_.at(object); }
+  const ObjectState& state(int object) const { return states_.at(object); }
+  bool tracked(int object) const { return states_.count(object) > 0; }
+
+  // Back to room temperature, dry, clean, off, whole.
+  void reset();
+  // Contact- and liquid-driven rules, after each physics step.
+  void after_physics_step(const World& world, double dt);
+  // Heat transfer and toggling, after each env step of `dt` seconds.
+  void after_env_step(const World& world, double dt);
+
+ private:
+  void clean(const World& world, int tool, int target);
+  std::map<int, ObjectAbilities> abilities_;
+  std::map<int, ObjectState> states_;
+  std::map<std::string, Substance> substances_;
+};
+
+}  // namespace chore

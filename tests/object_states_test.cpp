@@ -1,0 +1,213 @@
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include "env/world/error.hpp"
+#include "env/world/object_geometry.hpp"
+#include "env/world/predicates.hpp"
+#include "env/world/sampling.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+class ObjectStatesTest : public ::testing::Test {
+ protected:
+  ObjectStatesTest()
+      : scene_(Scene::load(test::data_path("scenes/predicate_room.json"))), world_(scene_) {}
+
+  int object(const char* name) const {
+    return static_cast<int>(scene_->find_object(name) - scene_->objects().data());
+  }
+  // Teleports a free object's origin (bottom centre) and lets it settle.
+  void put(int o, double x, double y, double z, int steps = 8) {
+    const mjModel* m = world_.model();
+    const int joint = m->body_jntadr[scene_->objects()[o].body];
+    double* q = world_.data()->qpos + m->jnt_qposadr[joint];
+    q[0] = x;
+    q[1] = y;
+    q[2] = z;
+    std::fill_n(world_.data()->qvel + m->jnt_dofadr[joint], 6, 0.0);
+    mj_forward(world_.model(), world_.data());
+    for (int i = 0; i < steps; ++i) world_.step(4);
+  }
+  void run(double seconds) {
+    for (int i = 0; i < static_cast<int>(seconds * 30); ++i) world_.step(4);
+  }
+
+  std::shared_ptr<const Scene> scene_;
+  World world_;
+};
+
+TEST_F(ObjectStatesTest, HeatSourceCooksWhatIsNearItAndTheHighestTemperatureIsKept) {
+  const int apple = object("apple_1"), table = object("table_1");
+  ObjectAbilities food;
+  food.temperature = true;
+  ObjectAbilities stove;
+  stove.heat_source = ThermalSource{200, 0.5, 0.05, true, false, false};
+  stove.toggleable = true;
+  world_.states().configure(apple, food);
+  world_.states().configure(table, stove);
+  put(apple, 1.5, 1.5, 0.76);
+  run(2);
+  EXPECT_NEAR(world_.states().state(apple).temperature, kRoomTemperature, 1e-9);  // stove off
+  world_.states().state(table).toggled = true;
+  run(2);
+  EXPECT_TRUE(hot(world_, apple));
+  EXPECT_TRUE(cooked(world_, apple));
+  EXPECT_FALSE(burnt(world_, apple));
+  put(apple, 1.0, -0.2, 0.0);  // away from the stove: cools, stays cooked
+  const double peak = world_.states().state(apple).max_temperature;
+  run(3);
+  EXPECT_LT(world_.states().state(apple).temperature, peak);
+  EXPECT_EQ(world_.states().state(apple).max_temperature, peak);
+  EXPECT_TRUE(cooked(world_, apple));
+}
+
+TEST_F(ObjectStatesTest, ObjectStateUpdatesCanBeSwitchedOff) {
+  const int apple = object("apple_1"), table = object("table_1");
+  ObjectAbilities food;
+  food.temperature = true;
+  ObjectAbilities stove;
+  stove.heat_source = ThermalSource{200, 0.5, 0.05, false, false, false};
+  world_.states().configure(apple, food);
+  world_.states().configure(table, stove);
+  world_.set_state_updates(false);
+  put(apple, 1.5, 1.5, 0.76);
+  run(2);
+  EXPECT_FALSE(cooked(world_, apple));
+}
+
+TEST_F(ObjectStatesTest, WaterInAContainerSoaksWhatEntersIt) {
+  const int rag = object("apple_1"), bin = object("trash_bin_1");
+  ObjectAbilities cloth;
+  cloth.soakable = true;
+  ObjectAbilities bucket;
+  bucket.holds_liquid = true;
+  world_.states().configure(rag, cloth);
+  world_.states().configure(bin, bucket);
+  put(rag, 1.5, -1.5, 0.03);  // in the (dry) bin
+  run(1);
+  EXPECT_FALSE(soaked(world_, rag));
+  sample_state(world_, "filled", bin, true);
+  EXPECT_TRUE(filled(world_, bin));
+  run(0.3);
+  EXPECT_TRUE(soaked(world_, rag));
+  EXPECT_FALSE(saturated(world_, rag));
+  run(0.5);
+  EXPECT_TRUE(saturated(world_, rag));
+}
+
+TEST_F(ObjectStatesTest, ASoakedCleaningToolWipesStainsOffAndADryOneDoesNot) {
+  const int tool = object("cup_1"), table = object("table_1");
+  ObjectAbilities cleaner;
+  cleaner.cleaning_tool = true;
+  cleaner.soakable = true;
+  ObjectAbilities surface;
+  surface.covered = true;
+  world_.states().configure(tool, cleaner);
+  world_.states().configure(table, surface);
+  world_.states().add_substance({"stain", true});
+  Rng rng(1);
+  ASSERT_TRUE(sample_covered(world_, table, "stain", true, rng));
+  EXPECT_TRUE(covered(world_, table, "stain"));
+  // Sweep the tool over the whole top, dry, then soaked.
+  auto sweep = [&] {
+    for (double x = 1.0; x <= 2.0; x += 0.05) {
+      for (double y = 1.2; y <= 1.8; y += 0.05) put(tool, x, y, 0.75, 1);
+    }
+  };
+  sweep();
+  EXPECT_EQ(world_.states().state(table).dirt["stain"].size(), 20u);
+  sample_state(world_, "soaked", tool, true);
+  sweep();
+  EXPECT_FALSE(covered(world_, table, "stain"));
+}
+
+TEST_F(ObjectStatesTest, HardImpactsBreakAndAPressedSlicerSlices) {
+  const int apple = object("apple_1"), cup = object("cup_1");
+  ObjectAbilities fragile;
+  fragile.breakable = true;
+  fragile.break_force = 40;
+  fragile.sliceable = true;
+  fragile.slice_force = 0.5;
+  ObjectAbilities knife;
+  knife.slicer = true;
+  world_.states().configure(apple, fragile);
+  put(apple, 1.0, -0.2, 0.0);  // set down gently
+  EXPECT_FALSE(broken(world_, apple));
+  put(apple, 1.0, -0.2, 2.0, 0);  // dropped from 2 m
+  run(1);
+  EXPECT_TRUE(broken(world_, apple));
+  put(cup, 1.0, -0.2, 0.09);  // resting on the apple, not a slicer
+  EXPECT_FALSE(sliced(world_, apple));
+  world_.states().configure(cup, knife);
+  put(cup, 1.0, -0.2, 0.09);
+  EXPECT_TRUE(sliced(world_, apple));
+}
+
+TEST_F(ObjectStatesTest, TheHandAtTheTogglePointForFiveStepsToggles) {
+  const int apple = object("apple_1");
+  ObjectAbilities lamp;
+  lamp.toggleable = true;
+  world_.states().configure(apple, lamp);
+  // Floating at the hand without touching it: no gravity, no contacts.
+  world_.model()->opt.gravity[2] = 0;
+  for (int g : scene_->objects()[apple].geoms) {
+    world_.model()->geom_contype[g] = world_.model()->geom_conaffinity[g] = 0;
+  }
+  const double* hand = world_.data()->site_xpos + 3 * world_.robot()->gripper_site;
+  put(apple, hand[0], hand[1], hand[2] - 0.12, 0);  // top 4 cm below the hand
+  for (int i = 0; i < 4; ++i) world_.step(4);
+  EXPECT_FALSE(toggled_on(world_, apple));
+  world_.step(4);
+  EXPECT_TRUE(toggled_on(world_, apple));
+  for (int i = 0; i < 10; ++i) world_.step(4);  // staying does not toggle it back
+  EXPECT_TRUE(toggled_on(world_, apple));
+}
+
+TEST_F(ObjectStatesTest, StateSamplersAgreeWithTheCheckers) {
+  const int apple = object("apple_1"), bin = object("trash_bin_1");
+  ObjectAbilities all;
+  all.temperature = true;
+  all.ignition_temperature = 300;
+  all.soakable = all.toggleable = all.sliceable = all.breakable = true;
+  ObjectAbilities bucket;
+  bucket.holds_liquid = true;
+  world_.states().configure(apple, all);
+  world_.states().configure(bin, bucket);
+  const std::vector<std::pair<std::string, bool (*)(const World&, int)>> checks = {
+      {"cooked", cooked}, {"burnt", burnt}, {"frozen", frozen}, {"hot", hot},
+      {"on_fire", on_fire}, {"soaked", soaked}, {"saturated", saturated},
+      {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken}};
+  for (const auto& [name, check] : checks) {
+    for (bool value : {true, false, true}) {
+      sample_state(world_, name, apple, value);
+      EXPECT_EQ(check(world_, apple), value) << name << " " << value;
+    }
+  }
+  sample_state(world_, "filled", bin, true);
+  EXPECT_TRUE(filled(world_, bin));
+  sample_state(world_, "filled", bin, false);
+  EXPECT_FALSE(filled(world_, bin));
+  EXPECT_THROW(sample_state(world_, "cooked", object("cup_1"), true), Error);  // keeps no temperature
+  EXPECT_THROW(sample_state(world_, "levitating", apple, true), Error);
+}
+
+TEST_F(ObjectStatesTest, CoveredSamplesAreCovered) {
+  const int table = object("table_1");
+  ObjectAbilities surface;
+  surface.covered = true;
+  world_.states().configure(table, surface);
+  int agree = 0;
+  for (int seed = 0; seed < 1000; ++seed) {
+    Rng rng(seed);
+    agree += sample_covered(world_, table, "dust", true, rng) && covered(world_, table, "dust");
+  }
+  EXPECT_GE(agree, 990);
+  Rng rng(0);
+  sample_covered(world_, table, "dust", false, rng);
+  EXPECT_FALSE(covered(world_, table, "dust"));
+}
+
+}  // namespace
+}  // namespace chore
