@@ -1,0 +1,450 @@
+#include "tasks/goal.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "env/world/error.hpp"
+
+namespace chore {
+namespace {
+
+using Options = std::vector<GroundOption>;
+using Visit = std::function<bool(const std::vector<size_t>&)>;  // an index tuple; true: accepted
+
+// Visits elements of the product of sequences of the given sizes, as index
+// tuples, in bddl's truncated_product order: increasing index sum, then
+// lexicographic. Stops once `visit` has accepted `cap` of them. No sequences:
+// one empty tuple; an empty sequence: nothing.
+void truncated_product(const std::vector<size_t>& sizes, size_t cap, const Visit& visit) {
+  if (std::find(sizes.begin(), sizes.end(), 0) != sizes.end()) return;
+  const size_t k = sizes.size();
+  std::vector<size_t> slack(k + 1, 0);  // slack[j]: the largest index sum of sequences j..k-1
+  for (size_t j = k; j-- > 0;) slack[j] = slack[j + 1] + sizes[j] - 1;
+  std::vector<size_t> index(k);
+  size_t accepted = 0;
+  // Fills index[j..] with sum `rest`, lexicographically; true once capped.
+  const std::function<bool(size_t, size_t)> fill = [&](size_t j, size_t rest) {
+    if (j == k) return visit(index) && ++accepted >= cap;
+    const size_t low = rest > slack[j + 1] ? rest - slack[j + 1] : 0;
+    for (size_t i = low; i <= std::min(rest, sizes[j] - 1); ++i) {
+      index[j] = i;
+      if (fill(j + 1, rest - i)) return true;
+    }
+    return false;
+  };
+  for (size_t sum = 0; sum <= slack[0]; ++sum)
+    if (fill(0, sum)) return;
+}
+
+// bddl's itertools.product (and, the goal's options): complete, in
+// lexicographic order, when it has at most `cap` elements; else the first
+// `cap` accepted in truncated_product's order.
+void bounded_product(const std::vector<size_t>& sizes, size_t cap, const Visit& visit) {
+  size_t count = 1;
+  for (size_t s : sizes) count = s == 0 ? 0 : (count > cap / s ? cap + 1 : count * s);
+  if (count > cap) return truncated_product(sizes, cap, visit);
+  if (count == 0) return;
+  std::vector<size_t> index(sizes.size(), 0);
+  for (;;) {
+    visit(index);
+    size_t j = sizes.size();
+    while (j > 0 && ++index[j - 1] == sizes[j - 1]) index[--j] = 0;
+    if (j == 0) return;
+  }
+}
+
+// The first kMaxGroundPermutations r-permutations of 0..n-1 in lexicographic
+// order (bddl's truncated_permutations); none when r > n.
+std::vector<std::vector<size_t>> truncated_permutations(size_t n, size_t r) {
+  std::vector<std::vector<size_t>> out;
+  std::vector<size_t> current;
+  std::vector<bool> used(n, false);
+  const std::function<void()> extend = [&] {
+    if (out.size() == kMaxGroundPermutations) return;
+    if (current.size() == r) {
+      out.push_back(current);
+      return;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      if (used[i]) continue;
+      used[i] = true;
+      current.push_back(i);
+      extend();
+      current.pop_back();
+      used[i] = false;
+    }
+  };
+  if (r <= n) extend();
+  return out;
+}
+
+// Calls visit for each n-combination of 0..k-1 in lexicographic order
+// (itertools.combinations) until it returns false.
+void combinations(size_t k, size_t n, const Visit& visit) {
+  if (n > k) return;
+  std::vector<size_t> c(n);
+  for (size_t i = 0; i < n; ++i) c[i] = i;
+  for (;;) {
+    if (!visit(c)) return;
+    size_t i = n;
+    while (i > 0 && c[i - 1] == k - n + i - 1) --i;
+    if (i == 0) return;
+    ++c[i - 1];
+    for (size_t j = i; j < n; ++j) c[j] = c[j - 1] + 1;
+  }
+}
+
+void append(GroundOption& to, const GroundOption& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+using Product = void (*)(const std::vector<size_t>& sizes, size_t cap, const Visit& visit);
+
+// Options with the chosen element of each sequence concatenated.
+Options product(Product order, const std::vector<Options>& sequences, size_t cap) {
+  std::vector<size_t> sizes;
+  for (const Options& s : sequences) sizes.push_back(s.size());
+  Options out;
+  order(sizes, cap, [&](const std::vector<size_t>& index) {
+    GroundOption& option = out.emplace_back();
+    for (size_t j = 0; j < index.size(); ++j) append(option, sequences[j][index[j]]);
+    return true;
+  });
+  return out;
+}
+
+// Drops repeated literals within an option, then options with the same
+// literals as an earlier one.
+Options without_repeats(Options options) {
+  Options out;
+  std::set<GroundOption> seen;
+  for (GroundOption& option : options) {
+    GroundOption unique;
+    for (LiteralId id : option)
+      if (std::find(unique.begin(), unique.end(), id) == unique.end()) unique.push_back(id);
+    GroundOption key = unique;
+    std::sort(key.begin(), key.end());
+    if (seen.insert(std::move(key)).second) out.push_back(std::move(unique));
+  }
+  return out;
+}
+
+class Grounder {
+ public:
+  Grounder(const Problem& problem, const TypeTest& is_a, GroundGoal& goal)
+      : problem_(problem), is_a_(is_a), goal_(goal) {}
+
+  GroundCondition condition(const Formula& f) {
+    GroundCondition c;
+    c.formula = expand(f);
+    c.options = options(c.formula);
+    return c;
+  }
+
+  // complement[id]: the id of the literal with the opposite flag, if any.
+  std::vector<std::optional<LiteralId>> complements() const {
+    std::vector<std::optional<LiteralId>> out;
+    for (GroundLiteral l : goal_.literals) {
+      l.negated = !l.negated;
+      const auto it = ids_.find(l);
+      out.push_back(it == ids_.end() ? std::nullopt : std::optional(it->second));
+    }
+    return out;
+  }
+
+ private:
+  LiteralId intern(const GroundLiteral& l) {
+    const auto [it, inserted] = ids_.emplace(l, goal_.literals.size());
+    if (inserted) goal_.literals.push_back(l);
+    return it->second;
+  }
+
+  std::vector<std::string> instances(const Variable& v) const {
+    std::vector<std::string> out;
+    for (const ObjectDecl& o : problem_.objects)
+      if (o.type == v.type || (is_a_ && is_a_(o.type, v.type))) out.push_back(o.name);
+    if (out.empty())
+      throw Error("activity " + problem_.name + ": (" + v.name + " - " + v.type +
+                  ") ranges over no object declared in :objects");
+    return out;
+  }
+
+  GroundFormula bound(const Formula& body, const std::vector<std::pair<std::string, std::string>>& b) {
+    bindings_.insert(bindings_.end(), b.begin(), b.end());
+    GroundFormula g = expand(body);
+    bindings_.resize(bindings_.size() - b.size());
+    return g;
+  }
+
+  GroundFormula expand(const Formula& f) {
+    GroundFormula g;
+    g.op = f.op;
+    g.count = static_cast<size_t>(f.count);
+    switch (f.op) {
+      case Op::literal: {
+        GroundLiteral l = f.literal;
+        for (std::string& arg : l.args) {
+          if (!arg.starts_with('?')) continue;
+          const auto it = std::find_if(bindings_.rbegin(), bindings_.rend(),
+                                       [&](const auto& b) { return b.first == arg; });
+          if (it == bindings_.rend()) throw Error("activity " + problem_.name + ": unbound variable " + arg);
+          arg = it->second;
+        }
+        g.literal = intern(l);
+        return g;
+      }
+      case Op::forall:
+      case Op::exists:
+      case Op::forn:
+        for (const std::string& x : instances(f.variables[0]))
+          g.children.push_back(bound(f.children[0], {{f.variables[0].name, x}}));
+        return g;
+      case Op::forpairs:
+      case Op::fornpairs: {
+        const std::vector<std::string> columns = instances(f.variables[1]);
+        g.columns = columns.size();
+        GroundFormula no_pair;  // the empty disjunction: false, with no option
+        no_pair.op = Op::disjunction;
+        for (const std::string& x : instances(f.variables[0]))
+          for (const std::string& y : columns)
+            g.children.push_back(
+                x == y ? no_pair
+                       : bound(f.children[0], {{f.variables[0].name, x}, {f.variables[1].name, y}}));
+        return g;
+      }
+      default:  // negation, conjunction, disjunction, implication
+        for (const Formula& c : f.children) g.children.push_back(expand(c));
+        return g;
+    }
+  }
+
+  Options options(const GroundFormula& g) {
+    std::vector<Options> children;
+    for (const GroundFormula& c : g.children) children.push_back(options(c));
+    switch (g.op) {
+      case Op::literal:
+        return {{g.literal}};
+      case Op::negation:
+        return negated(children[0]);
+      case Op::conjunction:
+        return without_repeats(product(bounded_product, children, kMaxGoalOptions));
+      case Op::disjunction:
+      case Op::exists: {
+        Options out;
+        for (Options& c : children) out.insert(out.end(), c.begin(), c.end());
+        return without_repeats(std::move(out));
+      }
+      case Op::forall:
+        return without_repeats(product(truncated_product, children, kMaxGroundOptions));
+      case Op::forn:
+        return forn(children, g.count);
+      case Op::forpairs:
+      case Op::fornpairs:
+        return pairs(g, children);
+      case Op::implication:
+        break;
+    }
+    throw std::logic_error("ground goal: imply must be gone after to_nnf");
+  }
+
+  // De Morgan on options: the operand fails when one literal of each of its
+  // options fails.
+  Options negated(const Options& operand) {
+    std::vector<Options> choices;
+    for (const GroundOption& option : operand) {
+      Options& c = choices.emplace_back();
+      for (LiteralId id : option) {
+        GroundLiteral l = goal_.literals[id];
+        l.negated = !l.negated;
+        c.push_back({intern(l)});
+      }
+    }
+    return without_repeats(product(bounded_product, choices, kMaxGoalOptions));
+  }
+
+  // Exactly N: the N-combinations of the operands within each truncated-product option.
+  Options forn(const std::vector<Options>& children, size_t n) {
+    std::vector<size_t> sizes;
+    for (const Options& c : children) sizes.push_back(c.size());
+    Options out;
+    truncated_product(sizes, kMaxGroundOptions, [&](const std::vector<size_t>& index) {
+      combinations(children.size(), n, [&](const std::vector<size_t>& chosen) {
+        if (out.size() == kMaxGoalOptions) return false;
+        GroundOption& option = out.emplace_back();
+        for (size_t j : chosen) append(option, children[j][index[j]]);
+        return true;
+      });
+      return true;
+    });
+    return without_repeats(std::move(out));
+  }
+
+  // bddl's ForPairs / ForNPairs: L pairs chosen by permuting the shorter side
+  // against L-permutations of the longer one (forpairs), or N-permutations of
+  // both sides (fornpairs); each choice's pairs combine by truncated product.
+  Options pairs(const GroundFormula& g, const std::vector<Options>& cells) {
+    const size_t columns = g.columns, rows = columns == 0 ? 0 : g.children.size() / columns;
+    const size_t l = g.op == Op::fornpairs ? g.count : std::min(rows, columns);
+    // outer permutes rows when outer_rows, else columns; inner the other side.
+    bool outer_rows = true;
+    std::vector<std::vector<size_t>> outer, inner;
+    if (g.op == Op::fornpairs) {
+      outer = truncated_permutations(rows, l);
+      inner = truncated_permutations(columns, l);
+    } else if (rows < columns) {
+      outer = truncated_permutations(rows, rows);
+      inner = truncated_permutations(columns, l);
+    } else {
+      outer_rows = false;
+      outer = truncated_permutations(columns, columns);
+      inner = truncated_permutations(rows, l);
+    }
+    Options out;
+    for (const std::vector<size_t>& o : outer) {
+      for (const std::vector<size_t>& i : inner) {
+        std::vector<Options> chosen;
+        for (size_t k = 0; k < l; ++k) {
+          const size_t row = outer_rows ? o[k] : i[k], column = outer_rows ? i[k] : o[k];
+          chosen.push_back(cells[row * columns + column]);
+        }
+        const Options choice = product(truncated_product, chosen, kMaxGroundOptions);
+        out.insert(out.end(), choice.begin(), choice.end());
+      }
+    }
+    return without_repeats(std::move(out));
+  }
+
+  const Problem& problem_;
+  const TypeTest& is_a_;
+  GroundGoal& goal_;
+  std::map<GroundLiteral, LiteralId> ids_;
+  std::vector<std::pair<std::string, std::string>> bindings_;  // variable -> instance, innermost last
+};
+
+// Answers literal truth at most once per literal.
+class Evaluator {
+ public:
+  Evaluator(const GroundGoal& goal, const Truth& truth)
+      : goal_(goal), truth_(truth), known_(goal.literals.size(), -1) {}
+
+  bool holds(LiteralId id) {
+    if (known_[id] < 0) known_[id] = truth_(goal_.literals[id]) ? 1 : 0;
+    return known_[id] == 1;
+  }
+
+  bool holds(const GroundFormula& g) {
+    const auto child_holds = [&](const GroundFormula& c) { return holds(c); };
+    switch (g.op) {
+      case Op::literal:
+        return holds(g.literal);
+      case Op::negation:
+        return !holds(g.children[0]);
+      case Op::conjunction:
+      case Op::forall:
+        return std::all_of(g.children.begin(), g.children.end(), child_holds);
+      case Op::disjunction:
+      case Op::exists:
+        return std::any_of(g.children.begin(), g.children.end(), child_holds);
+      case Op::forn:
+        return static_cast<size_t>(std::count_if(g.children.begin(), g.children.end(), child_holds)) ==
+               g.count;
+      case Op::forpairs:
+      case Op::fornpairs:
+        return pairs_hold(g);
+      case Op::implication:
+        break;
+    }
+    throw std::logic_error("score goal: imply must be gone after to_nnf");
+  }
+
+  size_t satisfied(const GroundOption& option) {
+    return static_cast<size_t>(
+        std::count_if(option.begin(), option.end(), [&](LiteralId id) { return holds(id); }));
+  }
+
+ private:
+  // At least L rows and L columns hold a satisfied pair.
+  bool pairs_hold(const GroundFormula& g) {
+    const size_t columns = g.columns, rows = columns == 0 ? 0 : g.children.size() / columns;
+    const size_t l = g.op == Op::fornpairs ? g.count : std::min(rows, columns);
+    std::vector<bool> row_hit(rows, false), column_hit(columns, false);
+    for (size_t r = 0; r < rows; ++r)
+      for (size_t c = 0; c < columns; ++c)
+        if (holds(g.children[r * columns + c])) row_hit[r] = column_hit[c] = true;
+    return static_cast<size_t>(std::count(row_hit.begin(), row_hit.end(), true)) >= l &&
+           static_cast<size_t>(std::count(column_hit.begin(), column_hit.end(), true)) >= l;
+  }
+
+  const GroundGoal& goal_;
+  const Truth& truth_;
+  std::vector<signed char> known_;  // -1 unknown, else 0/1
+};
+
+double fraction(size_t satisfied, size_t total) {
+  return total == 0 ? 1.0 : static_cast<double>(satisfied) / static_cast<double>(total);
+}
+
+}  // namespace
+
+GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
+  GroundGoal goal;
+  Grounder grounder(problem, is_a, goal);
+  const Formula nnf = to_nnf(problem.goal);
+  if (nnf.op == Op::conjunction) {
+    for (const Formula& c : nnf.children) goal.conditions.push_back(grounder.condition(c));
+  } else {
+    goal.conditions.push_back(grounder.condition(nnf));
+  }
+
+  // The product of the conditions' options, skipping those with c and (not c).
+  const std::vector<std::optional<LiteralId>> complement = grounder.complements();
+  std::vector<size_t> sizes;
+  for (const GroundCondition& c : goal.conditions) sizes.push_back(c.options.size());
+  std::vector<bool> in_option(goal.literals.size(), false);
+  Options options;
+  bounded_product(sizes, kMaxGoalOptions, [&](const std::vector<size_t>& index) {
+    GroundOption option;
+    for (size_t j = 0; j < index.size(); ++j) append(option, goal.conditions[j].options[index[j]]);
+    for (LiteralId id : option) in_option[id] = true;
+    const bool consistent = std::none_of(option.begin(), option.end(), [&](LiteralId id) {
+      return complement[id] && in_option[*complement[id]];
+    });
+    for (LiteralId id : option) in_option[id] = false;
+    if (consistent) options.push_back(std::move(option));
+    return consistent;
+  });
+  goal.options = without_repeats(std::move(options));
+  std::stable_sort(goal.options.begin(), goal.options.end(),
+                   [](const GroundOption& a, const GroundOption& b) { return a.size() < b.size(); });
+  return goal;
+}
+
+Score score(const GroundGoal& goal, const Truth& truth) {
+  Evaluator evaluator(goal, truth);
+  Score s;
+  s.success = true;
+  for (const GroundCondition& c : goal.conditions) {
+    s.condition_holds.push_back(evaluator.holds(c.formula));
+    s.success = s.success && s.condition_holds.back();
+  }
+  for (size_t i = 0; i < goal.options.size(); ++i) {
+    const size_t satisfied = evaluator.satisfied(goal.options[i]);
+    const double q = fraction(satisfied, goal.options[i].size());
+    if (!s.best_option || q > s.q) {
+      s.q = q;
+      s.satisfied = satisfied;
+      s.total = goal.options[i].size();
+      s.best_option = i;
+    }
+  }
+  return s;
+}
+
+double potential(const GroundGoal& goal, size_t option, const Truth& truth) {
+  const GroundOption& o = goal.options.at(option);
+  return fraction(Evaluator(goal, truth).satisfied(o), o.size());
+}
+
+}  // namespace chore

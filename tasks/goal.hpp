@@ -1,0 +1,106 @@
+// A BDDL goal grounded on an activity's objects, and scored against the world
+// as BEHAVIOR's public code does (bddl condition_evaluation.py, iGibson
+// metrics and potential reward):
+//
+// - The goal is put in negation normal form (tasks/bddl.hpp) and split into
+//   top-level conditions (the operands of a top-level `and`).
+// - Each condition expands its quantifiers over the instances declared in
+//   :objects, in file order: an instance belongs to TYPE if its synset is TYPE,
+//   or if `is_a` says so. A pair quantifier never binds one instance to both
+//   of its variables. A quantifier ranging over no instance is an error (a
+//   mistyped synset would otherwise make a forall vacuously true).
+// - Each condition gets ground options: lists of literals, any one of which
+//   satisfies it. and = cartesian product; or, exists = union; forall =
+//   truncated product (the first kMaxGroundOptions in BEHAVIOR's order of
+//   increasing index sum); forn = the N-combinations of each forall-like
+//   option; forpairs, fornpairs = truncated permutations (kMaxGroundPermutations)
+//   of rows and columns, each a truncated product; a negation left over a
+//   counting quantifier = one complemented literal from each option of its
+//   operand. Repeated literals within an option, and options with the same
+//   literals as an earlier one, are dropped.
+// - The goal's options are the product of its conditions' options, without
+//   options holding both c and (not c), sorted by length (stable).
+//
+// Success evaluates the formula itself: forn holds when exactly N bindings
+// satisfy its body; forpairs when at least L = min(rows, columns) rows and L
+// columns hold a satisfied pair; fornpairs the same with N. Q is the best
+// fraction of satisfied literals over the goal's options.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "tasks/bddl.hpp"
+
+namespace chore {
+
+inline constexpr size_t kMaxGroundOptions = 20;       // bddl GROUND_GOALS_MAX_OPTIONS
+inline constexpr size_t kMaxGroundPermutations = 10;  // bddl GROUND_GOALS_MAX_PERMUTATIONS
+// Bounds what BEHAVIOR leaves unbounded: the full products (and, the goal's
+// options, a negation's choices) and forn's combinations. Four 4x4 forpairs
+// (assembling_gift_baskets) would give 20^4 goal options. Under the bound a
+// product is complete and lexicographic (itertools.product); past it, it is
+// truncated in forall's order.
+inline constexpr size_t kMaxGoalOptions = 1000;
+
+// Does an instance of synset `instance_type` belong to quantifier type `type`?
+// An empty TypeTest means equality only; the knowledge base widens it to
+// "is a descendant of".
+using TypeTest = std::function<bool(std::string_view instance_type, std::string_view type)>;
+
+// A literal on object instances (no variables). `negated` is part of it: the
+// checker answers (not (open x)) as "x is closed".
+using GroundLiteral = Literal;
+using LiteralId = size_t;  // index into GroundGoal::literals
+using GroundOption = std::vector<LiteralId>;
+
+// A goal condition with its quantifiers expanded.
+struct GroundFormula {
+  Op op = Op::literal;    // never implication (gone in negation normal form)
+  LiteralId literal = 0;  // op == literal
+  size_t count = 0;       // forn, fornpairs: N
+  // forpairs, fornpairs: children are the rows x columns pairs, row-major
+  // (rows: first variable). The pair binding one instance to both variables
+  // is an empty disjunction: false, with no option.
+  size_t columns = 0;
+  std::vector<GroundFormula> children;
+};
+
+struct GroundCondition {
+  GroundFormula formula;
+  std::vector<GroundOption> options;
+};
+
+struct GroundGoal {
+  std::vector<GroundLiteral> literals;  // each distinct literal once
+  std::vector<GroundCondition> conditions;
+  std::vector<GroundOption> options;  // the goal's options, shortest first
+};
+
+GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a = {});
+
+// Does this literal (negated flag included) hold in the world now?
+using Truth = std::function<bool(const GroundLiteral&)>;
+
+struct Score {
+  bool success = false;               // every condition holds
+  std::vector<bool> condition_holds;  // per GroundGoal::conditions
+  double q = 0;                       // best fraction of satisfied literals; 0 without options
+  size_t satisfied = 0, total = 0;    // of the best option
+  std::optional<size_t> best_option;  // first option reaching q; none without options
+};
+
+// Asks `truth` at most once per distinct literal. An option without literals
+// counts as fully satisfied.
+Score score(const GroundGoal& goal, const Truth& truth);
+
+// Fraction of goal.options[option] satisfied: BEHAVIOR's potential, which its
+// reward reads on option 0 only. The env's reward is
+// weight * (potential(now) - potential(before)): positive when a literal of
+// that option becomes true, negative when one is undone.
+double potential(const GroundGoal& goal, size_t option, const Truth& truth);
+
+}  // namespace chore

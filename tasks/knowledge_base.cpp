@@ -1,0 +1,301 @@
+#include "tasks/knowledge_base.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <set>
+
+#include "env/world/error.hpp"
+#include "env/world/json_file.hpp"
+
+namespace chore {
+
+std::string default_tasks_dir() {
+  const char* env = std::getenv("CHORE_TASKS");
+  return (env && *env) ? env : CHORE_TASKS_DIR;
+}
+
+const char* to_string(ExtendedState state) {
+  switch (state) {
+    case ExtendedState::temperature:
+      return "temperature";
+    case ExtendedState::max_temperature:
+      return "max_temperature";
+    case ExtendedState::soaked_level:
+      return "soaked_level";
+    case ExtendedState::covered_level:
+      return "covered_level";
+    case ExtendedState::toggled_state:
+      return "toggled_state";
+    case ExtendedState::sliced_state:
+      return "sliced_state";
+    case ExtendedState::broken_state:
+      return "broken_state";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr const char* kHierarchyFile = "hierarchy_owned.json";
+constexpr const char* kPropertiesFile = "synsets_to_filtered_properties.json";
+constexpr int kStateCount = static_cast<int>(ExtendedState::broken_state) + 1;
+
+constexpr unsigned bit(ExtendedState state) { return 1u << static_cast<unsigned>(state); }
+constexpr unsigned kTemperatures = bit(ExtendedState::temperature) | bit(ExtendedState::max_temperature);
+
+// Table A.5 under both the table's property names (BEHAVIOR-1K) and the
+// shipped bddl data's older ones. The data's "burnable" carries the burn
+// temperature that Burnt compares with the maximum temperature (Table A.8), so
+// it keeps what overcookable keeps; "dustyable"/"stainable" objects carry dust
+// and stain particles, which Table A.7 tracks as the covered level.
+struct StateRule {
+  const char* property;
+  unsigned states;
+};
+constexpr StateRule kStateRules[] = {
+    {"cookable", kTemperatures},
+    {"overcookable", kTemperatures},
+    {"burnable", kTemperatures},
+    {"freezable", bit(ExtendedState::temperature)},
+    {"flammable", bit(ExtendedState::temperature)},
+    {"heatable", bit(ExtendedState::temperature)},
+    {"meltable", bit(ExtendedState::temperature)},  // the table misspells it "metable"
+    {"soakable", bit(ExtendedState::soaked_level)},
+    {"dustyable", bit(ExtendedState::covered_level)},
+    {"stainable", bit(ExtendedState::covered_level)},
+    {"toggleable", bit(ExtendedState::toggled_state)},
+    {"heatSource", bit(ExtendedState::toggled_state)},
+    {"fireSource", bit(ExtendedState::toggled_state)},
+    {"coldSource", bit(ExtendedState::toggled_state)},
+    {"waterSource", bit(ExtendedState::toggled_state)},
+    {"sliceable", bit(ExtendedState::sliced_state)},
+    {"breakable", bit(ExtendedState::broken_state)},
+};
+
+void sort_unique(std::vector<std::string>& names) {
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+}
+
+using Tree = std::map<std::string, std::vector<std::string>>;  // synset -> children
+
+// Adds `node` and its subtree. A synset repeated under several parents is one
+// entry whose children are those of all its repeats (duplicates removed later).
+void read_hierarchy_node(const JsonReader& node, Tree& tree) {
+  std::vector<std::string>& children = tree[node.string("name")];
+  if (!node.has("children")) return;
+  const JsonReader list = node.at("children");
+  for (size_t i = 0; i < list.size(); ++i) {
+    children.push_back(list.at(i).string("name"));
+    read_hierarchy_node(list.at(i), tree);
+  }
+}
+
+std::map<std::string, Properties> read_properties(const std::string& path) {
+  const nlohmann::json json = read_json_file(path);
+  if (!json.is_object()) throw Error(path + ": expected an object of synsets");
+  std::map<std::string, Properties> out;
+  for (const auto& synset : json.items()) {
+    const std::string where = path + ": " + synset.key();
+    if (!synset.value().is_object()) throw Error(where + ": expected an object of properties");
+    Properties& properties = out[synset.key()];
+    for (const auto& property : synset.value().items()) {
+      const std::string property_where = where + "." + property.key();
+      if (!property.value().is_object()) throw Error(property_where + ": expected an object of parameters");
+      auto& parameters = properties[property.key()];
+      for (const auto& parameter : property.value().items()) {
+        const nlohmann::json& value = parameter.value();
+        if (value.is_boolean()) {
+          parameters[parameter.key()] = value.get<bool>() ? 1.0 : 0.0;
+        } else if (value.is_number()) {
+          parameters[parameter.key()] = value.get<double>();
+        } else {
+          throw Error(property_where + "." + parameter.key() + ": expected a number or true/false");
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// The tree's synsets with every parent before its children; a cycle (possible
+// once repeated synsets are merged) is an error.
+std::vector<std::string> parents_first(const Tree& tree, const std::string& hierarchy_path) {
+  std::map<std::string, size_t> waiting;  // parents not yet placed
+  for (const auto& [name, children] : tree) {
+    waiting[name];
+    for (const std::string& child : children) ++waiting[child];
+  }
+  std::vector<std::string> order;
+  for (const auto& [name, count] : waiting) {
+    if (count == 0) order.push_back(name);
+  }
+  for (size_t i = 0; i < order.size(); ++i) {
+    for (const std::string& child : tree.at(order[i])) {
+      if (--waiting[child] == 0) order.push_back(child);
+    }
+  }
+  for (const auto& [name, count] : waiting) {
+    if (count > 0) throw Error(hierarchy_path + ": the hierarchy has a cycle through '" + name + "'");
+  }
+  return order;
+}
+
+// Keeps the properties both have, and of their parameters those with equal values.
+void intersect(Properties& into, const Properties& other) {
+  for (auto it = into.begin(); it != into.end();) {
+    const auto found = other.find(it->first);
+    if (found == other.end()) {
+      it = into.erase(it);
+      continue;
+    }
+    std::erase_if(it->second, [&](const auto& parameter) {
+      const auto value = found->second.find(parameter.first);
+      return value == found->second.end() || value->second != parameter.second;
+    });
+    ++it;
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const KnowledgeBase> KnowledgeBase::load(const std::string& dir) {
+  const std::string hierarchy_path = dir + "/" + kHierarchyFile;
+  const std::string properties_path = dir + "/" + kPropertiesFile;
+  Tree tree;
+  const nlohmann::json hierarchy = read_json_file(hierarchy_path);
+  read_hierarchy_node(JsonReader(hierarchy, hierarchy_path), tree);
+  std::map<std::string, Properties> annotations = read_properties(properties_path);
+
+  std::map<std::string, Synset> synsets;
+  for (auto& [name, children] : tree) {
+    sort_unique(children);
+    if (children.empty() && !annotations.contains(name)) {
+      throw Error(hierarchy_path + ": leaf '" + name + "' has no entry in " + properties_path);
+    }
+    // The tree iterates in name order, so parents arrive sorted.
+    for (const std::string& child : children) synsets[child].parents.push_back(name);
+    synsets[name].children = children;
+  }
+  for (auto& [name, properties] : annotations) synsets[name].properties = std::move(properties);
+
+  // Synsets outside the tree have no parents and no children: nothing to derive.
+  const std::vector<std::string> order = parents_first(tree, hierarchy_path);
+  for (const std::string& name : order) {
+    Synset& synset = synsets.at(name);
+    for (const std::string& parent : synset.parents) {
+      const std::vector<std::string>& above = synsets.at(parent).ancestors;
+      synset.ancestors.push_back(parent);
+      synset.ancestors.insert(synset.ancestors.end(), above.begin(), above.end());
+    }
+    sort_unique(synset.ancestors);
+  }
+  // Children before parents, so each child's properties are final when used.
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    Synset& synset = synsets.at(*it);
+    if (synset.children.empty()) continue;
+    synset.properties = synsets.at(synset.children.front()).properties;
+    for (const std::string& child : synset.children) {
+      intersect(synset.properties, synsets.at(child).properties);
+    }
+  }
+  for (auto& [name, synset] : synsets) {
+    for (const StateRule& rule : kStateRules) {
+      if (synset.properties.contains(rule.property)) synset.states |= rule.states;
+    }
+  }
+
+  std::shared_ptr<KnowledgeBase> kb(new KnowledgeBase());
+  kb->synsets_ = std::move(synsets);
+  return kb;
+}
+
+const KnowledgeBase::Synset& KnowledgeBase::find(const std::string& synset) const {
+  const auto found = synsets_.find(synset);
+  if (found != synsets_.end()) return found->second;
+  // Other senses of the same lemma sort together, right after "<lemma>.".
+  std::string message = "unknown synset '" + synset + "'";
+  const std::string lemma = synset.substr(0, synset.find('.')) + ".";
+  std::string senses;
+  for (auto it = synsets_.lower_bound(lemma); it != synsets_.end() && it->first.starts_with(lemma); ++it) {
+    senses += (senses.empty() ? "" : ", ") + it->first;
+  }
+  if (!senses.empty()) message += "; did you mean " + senses + "?";
+  throw Error(message);
+}
+
+bool KnowledgeBase::contains(const std::string& synset) const { return synsets_.contains(synset); }
+
+std::vector<std::string> KnowledgeBase::synsets() const {
+  std::vector<std::string> names;
+  for (const auto& entry : synsets_) names.push_back(entry.first);
+  return names;
+}
+
+const std::vector<std::string>& KnowledgeBase::parents(const std::string& synset) const {
+  return find(synset).parents;
+}
+
+const std::vector<std::string>& KnowledgeBase::children(const std::string& synset) const {
+  return find(synset).children;
+}
+
+const std::vector<std::string>& KnowledgeBase::ancestors(const std::string& synset) const {
+  return find(synset).ancestors;
+}
+
+bool KnowledgeBase::is_leaf(const std::string& synset) const { return find(synset).children.empty(); }
+
+bool KnowledgeBase::is_a(const std::string& synset, const std::string& ancestor) const {
+  const std::vector<std::string>& above = find(synset).ancestors;
+  find(ancestor);  // a misspelt ancestor is an error, not a quiet false
+  return synset == ancestor || std::binary_search(above.begin(), above.end(), ancestor);
+}
+
+const Properties& KnowledgeBase::properties(const std::string& synset) const {
+  return find(synset).properties;
+}
+
+bool KnowledgeBase::has_property(const std::string& synset, const std::string& property) const {
+  return properties(synset).contains(property);
+}
+
+std::optional<double> KnowledgeBase::parameter(const std::string& synset, const std::string& property,
+                                               const std::string& name) const {
+  const Properties& all = properties(synset);
+  const auto found = all.find(property);
+  if (found == all.end()) return std::nullopt;
+  const auto value = found->second.find(name);
+  if (value == found->second.end()) return std::nullopt;
+  return value->second;
+}
+
+std::vector<ExtendedState> KnowledgeBase::extended_states(const std::string& synset) const {
+  const unsigned states = find(synset).states;
+  std::vector<ExtendedState> out;
+  for (int i = 0; i < kStateCount; ++i) {
+    if (states & bit(static_cast<ExtendedState>(i))) out.push_back(static_cast<ExtendedState>(i));
+  }
+  return out;
+}
+
+bool KnowledgeBase::has_any(const std::string& synset, std::initializer_list<const char*> names) const {
+  const Properties& all = properties(synset);
+  return std::any_of(names.begin(), names.end(), [&](const char* name) { return all.contains(name); });
+}
+
+// Table A.1 names beside the data's: "substance" covers liquids and physical
+// and visual substances; the data says "slicer" where the table says "slicingTool".
+bool KnowledgeBase::is_substance(const std::string& synset) const {
+  return has_any(synset, {"substance", "liquid", "physicalSubstance", "visualSubstance"});
+}
+bool KnowledgeBase::is_liquid(const std::string& synset) const { return has_any(synset, {"liquid"}); }
+bool KnowledgeBase::is_cleaning_tool(const std::string& synset) const {
+  return has_any(synset, {"cleaningTool"});
+}
+bool KnowledgeBase::is_slicer(const std::string& synset) const {
+  return has_any(synset, {"slicer", "slicingTool"});
+}
+bool KnowledgeBase::is_openable(const std::string& synset) const { return has_any(synset, {"openable"}); }
+
+}  // namespace chore
