@@ -449,14 +449,18 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   }
 
   // <size>: MuJoCo 2.2.2 preallocates for njmax constraint rows; each mjData
-  // costs ~25 MB at 500 rows and ~780 MB at 8000. A scene at rest has ~100
-  // contacts (~400 rows with pyramidal friction cones).
+  // costs ~25 MB at 500 rows and ~780 MB at 8000. A resting free object has
+  // about 4 contacts of 4 rows each (pyramidal cones): room for each free
+  // object's 8 contacts, plus the robot's and joint limits.
+  int free_objects = 0;
+  for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
+  const int nconmax = 200 + 8 * free_objects, njmax = 4 * nconmax;
   std::string xml =
       "<mujoco model=\"" + scene->name_ + "\">\n"
       "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"
       "  <option timestep=\"" + fmt(kTimestep) + "\" integrator=\"Euler\" solver=\"Newton\" "
       "iterations=\"30\" tolerance=\"1e-6\"/>\n"
-      "  <size nconmax=\"400\" njmax=\"1500\"/>\n"
+      "  <size nconmax=\"" + std::to_string(nconmax) + "\" njmax=\"" + std::to_string(njmax) + "\"/>\n"
       "  <visual>\n"
       "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
       "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"

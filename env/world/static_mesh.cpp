@@ -30,6 +30,15 @@ std::string format_numbers(const std::vector<double>& values) {
   return out;
 }
 
+// Face indices exactly: %g would write 100000 as 1e+05.
+std::string format_indices(const std::vector<std::array<int, 3>>& faces) {
+  std::string out;
+  for (const auto& f : faces) {
+    for (int i : f) out += (out.empty() ? "" : " ") + std::to_string(i);
+  }
+  return out;
+}
+
 }  // namespace
 
 int StaticMesh::color_index(const Rgb& color) {
@@ -176,7 +185,7 @@ std::array<double, 2> StaticMesh::texcoord(int color) const {
 
 std::string StaticMesh::mjcf_assets() const {
   if (empty()) return "";
-  std::vector<double> positions, normals, texcoords, faces;
+  std::vector<double> positions, normals, texcoords;
   for (const Vertex& v : vertices_) {
     for (int i = 0; i < 3; ++i) positions.push_back(v.position[i]);
     for (int i = 0; i < 3; ++i) normals.push_back(v.normal[i]);
@@ -184,7 +193,6 @@ std::string StaticMesh::mjcf_assets() const {
     texcoords.push_back(uv[0]);
     texcoords.push_back(uv[1]);
   }
-  for (const auto& f : faces_) faces.insert(faces.end(), f.begin(), f.end());
   return "    <texture name=\"" + name_ + "\" type=\"2d\" builtin=\"flat\" width=\"" +
          std::to_string(texture_width()) + "\" height=\"" + std::to_string(texture_height()) +
          "\" rgb1=\"1 1 1\"/>\n"
@@ -192,7 +200,7 @@ std::string StaticMesh::mjcf_assets() const {
          "\" specular=\"0.05\" shininess=\"0.1\"/>\n"
          "    <mesh name=\"" + name_ + "\" vertex=\"" + format_numbers(positions) +
          "\" normal=\"" + format_numbers(normals) + "\" texcoord=\"" + format_numbers(texcoords) +
-         "\" face=\"" + format_numbers(faces) + "\"/>\n";
+         "\" face=\"" + format_indices(faces_) + "\"/>\n";
 }
 
 std::string StaticMesh::mjcf_geom() const {
