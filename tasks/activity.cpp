@@ -1,0 +1,368 @@
+#include "tasks/activity.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "env/world/error.hpp"
+#include "env/world/object_geometry.hpp"
+#include "env/world/predicates.hpp"
+#include "env/world/sampling.hpp"
+
+namespace fs = std::filesystem;
+
+namespace chore {
+namespace {
+
+constexpr int kInstantiationAttempts = 10;
+
+// Predicates chore can check, by their BDDL names (both dialects).
+const std::set<std::string> kKinematic = {"ontop", "inside", "under", "onfloor", "nextto", "touching"};
+const std::set<std::string> kUnaryStates = {"cooked", "burnt", "frozen", "hot", "on_fire", "soaked",
+                                            "toggled_on", "sliced", "broken"};
+const std::set<std::string> kOther = {"inroom", "open", "saturated", "covered", "filled", "dusty",
+                                      "stained", "grasped", "inhand", "infov", "inreach",
+                                      "insameroom"};
+// Second arguments that name a substance rather than an object.
+const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated"};
+
+// "stain.n.01" -> "stain": the name dirt and liquids are kept under.
+std::string lemma(const std::string& synset) { return synset.substr(0, synset.find('.')); }
+
+std::string resolve_activity_path(const std::string& name) {
+  if (name.ends_with(".bddl") || name.find('/') != std::string::npos) {
+    if (!fs::exists(name)) throw Error("activity file '" + name + "' does not exist");
+    return name;
+  }
+  const fs::path dir = fs::path(default_tasks_dir()) / "activities";
+  const fs::path path = dir / (name + ".bddl");
+  if (fs::exists(path)) return path.string();
+  std::string known;
+  if (fs::is_directory(dir)) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() == ".bddl") known += (known.empty() ? "" : ", ") + e.path().stem().string();
+    }
+  }
+  throw Error("unknown activity '" + name + "' (no " + path.string() + "); known activities: " +
+              (known.empty() ? "none" : known));
+}
+
+bool room_matches(const Room& room, const std::string& bddl_room) {
+  return room.type == bddl_room || room.name == bddl_room;
+}
+
+}  // namespace
+
+std::shared_ptr<const Activity> Activity::load(const std::string& name, const Scene& scene,
+                                               std::shared_ptr<const KnowledgeBase> kb) {
+  const std::string path = resolve_activity_path(name);
+  std::shared_ptr<Activity> a(new Activity());
+  a->problem_ = load_bddl(path);
+  a->name_ = fs::path(path).stem().string();
+  a->kb_ = std::move(kb);
+  const std::string where = "activity '" + a->name_ + "' in scene '" + scene.name() + "'";
+
+  std::map<std::string, std::string> rooms;  // instance -> BDDL room
+  std::set<std::string> substances;
+  auto check_predicate = [&](const Literal& l) {
+    if (!kKinematic.count(l.predicate) && !kUnaryStates.count(l.predicate) && !kOther.count(l.predicate)) {
+      throw Error(path + ": unsupported predicate '" + l.predicate + "' in " + to_bddl(l));
+    }
+    if (kSubstanceArgument.count(l.predicate) && l.args.size() >= 2) substances.insert(l.args[1]);
+  };
+  for (const Literal& l : a->problem_.init) {
+    check_predicate(l);
+    if (l.predicate == "inroom" && l.args.size() == 2) rooms[l.args[0]] = l.args[1];
+  }
+  a->goal_ = ground_goal(a->problem_, [&](std::string_view instance, std::string_view type) {
+    const std::string i(instance), t(type);
+    return i == t || (a->kb_->contains(i) && a->kb_->contains(t) && a->kb_->is_a(i, t));
+  });
+  for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
+
+  std::vector<bool> taken(scene.objects().size(), false);
+  for (const ObjectDecl& decl : a->problem_.objects) {
+    Binding b;
+    const auto room = rooms.find(decl.name);
+    if (decl.type == "agent.n.01") {
+      if (!scene.has_robot()) throw Error(where + ": " + decl.name + " needs the robot");
+      b.kind = Binding::Kind::agent;
+    } else if (decl.type == "floor.n.01") {
+      if (room == rooms.end()) throw Error(where + ": " + decl.name + " has no (inroom ...) literal");
+      for (size_t r = 0; r < scene.rooms().size() && b.index < 0; ++r) {
+        if (room_matches(scene.rooms()[r], room->second)) b.index = static_cast<int>(r);
+      }
+      if (b.index < 0) throw Error(where + ": no room '" + room->second + "' for " + decl.name);
+      b.kind = Binding::Kind::floor;
+    } else if (substances.count(decl.name) || (a->kb_->contains(decl.type) && a->kb_->is_substance(decl.type))) {
+      b.kind = Binding::Kind::substance;
+    } else {
+      a->kb_->is_a(decl.type, decl.type);  // an unknown synset is an error here
+      std::string seen;
+      for (size_t i = 0; i < scene.objects().size() && b.index < 0; ++i) {
+        const SceneObject& o = scene.objects()[i];
+        if (taken[i] || !a->kb_->contains(o.synset) || !a->kb_->is_a(o.synset, decl.type)) continue;
+        if (room != rooms.end()) {
+          const double* p = scene.model()->body_pos + 3 * o.body;
+          const Room* r = scene.room_at(p[0], p[1]);
+          if (!r || !room_matches(*r, room->second)) {
+            seen += (seen.empty() ? "" : ", ") + o.name + " (in " + (r ? r->name : "no room") + ")";
+            continue;
+          }
+        } else if (o.fixed) {
+          seen += (seen.empty() ? "" : ", ") + o.name + " (fixed: cannot be placed)";
+          continue;
+        }
+        b.index = static_cast<int>(i);
+        taken[i] = true;
+      }
+      if (b.index < 0) {
+        throw Error(where + ": no scene object for " + decl.name + " (" + decl.type + ")" +
+                    (room != rooms.end() ? " in " + room->second : std::string(" that is free")) +
+                    (seen.empty() ? "" : "; of that type: " + seen));
+      }
+    }
+    a->bindings_.emplace_back(decl.name, b);
+  }
+
+  // Sampling order: joint states, then placements, then the other states
+  // (objects must be where they end up before dirt is laid on them).
+  auto rank = [](const Literal& l) { return l.predicate == "open" ? 0 : kKinematic.count(l.predicate) ? 1 : 2; };
+  for (const Literal& l : a->problem_.init) {
+    if (l.predicate != "inroom") a->init_order_.push_back(l);
+  }
+  std::stable_sort(a->init_order_.begin(), a->init_order_.end(),
+                   [&](const Literal& x, const Literal& y) { return rank(x) < rank(y); });
+  return a;
+}
+
+const Binding& Activity::binding(const std::string& instance) const {
+  for (const auto& [name, b] : bindings_) {
+    if (name == instance) return b;
+  }
+  throw Error("activity '" + name_ + "': no object '" + instance + "'");
+}
+
+int Activity::object(const std::string& instance) const {
+  const Binding& b = binding(instance);
+  if (b.kind != Binding::Kind::object) throw Error("activity '" + name_ + "': '" + instance + "' is not a scene object");
+  return b.index;
+}
+
+void Activity::configure(World& world) const {
+  const Scene& scene = world.scene();
+  std::set<int> liquid_holders;
+  for (const Literal& l : problem_.init) {
+    if (l.predicate == "filled" && !l.negated) liquid_holders.insert(object(l.args[0]));
+  }
+  for (const auto& [instance, b] : bindings_) {
+    if (b.kind != Binding::Kind::object) continue;
+    const std::string& s = scene.objects()[b.index].synset;
+    const KnowledgeBase& kb = *kb_;
+    ObjectAbilities ab;
+    const auto states = kb.extended_states(s);
+    auto keeps = [&](ExtendedState e) { return std::find(states.begin(), states.end(), e) != states.end(); };
+    ab.temperature = keeps(ExtendedState::temperature);
+    ab.cook_temperature = kb.parameter(s, "cookable", "cook_temperature").value_or(ab.cook_temperature);
+    ab.burn_temperature = kb.parameter(s, "burnable", "burn_temperature").value_or(ab.burn_temperature);
+    ab.soakable = keeps(ExtendedState::soaked_level);
+    ab.covered = keeps(ExtendedState::covered_level);
+    ab.toggleable = kb.has_property(s, "toggleable");
+    ab.sliceable = keeps(ExtendedState::sliced_state);
+    ab.breakable = keeps(ExtendedState::broken_state);
+    ab.cleaning_tool = kb.is_cleaning_tool(s);
+    ab.slicer = kb.is_slicer(s);
+    ab.holds_liquid = kb.has_property(s, "waterSource") || liquid_holders.count(b.index);
+    for (const auto& [property, source] : {std::pair{"heatSource", &ab.heat_source},
+                                           std::pair{"coldSource", &ab.cold_source}}) {
+      if (!kb.has_property(s, property)) continue;
+      ThermalSource t;
+      if (std::string(property) == "coldSource") t.temperature = -18;
+      auto flag = [&](const char* name, bool fallback) {
+        return kb.parameter(s, property, name).value_or(fallback) != 0;
+      };
+      t.temperature = kb.parameter(s, property, "temperature").value_or(t.temperature);
+      t.rate = kb.parameter(s, property, "heating_rate").value_or(t.rate);
+      t.requires_toggled_on = flag("requires_toggled_on", false);
+      t.requires_closed = flag("requires_closed", false);
+      t.requires_inside = flag("requires_inside", false);
+      *source = t;
+    }
+    world.states().configure(b.index, ab);
+  }
+  // Stains need a soaked cleaning tool, dust any (iGibson's rules).
+  world.states().add_substance({"stain", true});
+  world.states().add_substance({"dust", false});
+}
+
+namespace {
+
+// A collision-free base pose for the robot in `room`.
+bool place_robot(World& w, int room, Rng& rng) {
+  const Robot& r = *w.robot();
+  const Room& rm = w.scene().rooms()[room];
+  const mjModel* m = w.model();
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    const auto& rect = rm.rects[uniform_index(rng, static_cast<int>(rm.rects.size()))];
+    const double margin = 0.4;
+    if (rect[2] - rect[0] < 2 * margin || rect[3] - rect[1] < 2 * margin) continue;
+    w.data()->qpos[r.base_x.qpos] = uniform(rng, rect[0] + margin, rect[2] - margin);
+    w.data()->qpos[r.base_y.qpos] = uniform(rng, rect[1] + margin, rect[3] - margin);
+    w.data()->qpos[r.base_yaw.qpos] = uniform(rng, -M_PI, M_PI);
+    mj_forward(m, w.data());
+    bool clear = true;
+    for (int c = 0; c < w.data()->ncon && clear; ++c) {
+      const mjContact& con = w.data()->contact[c];
+      const int root1 = m->body_rootid[m->geom_bodyid[con.geom1]];
+      const int root2 = m->body_rootid[m->geom_bodyid[con.geom2]];
+      const int robot = m->body_rootid[m->jnt_bodyid[r.base_x.joint]];
+      clear = root1 != robot && root2 != robot;
+    }
+    if (clear) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
+  const Binding& first = binding(l.args.at(0));
+  if (first.kind == Binding::Kind::agent) {
+    if (l.predicate != "onfloor" || l.negated) return holds(w, l);
+    const int room = binding(l.args.at(1)).index;
+    const Pose2 base = w.base_pose();
+    const Room* now = w.scene().room_at(base.x, base.y);
+    return now == &w.scene().rooms()[room] || place_robot(w, room, rng);
+  }
+  const bool value = !l.negated;
+  if (kKinematic.count(l.predicate)) {
+    // Negated placements are not sampled (as BEHAVIOR's sampler); fixed
+    // objects stay where the scene has them. Both must simply hold.
+    if (l.negated || w.scene().objects()[first.index].fixed || l.predicate == "nextto" ||
+        l.predicate == "touching") {
+      return holds(w, l);
+    }
+    const Binding& second = binding(l.args.at(1));
+    if (second.kind == Binding::Kind::floor) return sample_onfloor(w, first.index, second.index, rng);
+    if (l.predicate == "ontop") return sample_ontop(w, first.index, second.index, rng);
+    if (l.predicate == "inside") return sample_inside(w, first.index, second.index, rng);
+    return sample_under(w, first.index, second.index, rng);
+  }
+  if (l.predicate == "open") {
+    sample_open(w, first.index, value, rng);
+  } else if (l.predicate == "dusty" || l.predicate == "stained") {
+    return sample_covered(w, first.index, l.predicate == "dusty" ? "dust" : "stain", value, rng);
+  } else if (l.predicate == "covered") {
+    return sample_covered(w, first.index, lemma(type_of(l.args.at(1))), value, rng);
+  } else if (kUnaryStates.count(l.predicate) || l.predicate == "saturated" || l.predicate == "filled") {
+    sample_state(w, l.predicate, first.index, value);
+  } else {
+    return holds(w, l);
+  }
+  return true;
+}
+
+std::string Activity::type_of(const std::string& instance) const {
+  for (const ObjectDecl& d : problem_.objects) {
+    if (d.name == instance) return d.type;
+  }
+  throw Error("activity '" + name_ + "': no object '" + instance + "'");
+}
+
+bool Activity::holds(const World& w, const GroundLiteral& l) const {
+  const Scene& scene = w.scene();
+  auto arg = [&](size_t i) -> const Binding& { return binding(l.args.at(i)); };
+  auto object_arg = [&](size_t i) {
+    const Binding& b = arg(i);
+    if (b.kind != Binding::Kind::object) {
+      throw Error("activity '" + name_ + "': " + to_bddl(l) + ": '" + l.args.at(i) + "' is not an object");
+    }
+    return b.index;
+  };
+  const std::string& p = l.predicate;
+  bool value = false;
+  if (p == "onfloor" || ((p == "ontop") && arg(1).kind == Binding::Kind::floor)) {
+    const int room = arg(1).index;
+    if (arg(0).kind == Binding::Kind::agent) {
+      const Pose2 base = w.base_pose();
+      value = scene.room_at(base.x, base.y) == &scene.rooms()[room];
+    } else {
+      value = onfloor(w, object_arg(0), room);
+    }
+  } else if (p == "inroom") {
+    const Room* r = nullptr;
+    if (arg(0).kind == Binding::Kind::floor) {
+      r = &scene.rooms()[arg(0).index];
+    } else if (arg(0).kind == Binding::Kind::agent) {
+      r = scene.room_at(w.base_pose().x, w.base_pose().y);
+    } else {
+      const Eigen::Vector3d c = object_aabb(w, object_arg(0)).center();
+      r = scene.room_at(c.x(), c.y());
+    }
+    value = r && room_matches(*r, l.args.at(1));
+  } else if (p == "ontop") {
+    value = ontop(w, object_arg(0), object_arg(1));
+  } else if (p == "inside") {
+    value = inside(w, object_arg(0), object_arg(1));
+  } else if (p == "under") {
+    value = under(w, object_arg(0), object_arg(1));
+  } else if (p == "nextto") {
+    value = nextto(w, object_arg(0), object_arg(1));
+  } else if (p == "touching") {
+    value = touching(w, object_arg(0), object_arg(1));
+  } else if (p == "insameroom") {
+    value = insameroom(w, object_arg(0), object_arg(1));
+  } else if (p == "grasped" || p == "inhand") {
+    // B1K: (grasped agent obj); BEHAVIOR-100 style: (inhand obj).
+    value = grasped(w, object_arg(l.args.size() - 1));
+  } else if (p == "covered") {
+    value = covered(w, object_arg(0), lemma(type_of(l.args.at(1))));
+  } else if (p == "dusty" || p == "stained") {
+    value = covered(w, object_arg(0), p == "dusty" ? "dust" : "stain");
+  } else {
+    static const std::map<std::string, bool (*)(const World&, int)> unary = {
+        {"open", is_open},     {"cooked", cooked},   {"burnt", burnt},       {"frozen", frozen},
+        {"hot", hot},          {"on_fire", on_fire}, {"soaked", soaked},     {"saturated", saturated},
+        {"filled", filled},    {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken},
+        {"infov", infov},      {"inreach", inreach}};
+    value = unary.at(p)(w, object_arg(0));
+  }
+  return value != l.negated;
+}
+
+Score Activity::score(const World& w) const {
+  return chore::score(goal_, [&](const GroundLiteral& l) { return holds(w, l); });
+}
+
+double Activity::potential(const World& w) const {
+  if (goal_.options.empty()) return 0;
+  return chore::potential(goal_, 0, [&](const GroundLiteral& l) { return holds(w, l); });
+}
+
+void Activity::instantiate(World& w, Rng& rng) const {
+  const Pose2 start = w.base_pose();
+  std::string failure;
+  for (int attempt = 0; attempt < kInstantiationAttempts; ++attempt) {
+    if (attempt > 0) w.reset(start);
+    failure.clear();
+    for (const Literal& l : init_order_) {
+      if (!sample_literal(w, l, rng)) {
+        failure = to_bddl(l) + " could not be sampled";
+        break;
+      }
+    }
+    // Later placements can disturb earlier ones: every literal must hold at the end.
+    for (const Literal& l : init_order_) {
+      if (failure.empty() && !holds(w, l)) failure = to_bddl(l) + " does not hold after sampling";
+    }
+    if (failure.empty()) return;
+  }
+  throw Error("activity '" + name_ + "': cannot instantiate: " + failure + " (" +
+              std::to_string(kInstantiationAttempts) + " attempts)");
+}
+
+}  // namespace chore

@@ -1,0 +1,75 @@
+// An activity: a BDDL problem bound to a scene's objects. Loaded once and
+// shared read-only by every environment; instantiate() samples a fresh
+// instance of its :init in a world ("infinite activity initialisation") and
+// score() evaluates its goal there (success, Q, BEHAVIOR's potential).
+//
+// Binding (deterministic, in :objects order):
+//   agent.n.01       the robot
+//   floor.n.01       the floor of the room its (inroom floor ROOM) names
+//   a substance      (water.n.06, or the second argument of filled/covered):
+//                    not an object, a kind of liquid or dirt
+//   anything else    the first unbound scene object whose synset is-a the
+//                    declared type (knowledge base), in the room its inroom
+//                    names if it has one; objects without inroom must be free
+//                    (they are placed by sampling).
+// Rooms are named by type in BDDL (living_room) or by scene name (living_room_0).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "env/world/random.hpp"
+#include "env/world/world.hpp"
+#include "tasks/bddl.hpp"
+#include "tasks/goal.hpp"
+#include "tasks/knowledge_base.hpp"
+
+namespace chore {
+
+struct Binding {
+  enum class Kind { object, floor, agent, substance };
+  Kind kind = Kind::object;
+  int index = -1;  // object: index in scene().objects(); floor: index in scene().rooms()
+};
+
+class Activity {
+ public:
+  // `name` is an activity in <tasks>/activities/<name>.bddl, or a path to a
+  // .bddl file. Throws chore::Error naming what cannot be bound and why.
+  static std::shared_ptr<const Activity> load(const std::string& name, const Scene& scene,
+                                              std::shared_ptr<const KnowledgeBase> kb);
+
+  const std::string& name() const { return name_; }
+  const Problem& problem() const { return problem_; }
+  const GroundGoal& goal() const { return goal_; }
+  const Binding& binding(const std::string& instance) const;
+  // The scene object bound to a BDDL instance (e.g. "pumpkin.n.02_1").
+  int object(const std::string& instance) const;
+
+  // Configures the world's extended states for the bound objects (Table A.5,
+  // from the knowledge base). Call once per world.
+  void configure(World& world) const;
+  // Samples :init in the world, which must be freshly reset. Retries whole
+  // instantiations; the last failure throws chore::Error naming the literal.
+  void instantiate(World& world, Rng& rng) const;
+
+  bool holds(const World& world, const GroundLiteral& literal) const;
+  Score score(const World& world) const;
+  // BEHAVIOR's potential: the fraction of the goal's first option that holds.
+  double potential(const World& world) const;
+
+ private:
+  Activity() = default;
+  bool sample_literal(World& world, const Literal& literal, Rng& rng) const;
+  std::string type_of(const std::string& instance) const;
+
+  std::string name_;
+  Problem problem_;
+  GroundGoal goal_;
+  std::shared_ptr<const KnowledgeBase> kb_;
+  std::vector<std::pair<std::string, Binding>> bindings_;  // in :objects order
+  std::vector<Literal> init_order_;  // :init without inroom, in sampling order
+};
+
+}  // namespace chore

@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <functional>
+
+#include "env/world/error.hpp"
+#include "env/world/object_geometry.hpp"
+#include "env/world/predicates.hpp"
+#include "env/world/sampling.hpp"
+#include "tasks/activity.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+std::shared_ptr<const KnowledgeBase> kb() {
+  static auto loaded = KnowledgeBase::load();
+  return loaded;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+struct Case {
+  const char* activity;
+  const char* scene;
+};
+const Case kBaselines[] = {{"store_decoration", "apartment"},
+                           {"collect_trash", "studio"},
+                           {"clean_table", "restaurant"}};
+
+TEST(Activity, BaselinesBindToTheirScenesObjects) {
+  auto apartment = Scene::load("apartment");
+  auto a = Activity::load("store_decoration", *apartment, kb());
+  EXPECT_EQ(apartment->objects()[a->object("pumpkin.n.02_1")].name, "pumpkin_1");
+  EXPECT_EQ(apartment->objects()[a->object("cabinet.n.01_1")].name, "cabinet_drawer_1");
+  EXPECT_EQ(a->binding("agent.n.01_1").kind, Binding::Kind::agent);
+  EXPECT_EQ(apartment->rooms()[a->binding("floor.n.01_1").index].name, "living_room_0");
+  auto restaurant = Scene::load("restaurant");
+  auto c = Activity::load("clean_table", *restaurant, kb());
+  EXPECT_EQ(restaurant->objects()[c->object("table.n.02_1")].name, "table_1");
+  EXPECT_EQ(restaurant->objects()[c->object("bucket.n.01_1")].name, "bucket_1");
+  EXPECT_EQ(c->binding("water.n.06_1").kind, Binding::Kind::substance);
+}
+
+// Every :init literal holds after instantiation, the goal is not yet met, and
+// one seed gives one instance.
+TEST(Activity, BaselinesInstantiateFromTheirInitialConditions) {
+  for (const Case& c : kBaselines) {
+    auto scene = Scene::load(c.scene);
+    auto activity = Activity::load(c.activity, *scene, kb());
+    World world(scene), again(scene);
+    activity->configure(world);
+    activity->configure(again);
+    for (uint64_t seed = 0; seed < 10; ++seed) {
+      world.reset(scene->robot_start());
+      Rng rng(seed);
+      ASSERT_NO_THROW(activity->instantiate(world, rng)) << c.activity << " seed " << seed;
+      for (const Literal& l : activity->problem().init) {
+        EXPECT_TRUE(activity->holds(world, l)) << c.activity << " seed " << seed << " " << to_bddl(l);
+      }
+      const Score s = activity->score(world);
+      EXPECT_FALSE(s.success) << c.activity;
+      EXPECT_EQ(s.q, 0.0) << c.activity;
+    }
+    // The same seed, the same instance.
+    world.reset(scene->robot_start());
+    again.reset(scene->robot_start());
+    Rng r1(42), r2(42);
+    activity->instantiate(world, r1);
+    activity->instantiate(again, r2);
+    EXPECT_EQ(std::vector<double>(world.data()->qpos, world.data()->qpos + world.model()->nq),
+              std::vector<double>(again.data()->qpos, again.data()->qpos + again.model()->nq))
+        << c.activity;
+  }
+}
+
+TEST(Activity, GoalIsScoredFromTheWorld) {
+  auto scene = Scene::load("apartment");
+  auto activity = Activity::load("store_decoration", *scene, kb());
+  World world(scene);
+  activity->configure(world);
+  Rng rng(3);
+  activity->instantiate(world, rng);
+  const int cabinet = activity->object("cabinet.n.01_1");
+  ASSERT_TRUE(sample_inside(world, activity->object("pumpkin.n.02_1"), cabinet, rng));
+  Score s = activity->score(world);
+  EXPECT_FALSE(s.success);
+  EXPECT_DOUBLE_EQ(s.q, 0.5);
+  EXPECT_DOUBLE_EQ(activity->potential(world), 0.5);
+  ASSERT_TRUE(sample_inside(world, activity->object("pumpkin.n.02_2"), cabinet, rng));
+  s = activity->score(world);
+  EXPECT_TRUE(s.success);
+  EXPECT_DOUBLE_EQ(s.q, 1.0);
+}
+
+TEST(Activity, CleanTableIsMetWhenTheStainsAreGone) {
+  auto scene = Scene::load("restaurant");
+  auto activity = Activity::load("clean_table", *scene, kb());
+  World world(scene);
+  activity->configure(world);
+  Rng rng(0);
+  activity->instantiate(world, rng);
+  const int table = activity->object("table.n.02_1");
+  EXPECT_TRUE(covered(world, table, "stain"));
+  EXPECT_TRUE(filled(world, activity->object("bucket.n.01_1")));
+  EXPECT_FALSE(activity->score(world).success);
+  world.states().state(table).dirt["stain"].clear();
+  EXPECT_TRUE(activity->score(world).success);
+}
+
+TEST(Activity, BadActivitiesGiveClearErrors) {
+  auto box_room = Scene::load(test::box_room());
+  std::string e = error_of([&] { Activity::load("no_such_activity", *box_room, kb()); });
+  EXPECT_NE(e.find("unknown activity 'no_such_activity'"), std::string::npos) << e;
+  EXPECT_NE(e.find("store_decoration"), std::string::npos) << e;
+  e = error_of([&] { Activity::load("store_decoration", *box_room, kb()); });
+  EXPECT_NE(e.find("no scene object for pumpkin.n.02_1 (pumpkin.n.02)"), std::string::npos) << e;
+
+  const auto dir = test::scratch_dir("bad_activities");
+  const std::string head = "(define (problem p) (:domain igibson) (:objects ";
+  test::write_file(dir / "unknown_synset.bddl",
+                   head + "teapot.n.99_1 - teapot.n.99) (:init) (:goal (and (open ?teapot.n.99_1))))");
+  e = error_of([&] { Activity::load((dir / "unknown_synset.bddl").string(), *box_room, kb()); });
+  EXPECT_NE(e.find("unknown synset 'teapot.n.99'"), std::string::npos) << e;
+  test::write_file(dir / "unknown_predicate.bddl",
+                   head + "block.n.01_1 - block.n.01) (:init (levitating block.n.01_1)) (:goal (and (open ?block.n.01_1))))");
+  e = error_of([&] { Activity::load((dir / "unknown_predicate.bddl").string(), *box_room, kb()); });
+  EXPECT_NE(e.find("unsupported predicate 'levitating'"), std::string::npos) << e;
+  // The heavy block cannot go inside the small one: instantiation names the literal.
+  test::write_file(dir / "unsatisfiable.bddl",
+                   head + "block.n.01_1 block.n.01_2 - block.n.01) (:init (inside block.n.01_1 block.n.01_2)) "
+                          "(:goal (and (open ?block.n.01_1))))");
+  auto activity = Activity::load((dir / "unsatisfiable.bddl").string(), *box_room, kb());
+  World world(box_room);
+  activity->configure(world);
+  Rng rng(0);
+  e = error_of([&] { activity->instantiate(world, rng); });
+  EXPECT_NE(e.find("cannot instantiate: (inside block.n.01_1 block.n.01_2)"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace chore
