@@ -23,16 +23,26 @@ bool wants(const EnvConfig& c, const char* name) {
 
 }  // namespace
 
-std::shared_ptr<const Scene> load_scene(const EnvConfig& config) {
+EnvAssets load_assets(const EnvConfig& config) {
+  std::string scene = config.scene;
+  if (scene.empty()) {
+    scene = config.activity.empty() ? "" : activity_scene(config.activity);
+    if (scene.empty()) scene = "apartment";
+  }
   SceneOptions options;
   options.robot = config.robot;
-  return Scene::load(config.scene, options);
+  EnvAssets assets;
+  assets.scene = Scene::load(scene, options);
+  if (!config.activity.empty()) {
+    assets.activity = Activity::load(config.activity, *assets.scene, KnowledgeBase::load());
+  }
+  return assets;
 }
 
-Env::Env(const EnvConfig& config) : Env(config, load_scene(config)) {}
+Env::Env(const EnvConfig& config) : Env(config, load_assets(config)) {}
 
-Env::Env(const EnvConfig& config, std::shared_ptr<const Scene> scene)
-    : config_(config), scene_(std::move(scene)) {
+Env::Env(const EnvConfig& config, const EnvAssets& assets)
+    : config_(config), scene_(assets.scene), activity_(assets.activity) {
   if (config_.width <= 0 || config_.height <= 0) {
     throw Error("env config: image size " + std::to_string(config_.width) + "x" +
                 std::to_string(config_.height) + " must be positive");
@@ -72,6 +82,7 @@ Env::Env(const EnvConfig& config, std::shared_ptr<const Scene> scene)
   obs_ = ArrayDict(observation_space_, 1);
   world_ = std::make_unique<World>(scene_);
   world_->set_lighting(config_.lighting);
+  if (activity_) activity_->configure(*world_);
 }
 
 Env::~Env() = default;
@@ -87,11 +98,17 @@ void Env::close() {
   closed_ = true;
 }
 
-Info Env::make_info() const {
+Info Env::make_info(const Score* score) const {
   Info info;
   info.elapsed_steps = elapsed_;
   info.diverged = diverged_;
   info.is_grasping = world_->grasped_object() >= 0;
+  if (score) {
+    info.success = score->success;
+    info.q = score->q;
+    info.satisfied = static_cast<int>(score->satisfied);
+    info.total = static_cast<int>(score->total);
+  }
   return info;
 }
 
@@ -106,7 +123,11 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   elapsed_ = 0;
   episode_over_ = false;
   diverged_ = false;
-  return make_info();
+  if (!activity_) return make_info();
+  activity_->instantiate(*world_, rng_);
+  potential_ = activity_->potential(*world_);
+  const Score score = activity_->score(*world_);
+  return make_info(&score);
 }
 
 Env::Outcome Env::advance(std::span<const float> action) {
@@ -142,8 +163,18 @@ Env::Outcome Env::advance(std::span<const float> action) {
   ++elapsed_;
   diverged_ = report.diverged;
   Outcome out;
-  out.truncated = report.diverged || elapsed_ >= config_.max_episode_steps;
-  out.info = make_info();
+  std::optional<Score> score;
+  if (activity_ && !report.diverged) {
+    // BEHAVIOR's potential reward: positive when a literal of the goal's first
+    // option becomes true, negative when one is undone; success terminates.
+    score = activity_->score(*world_);
+    const double potential = activity_->potential(*world_);
+    out.reward = potential - potential_;
+    potential_ = potential;
+    out.terminated = score->success;
+  }
+  out.truncated = !out.terminated && (report.diverged || elapsed_ >= config_.max_episode_steps);
+  out.info = make_info(score ? &*score : nullptr);
   out.info.grasp_refused = report.grasp_refused;
   episode_over_ = out.terminated || out.truncated;
   return out;

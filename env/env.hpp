@@ -19,11 +19,16 @@
 #include "env/world/random.hpp"
 #include "env/world/renderer.hpp"
 #include "env/world/world.hpp"
+#include "tasks/activity.hpp"
 
 namespace chore {
 
 struct EnvConfig {
-  std::string scene = "apartment";
+  // A BDDL activity (tasks/activities/<name>.bddl or a path); empty: no
+  // activity, reward 0, episodes end by the time limit.
+  std::string activity;
+  // Empty: the activity's scene (tasks/activities/scenes.json), or the apartment.
+  std::string scene;
   int width = 128, height = 128;
   // Any of "rgb", "depth", "proprio", "is_grasping".
   std::vector<std::string> observations = {"rgb", "depth", "proprio", "is_grasping"};
@@ -41,9 +46,11 @@ struct Info {
   bool diverged = false;       // MuJoCo became unstable; the episode was truncated
   bool grasp_refused = false;  // the gripper closed on an object over the mass limit
   bool is_grasping = false;
-  // Activity scores (0 until an activity is attached).
+  // Activity scores (all 0 without an activity).
   bool success = false;
-  double q = 0.0;
+  double q = 0.0;       // success score Q: best fraction of satisfied goal literals
+  int satisfied = 0;    // literals of the best option that hold ...
+  int total = 0;        // ... out of its literals
 };
 
 // The low-level (RL-VMC) action: 14 numbers in [-1, 1] (values outside are
@@ -55,14 +62,21 @@ struct Info {
 //   12-13 head pan, tilt velocities (x 1 rad/s), integrated into position targets
 constexpr int kLowLevelActionSize = 14;
 
+// What envs of one config share, read-only: the compiled scene and the bound activity.
+struct EnvAssets {
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const Activity> activity;  // null without an activity
+};
+EnvAssets load_assets(const EnvConfig& config);
+
 class Env {
  public:
   // Physics steps of 1/120 s per env step of 1/30 s (the seed's time steps).
   static constexpr int kPhysicsSubsteps = 4;
 
   explicit Env(const EnvConfig& config);
-  // Shares an already compiled scene (it must match config.scene and config.robot).
-  Env(const EnvConfig& config, std::shared_ptr<const Scene> scene);
+  // Shares what load_assets(config) compiled (scene, activity) with other envs.
+  Env(const EnvConfig& config, const EnvAssets& assets);
   ~Env();
 
   const Space& observation_space() const { return observation_space_; }
@@ -105,11 +119,13 @@ class Env {
 
  private:
   void check_open() const;
-  Info make_info() const;
+  Info make_info(const Score* score = nullptr) const;
   void observe();  // renders and writes into obs_ with this env's own renderer
 
   EnvConfig config_;
   std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const Activity> activity_;
+  double potential_ = 0;  // BEHAVIOR's potential after the last step
   std::unique_ptr<World> world_;
   std::unique_ptr<Renderer> renderer_;  // made on first use, on the calling thread
   Space observation_space_, action_space_;
@@ -119,7 +135,6 @@ class Env {
   bool episode_over_ = true, closed_ = false, diverged_ = false;
 };
 
-// Compiles config.scene (with or without robot) for one or more envs to share.
-std::shared_ptr<const Scene> load_scene(const EnvConfig& config);
+
 
 }  // namespace chore

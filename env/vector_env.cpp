@@ -93,8 +93,8 @@ struct VectorEnv::Impl {
     const int wanted = c.render_tiles > 0 ? c.render_tiles
                        : std::string(Renderer::platform()) == "device" ? kMaxTiles : 1;
     tile_count = std::max(1, std::min({wanted, num_envs, 8192 / std::max(1, c.env.width)}));
-    const std::shared_ptr<const Scene> scene = load_scene(c.env);
-    for (int i = 0; i < num_envs; ++i) envs.push_back(std::make_unique<Env>(c.env, scene));
+    const EnvAssets assets = load_assets(c.env);
+    for (int i = 0; i < num_envs; ++i) envs.push_back(std::make_unique<Env>(c.env, assets));
     action_size = static_cast<int>(envs[0]->action_space().element_count());
     actions.assign(num_envs, std::vector<float>(action_size, 0.f));
     seeds.resize(num_envs);

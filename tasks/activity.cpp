@@ -9,6 +9,7 @@
 #include <set>
 
 #include "env/world/error.hpp"
+#include "env/world/json_file.hpp"
 #include "env/world/object_geometry.hpp"
 #include "env/world/predicates.hpp"
 #include "env/world/sampling.hpp"
@@ -56,6 +57,13 @@ bool room_matches(const Room& room, const std::string& bddl_room) {
 }
 
 }  // namespace
+
+std::string activity_scene(const std::string& activity) {
+  const fs::path path = fs::path(default_tasks_dir()) / "activities" / "scenes.json";
+  const nlohmann::json scenes = read_json_file(path.string());
+  const std::string key = fs::path(activity).stem().string();
+  return scenes.contains(key) ? JsonReader(scenes, path.string()).string(key.c_str()) : "";
+}
 
 std::shared_ptr<const Activity> Activity::load(const std::string& name, const Scene& scene,
                                                std::shared_ptr<const KnowledgeBase> kb) {

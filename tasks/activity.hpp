@@ -33,6 +33,10 @@ struct Binding {
   int index = -1;  // object: index in scene().objects(); floor: index in scene().rooms()
 };
 
+// The scene an activity is set in (tasks/activities/scenes.json), or "" if
+// it names none.
+std::string activity_scene(const std::string& activity);
+
 class Activity {
  public:
   // `name` is an activity in <tasks>/activities/<name>.bddl, or a path to a

@@ -1,10 +1,12 @@
 #include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
 
 #include <cmath>
 #include <random>
 
 #include "env/env.hpp"
 #include "env/world/error.hpp"
+#include "env/world/sampling.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -119,6 +121,65 @@ TEST(Env, CloseIsIdempotentAndLaterUseIsAnError) {
   env.close();
   EXPECT_TRUE(env.closed());
   EXPECT_THROW(env.reset(0), Error);
+}
+
+}  // namespace
+}  // namespace chore
+
+namespace chore {
+namespace {
+
+TEST(EnvActivity, RewardFollowsTheGoalsPotentialAndSuccessTerminates) {
+  EnvConfig c;
+  c.activity = "store_decoration";
+  c.observations = {"proprio"};
+  Env env(c);
+  auto r = env.reset(5);
+  EXPECT_EQ(r.info.total, 2);
+  EXPECT_EQ(r.info.satisfied, 0);
+  EXPECT_FALSE(r.info.success);
+  const EnvAssets assets = load_assets(c);
+  const Activity& activity = *assets.activity;
+  World& w = env.world();
+  Rng rng(1);
+  const int cabinet = activity.object("cabinet.n.01_1");
+  std::vector<float> zero(kLowLevelActionSize, 0.f);
+  ASSERT_TRUE(sample_inside(w, activity.object("pumpkin.n.02_1"), cabinet, rng));
+  auto s = env.step(zero);
+  EXPECT_DOUBLE_EQ(s.reward, 0.5);  // one of two goal literals became true
+  EXPECT_DOUBLE_EQ(s.info.q, 0.5);
+  EXPECT_FALSE(s.terminated);
+  // Undone: negative reward.
+  ASSERT_TRUE(sample_onfloor(w, activity.object("pumpkin.n.02_1"), activity.binding("floor.n.01_1").index, rng));
+  EXPECT_DOUBLE_EQ(env.step(zero).reward, -0.5);
+  ASSERT_TRUE(sample_inside(w, activity.object("pumpkin.n.02_1"), cabinet, rng));
+  ASSERT_TRUE(sample_inside(w, activity.object("pumpkin.n.02_2"), cabinet, rng));
+  const auto done = env.step(zero);
+  EXPECT_DOUBLE_EQ(done.reward, 1.0);
+  EXPECT_TRUE(done.terminated);
+  EXPECT_FALSE(done.truncated);
+  EXPECT_TRUE(done.info.success);
+  EXPECT_DOUBLE_EQ(done.info.q, 1.0);
+}
+
+TEST(EnvActivity, EachResetSamplesAFreshInstanceFixedByTheSeed) {
+  EnvConfig c;
+  c.activity = "collect_trash";
+  c.observations = {"proprio"};
+  Env a(c), b(c);
+  const EnvAssets assets = load_assets(c);
+  const Activity& activity = *assets.activity;
+  const int bottle = activity.object("bottle.n.01_1");
+  auto position = [&](Env& e) {
+    const double* p = e.world().data()->xpos + 3 * e.world().scene().objects()[bottle].body;
+    return std::vector<double>(p, p + 3);
+  };
+  a.reset(7);
+  b.reset(7);
+  EXPECT_EQ(position(a), position(b));
+  const auto first = position(a);
+  a.reset(8);
+  EXPECT_NE(position(a), first);
 }
 
 }  // namespace

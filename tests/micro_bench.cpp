@@ -10,20 +10,20 @@
 namespace chore {
 namespace {
 
-std::shared_ptr<const Scene> apartment() {
-  static auto scene = Scene::load("apartment");
-  return scene;
-}
-
 EnvConfig rgbd() {
   EnvConfig c;
   c.scene = "apartment";
   return c;
 }
 
+const EnvAssets& apartment() {
+  static const EnvAssets assets = load_assets(rgbd());
+  return assets;
+}
+
 // One physics step of 1/120 s of the apartment with the robot standing still.
 void BM_PhysicsStep(benchmark::State& state) {
-  World world(apartment());
+  World world(apartment().scene);
   for (auto _ : state) world.step(1);
 }
 BENCHMARK(BM_PhysicsStep);
