@@ -184,9 +184,11 @@ std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {
   check_open();
   const bool rgb = obs.contains("rgb"), depth = obs.contains("depth");
   if (!rgb && !depth) return {};
-  return {CameraView{world_->model(), world_->data(), scene_->camera(),
-                     rgb ? static_cast<std::uint8_t*>(obs["rgb"].item(index)) : nullptr,
-                     depth ? static_cast<float*>(obs["depth"].item(index)) : nullptr}};
+  CameraView view{world_->model(), world_->data(), scene_->camera(),
+                  rgb ? static_cast<std::uint8_t*>(obs["rgb"].item(index)) : nullptr,
+                  depth ? static_cast<float*>(obs["depth"].item(index)) : nullptr};
+  view.world = world_.get();
+  return {view};
 }
 
 void Env::write_state(ArrayDict& obs, int index) const {

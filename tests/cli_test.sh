@@ -37,5 +37,14 @@ fi
 expect 0 '"vector_env"' -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2 --json
 expect 0 "Full Feature Set" -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2
 
+# Activities: valid files are checked, a malformed one is located.
+tasks="$(cd "$(dirname "${BASH_SOURCE[0]}")/../tasks/activities" && pwd)"
+expect 0 "store_decoration_0 (igibson): 5 objects" -- "$chore" activity check "$tasks/store_decoration.bddl" "$tasks/collect_trash.bddl" "$tasks/clean_table.bddl"
+expect 2 "error_unbalanced.bddl:3:1: expected ')'" -- "$chore" activity check "$data/bddl/error_unbalanced.bddl"
+expect 2 "unknown activity 'nope'" -- "$chore" activity sample nope --out /tmp/chore_cli_nope.png
+out_png="$(mktemp -d)/sample.png"
+expect 0 "picture: $out_png" -- "$chore" activity sample store_decoration --seed 1 --out "$out_png"
+if [[ ! -s "$out_png" ]]; then echo "FAIL: $out_png was not written"; failures=$((failures + 1)); fi
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

@@ -1,5 +1,5 @@
-// The `chore` command line: benchmarks now; train, eval, activity and video
-// subcommands join as their layers land. Bad arguments and bad input files
+// The `chore` command line: bench, activity check/sample; train, eval and
+// video join as their layers land. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
 
@@ -7,6 +7,7 @@
 #include <string>
 
 #include "env/world/error.hpp"
+#include "training/activity_commands.hpp"
 #include "training/bench.hpp"
 
 int main(int argc, char** argv) {
@@ -23,6 +24,19 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--height", bench.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
   bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")->check(CLI::Range(2, 256))->capture_default_str();
   bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
+
+  CLI::App* activity_cmd = app.add_subcommand("activity", "BDDL activities");
+  activity_cmd->require_subcommand(1);
+  std::vector<std::string> check_files;
+  CLI::App* check_cmd = activity_cmd->add_subcommand("check", "Parse and ground BDDL files");
+  check_cmd->add_option("files", check_files, "BDDL problem files")->required()->check(CLI::ExistingFile);
+  std::string sample_name, sample_scene, sample_out;
+  uint64_t sample_seed = 0;
+  CLI::App* sample_cmd = activity_cmd->add_subcommand("sample", "Instantiate an activity and picture it");
+  sample_cmd->add_option("name", sample_name, "Activity name or .bddl path")->required();
+  sample_cmd->add_option("--scene", sample_scene, "Scene (default: the activity's)");
+  sample_cmd->add_option("--seed", sample_seed, "Seed")->capture_default_str();
+  sample_cmd->add_option("--out", sample_out, "PNG to write")->required();
 
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
@@ -48,6 +62,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*check_cmd) chore::check_activities(check_files, std::cout);
+    if (*sample_cmd) chore::sample_activity(sample_name, sample_scene, sample_seed, sample_out, std::cout);
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
       if (bench_json) {

@@ -139,4 +139,24 @@ void ObjectStates::after_env_step(const World& w, double dt) {
   }
 }
 
+void ObjectStates::add_dirt_geoms(const World& w, mjvScene* scene) const {
+  constexpr float kRadius = 0.03f, kHalfThickness = 0.001f;
+  const float stain[4] = {0.12f, 0.09f, 0.05f, 1.0f}, dust[4] = {0.78f, 0.76f, 0.70f, 1.0f};
+  for (const auto& [object, state] : states_) {
+    for (const auto& [name, particles] : state.dirt) {
+      const float* rgba = name == "dust" ? dust : stain;
+      for (const Eigen::Vector3d& local : particles) {
+        if (scene->ngeom >= scene->maxgeom) return;
+        const Eigen::Vector3d p = to_world(w, object, local) + Eigen::Vector3d(0, 0, kHalfThickness);
+        const mjtNum size[3] = {kRadius, kHalfThickness, 0};
+        const mjtNum pos[3] = {p.x(), p.y(), p.z()};
+        mjvGeom* g = scene->geoms + scene->ngeom++;
+        mjv_initGeom(g, mjGEOM_CYLINDER, size, pos, nullptr, rgba);
+        g->category = mjCAT_DECOR;
+        g->modelrbound = kRadius;  // lets the renderer cull it like a model geom
+      }
+    }
+  }
+}
+
 }  // namespace chore

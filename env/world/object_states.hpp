@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+struct mjvScene_;
+
 namespace chore {
 
 class World;
@@ -88,8 +90,10 @@ class ObjectStates {
   // Heat transfer and toggling, after each env step of `dt` seconds.
   void after_env_step(const World& world, double dt);
 
+ // Draws the dirt particles as small flat discs into a scene being rendered.
+  void add_dirt_geoms(const World& world, mjvScene_* scene) const;
+
  private:
-  void clean(const World& world, int tool, int target);
   std::map<int, ObjectAbilities> abilities_;
   std::map<int, ObjectState> states_;
   std::map<std::string, Substance> substances_;

@@ -15,6 +15,7 @@
 #include "env/world/error.hpp"
 #include "env/world/mujoco_errors.hpp"
 #include "env/world/scene.hpp"
+#include "env/world/world.hpp"
 
 namespace chore {
 namespace {
@@ -141,7 +142,8 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles)
   }
   s.make_current();
   mjv_defaultScene(&s.scene);
-  mjv_makeScene(model, &s.scene, model->ngeom + 64);
+  // Room for the model's geoms and for decor (dirt particles).
+  mjv_makeScene(model, &s.scene, model->ngeom + 1000);
   mjv_defaultOption(&s.option);
   // Drawn: group 0 and, per view, the ceilings; collision geoms stay hidden.
   for (int g = 0; g < mjNGROUP; ++g) {
@@ -256,6 +258,7 @@ void Renderer::render_pass(const std::vector<const CameraView*>& pass) {
     s.camera.fixedcamid = v->camera;
     s.option.geomgroup[kCeilingGroup] = v->ceiling;
     mjv_updateScene(v->model, v->data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
+    if (v->world) v->world->states().add_dirt_geoms(*v->world, &s.scene);
     cull_to_frustum(s.scene, double(s.width) / s.height);
     const mjrRect viewport = {v->tile * s.width, 0, s.width, s.height};
     mjr_render(viewport, &s.scene, &s.render_context);

@@ -28,6 +28,8 @@ struct CameraView {
   // one level), so an environment that must render bit-identically keeps its tile.
   int tile = 0;
   bool ceiling = true;  // false for views from above the scene
+  // When set, extended-state visuals (dirt particles) of this world are drawn.
+  const class World* world = nullptr;
 };
 
 class Renderer {

@@ -1,0 +1,72 @@
+#include "training/activity_commands.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "env/env.hpp"
+#include "env/world/error.hpp"
+#include "tasks/activity.hpp"
+
+namespace chore {
+
+void check_activities(const std::vector<std::string>& files, std::ostream& out) {
+  const auto kb = KnowledgeBase::load();
+  auto known = [&](const std::string& t) { return t == "agent.n.01" || t == "floor.n.01" || kb->contains(t); };
+  for (const std::string& file : files) {
+    const Problem p = load_bddl(file);
+    for (const ObjectDecl& d : p.objects) {
+      if (!known(d.type)) kb->is_a(d.type, d.type);  // throws: unknown synset, with suggestions
+    }
+    const GroundGoal goal = ground_goal(p, [&](std::string_view instance, std::string_view type) {
+      const std::string i(instance), t(type);
+      return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
+    });
+    size_t literals = 0;
+    for (const GroundOption& o : goal.options) literals = std::max(literals, o.size());
+    out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size()
+        << " objects, " << p.init.size() << " initial literals, " << goal.conditions.size()
+        << " goal conditions, " << goal.options.size() << " ground options of up to " << literals
+        << " literals (" << goal.literals.size() << " distinct)\n";
+  }
+}
+
+namespace {
+
+cv::Mat to_bgr(const Array& rgb, int height, int width) {
+  cv::Mat image(height, width, CV_8UC3, const_cast<void*>(rgb.item(0)));
+  cv::Mat bgr;
+  cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
+  return bgr;
+}
+
+}  // namespace
+
+void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed,
+                     const std::string& png, std::ostream& out) {
+  constexpr int kHead = 384, kTop = 768;
+  EnvConfig config;
+  config.activity = activity;
+  config.scene = scene;
+  config.width = config.height = kHead;
+  config.observations = {"rgb"};
+  Env env(config);
+  const auto reset = env.reset(seed);
+  // The third-person view: the whole scene from above, ceilings left out.
+  Renderer top(env.world().model(), kTop, kTop);
+  ArrayDict overview(Space::dict({{"rgb", Space::box({kTop, kTop, 3}, DType::uint8, 0, 255)}}), 1);
+  std::vector<CameraView> view = {{env.world().model(), env.world().data(),
+                                   env.world().scene().overview_camera(),
+                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0,
+                                   false, &env.world()}};
+  top.render(view);
+  cv::Mat head = to_bgr(reset.obs["rgb"], kHead, kHead);
+  cv::Mat panel(kTop, kHead + kTop, CV_8UC3, cv::Scalar(0, 0, 0));
+  head.copyTo(panel(cv::Rect(0, (kTop - kHead) / 2, kHead, kHead)));
+  to_bgr(overview["rgb"], kTop, kTop).copyTo(panel(cv::Rect(kHead, 0, kTop, kTop)));
+  if (!cv::imwrite(png, panel)) throw Error("cannot write '" + png + "'");
+  out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q "
+      << reset.info.q << ", " << reset.info.satisfied << "/" << reset.info.total
+      << " goal literals hold; picture: " << png << "\n";
+}
+
+}  // namespace chore

@@ -1,0 +1,20 @@
+// `chore activity check` and `chore activity sample`: BDDL files validated and
+// grounded; an activity instantiated from a seed and pictured.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace chore {
+
+// Parses and grounds each file; prints objects, goal options and literals.
+// Throws chore::Error (with file:line:col) at the first invalid file.
+void check_activities(const std::vector<std::string>& files, std::ostream& out);
+
+// Instantiates `activity` with `seed` and writes a PNG: the robot's head
+// camera beside a top-down view of the scene.
+void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed,
+                     const std::string& png, std::ostream& out);
+
+}  // namespace chore
