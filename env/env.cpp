@@ -82,6 +82,7 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
   obs_ = ArrayDict(observation_space_, 1);
   world_ = std::make_unique<World>(scene_);
   world_->set_lighting(config_.lighting);
+  world_->set_state_updates(config_.object_states);
   if (activity_) activity_->configure(*world_);
 }
 

@@ -58,11 +58,33 @@ bool room_matches(const Room& room, const std::string& bddl_room) {
 
 }  // namespace
 
-std::string activity_scene(const std::string& activity) {
+namespace {
+
+// tasks/activities/scenes.json: activity name -> scene name.
+std::vector<std::pair<std::string, std::string>> activity_scenes() {
   const fs::path path = fs::path(default_tasks_dir()) / "activities" / "scenes.json";
-  const nlohmann::json scenes = read_json_file(path.string());
+  const nlohmann::json json = read_json_file(path.string());
+  const JsonReader reader(json, path.string());
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [activity, _] : json.items()) out.emplace_back(activity, reader.string(activity.c_str()));
+  return out;
+}
+
+}  // namespace
+
+std::string activity_scene(const std::string& activity) {
   const std::string key = fs::path(activity).stem().string();
-  return scenes.contains(key) ? JsonReader(scenes, path.string()).string(key.c_str()) : "";
+  for (const auto& [a, s] : activity_scenes()) {
+    if (a == key) return s;
+  }
+  return "";
+}
+
+std::string scene_activity(const std::string& scene) {
+  for (const auto& [a, s] : activity_scenes()) {
+    if (s == scene) return a;
+  }
+  return "";
 }
 
 std::shared_ptr<const Activity> Activity::load(const std::string& name, const Scene& scene,

@@ -34,8 +34,9 @@ struct Binding {
 };
 
 // The scene an activity is set in (tasks/activities/scenes.json), or "" if
-// it names none.
+// it names none; and the first activity set in a scene, or "".
 std::string activity_scene(const std::string& activity);
+std::string scene_activity(const std::string& scene);
 
 class Activity {
  public:

@@ -1,5 +1,7 @@
 #include "training/activity_commands.hpp"
 
+#include <chrono>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -67,6 +69,21 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q "
       << reset.info.q << ", " << reset.info.satisfied << "/" << reset.info.total
       << " goal literals hold; picture: " << png << "\n";
+}
+
+void sample_activity_seeds(const std::string& activity, const std::string& scene, uint64_t first,
+                           uint64_t last, std::ostream& out) {
+  EnvConfig config;
+  config.activity = activity;
+  config.scene = scene;
+  config.observations = {"proprio"};
+  Env env(config);
+  const auto start = std::chrono::steady_clock::now();
+  for (uint64_t seed = first; seed <= last; ++seed) env.reset_state(seed);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out << activity << " in " << env.world().scene().name() << ": seeds " << first << "-" << last
+      << " all instantiated (" << (last - first + 1) << "), " << 1000 * seconds / (last - first + 1)
+      << " ms each\n";
 }
 
 }  // namespace chore

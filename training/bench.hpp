@@ -13,7 +13,7 @@
 namespace chore {
 
 struct BenchOptions {
-  std::vector<std::string> scenes = {"apartment"};
+  std::vector<std::string> scenes = {"apartment", "studio", "restaurant"};
   int steps = 600;     // measured steps per repetition
   int repeats = 3;     // the median is reported
   int width = 128, height = 128;

@@ -36,7 +36,10 @@ int main(int argc, char** argv) {
   sample_cmd->add_option("name", sample_name, "Activity name or .bddl path")->required();
   sample_cmd->add_option("--scene", sample_scene, "Scene (default: the activity's)");
   sample_cmd->add_option("--seed", sample_seed, "Seed")->capture_default_str();
-  sample_cmd->add_option("--out", sample_out, "PNG to write")->required();
+  std::string sample_seeds;
+  auto* out_option = sample_cmd->add_option("--out", sample_out, "PNG to write");
+  sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")
+      ->excludes(out_option);
 
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
@@ -63,7 +66,22 @@ int main(int argc, char** argv) {
 
   try {
     if (*check_cmd) chore::check_activities(check_files, std::cout);
-    if (*sample_cmd) chore::sample_activity(sample_name, sample_scene, sample_seed, sample_out, std::cout);
+    if (*sample_cmd && !sample_seeds.empty()) {
+      const auto dash = sample_seeds.find('-');
+      uint64_t first = 0, last = 0;
+      try {
+        if (dash == std::string::npos) throw std::invalid_argument(sample_seeds);
+        first = std::stoull(sample_seeds.substr(0, dash));
+        last = std::stoull(sample_seeds.substr(dash + 1));
+      } catch (const std::exception&) {
+        throw chore::Error("--seeds '" + sample_seeds + "': expected a range A-B");
+      }
+      if (last < first) throw chore::Error("--seeds '" + sample_seeds + "': B is below A");
+      chore::sample_activity_seeds(sample_name, sample_scene, first, last, std::cout);
+    } else if (*sample_cmd) {
+      if (sample_out.empty()) throw chore::Error("activity sample: give --out FILE.png or --seeds A-B");
+      chore::sample_activity(sample_name, sample_scene, sample_seed, sample_out, std::cout);
+    }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
       if (bench_json) {
