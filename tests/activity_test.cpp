@@ -18,15 +18,6 @@ std::shared_ptr<const KnowledgeBase> kb() {
   return loaded;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 struct Case {
   const char* activity;
   const char* scene;
@@ -81,13 +72,24 @@ TEST(Activity, BaselinesInstantiateFromTheirInitialConditions) {
   }
 }
 
+// An activity instantiated with a seed in a world of its scene.
+struct Instance {
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const Activity> activity;
+  World world;
+  Instance(const char* activity_name, const char* scene_name, uint64_t seed)
+      : scene(Scene::load(scene_name)), activity(Activity::load(activity_name, *scene, kb())), world(scene) {
+    activity->configure(world);
+    Rng rng(seed);
+    activity->instantiate(world, rng);
+  }
+};
+
 TEST(Activity, GoalIsScoredFromTheWorld) {
-  auto scene = Scene::load("apartment");
-  auto activity = Activity::load("store_decoration", *scene, kb());
-  World world(scene);
-  activity->configure(world);
+  Instance instance("store_decoration", "apartment", 3);
+  const auto& activity = instance.activity;
+  World& world = instance.world;
   Rng rng(3);
-  activity->instantiate(world, rng);
   const int cabinet = activity->object("cabinet.n.01_1");
   ASSERT_TRUE(sample_inside(world, activity->object("pumpkin.n.02_1"), cabinet, rng));
   Score s = activity->score(world);
@@ -101,12 +103,9 @@ TEST(Activity, GoalIsScoredFromTheWorld) {
 }
 
 TEST(Activity, CleanTableIsMetWhenTheStainsAreGone) {
-  auto scene = Scene::load("restaurant");
-  auto activity = Activity::load("clean_table", *scene, kb());
-  World world(scene);
-  activity->configure(world);
-  Rng rng(0);
-  activity->instantiate(world, rng);
+  Instance instance("clean_table", "restaurant", 0);
+  const auto& activity = instance.activity;
+  World& world = instance.world;
   const int table = activity->object("table.n.02_1");
   EXPECT_TRUE(covered(world, table, "stain"));
   EXPECT_TRUE(filled(world, activity->object("bucket.n.01_1")));
@@ -117,21 +116,21 @@ TEST(Activity, CleanTableIsMetWhenTheStainsAreGone) {
 
 TEST(Activity, BadActivitiesGiveClearErrors) {
   auto box_room = Scene::load(test::box_room());
-  std::string e = error_of([&] { Activity::load("no_such_activity", *box_room, kb()); });
+  std::string e = test::error_of([&] { Activity::load("no_such_activity", *box_room, kb()); });
   EXPECT_NE(e.find("unknown activity 'no_such_activity'"), std::string::npos) << e;
   EXPECT_NE(e.find("store_decoration"), std::string::npos) << e;
-  e = error_of([&] { Activity::load("store_decoration", *box_room, kb()); });
+  e = test::error_of([&] { Activity::load("store_decoration", *box_room, kb()); });
   EXPECT_NE(e.find("no scene object for pumpkin.n.02_1 (pumpkin.n.02)"), std::string::npos) << e;
 
   const auto dir = test::scratch_dir("bad_activities");
   const std::string head = "(define (problem p) (:domain igibson) (:objects ";
   test::write_file(dir / "unknown_synset.bddl",
                    head + "teapot.n.99_1 - teapot.n.99) (:init) (:goal (and (open ?teapot.n.99_1))))");
-  e = error_of([&] { Activity::load((dir / "unknown_synset.bddl").string(), *box_room, kb()); });
+  e = test::error_of([&] { Activity::load((dir / "unknown_synset.bddl").string(), *box_room, kb()); });
   EXPECT_NE(e.find("unknown synset 'teapot.n.99'"), std::string::npos) << e;
   test::write_file(dir / "unknown_predicate.bddl",
                    head + "block.n.01_1 - block.n.01) (:init (levitating block.n.01_1)) (:goal (and (open ?block.n.01_1))))");
-  e = error_of([&] { Activity::load((dir / "unknown_predicate.bddl").string(), *box_room, kb()); });
+  e = test::error_of([&] { Activity::load((dir / "unknown_predicate.bddl").string(), *box_room, kb()); });
   EXPECT_NE(e.find("unsupported predicate 'levitating'"), std::string::npos) << e;
   // The heavy block cannot go inside the small one: instantiation names the literal.
   test::write_file(dir / "unsatisfiable.bddl",
@@ -141,7 +140,7 @@ TEST(Activity, BadActivitiesGiveClearErrors) {
   World world(box_room);
   activity->configure(world);
   Rng rng(0);
-  e = error_of([&] { activity->instantiate(world, rng); });
+  e = test::error_of([&] { activity->instantiate(world, rng); });
   EXPECT_NE(e.find("cannot instantiate: (inside block.n.01_1 block.n.01_2)"), std::string::npos) << e;
 }
 

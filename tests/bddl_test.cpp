@@ -24,15 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 std::string behavior100_dir() { return std::string(CHORE_SHARED_DIR) + "/bddl/behavior-100"; }
 std::string seed_listing(int n) {
   return test::data_path("bddl/seed_listing_" + std::to_string(n) + ".bddl");
@@ -184,9 +175,9 @@ TEST(BddlSeedListings, OmniGibsonContentIsKept) {
 }
 
 TEST(BddlSeedListings, StrictParsingNamesTheUndeclaredObjects) {
-  EXPECT_EQ(error_of([] { load_bddl(seed_listing(1)); }),
+  EXPECT_EQ(test::error_of([] { load_bddl(seed_listing(1)); }),
             seed_listing(1) + ":57:13: expected an object declared in :objects got 'oven.n.01_1'");
-  EXPECT_EQ(error_of([] { load_bddl(seed_listing(2)); }),
+  EXPECT_EQ(test::error_of([] { load_bddl(seed_listing(2)); }),
             seed_listing(2) + ":26:26: expected an object declared in :objects got 'bottle.n.01_1'");
   EXPECT_NO_THROW(load_bddl(seed_listing(3)));
 }
@@ -261,7 +252,7 @@ TEST(BddlParser, QuantifiersBindEachVariableOnce) {
       parse_bddl(with_goal("(forall (?x - apple.n.01) (exists (?y - table.n.02) (ontop ?x ?y)))"), "inline");
   EXPECT_EQ(p.goal.children[0].children[0], atom("ontop", {"?x", "?y"}));
   // A variable cannot be bound twice in one scope.
-  EXPECT_EQ(error_of([] {
+  EXPECT_EQ(test::error_of([] {
               parse_bddl(with_goal("(forall (?x - apple.n.01) (forall (?x - apple.n.01) (cooked ?x)))"), "f");
             }),
             "f:4:43: expected a variable not bound by an enclosing quantifier got '?x'");
@@ -290,7 +281,7 @@ TEST(BddlParser, MalformedGoalsNameWhatAndWhere) {
       {"()", "4:8: expected a formula got '('"},
   };
   for (const BadInput& c : cases)
-    EXPECT_EQ(error_of([&] { parse_bddl(with_goal(c.input), "f"); }), "f:" + c.error) << c.input;
+    EXPECT_EQ(test::error_of([&] { parse_bddl(with_goal(c.input), "f"); }), "f:" + c.error) << c.input;
 }
 
 TEST(BddlParser, MalformedStructureNamesWhatAndWhere) {
@@ -315,7 +306,7 @@ TEST(BddlParser, MalformedStructureNamesWhatAndWhere) {
        "1:69: expected a variable bound by an enclosing quantifier or a declared object got '?b'"},
   };
   for (const BadInput& c : cases)
-    EXPECT_EQ(error_of([&] { parse_bddl(c.input, "f"); }), "f:" + c.error) << c.input;
+    EXPECT_EQ(test::error_of([&] { parse_bddl(c.input, "f"); }), "f:" + c.error) << c.input;
 }
 
 TEST(BddlParser, MalformedFilesNameWhatAndWhere) {
@@ -329,16 +320,16 @@ TEST(BddlParser, MalformedFilesNameWhatAndWhere) {
   };
   for (const BadInput& c : cases) {
     const std::string path = test::data_path("bddl/" + c.input);
-    EXPECT_EQ(error_of([&] { load_bddl(path); }), path + ":" + c.error);
+    EXPECT_EQ(test::error_of([&] { load_bddl(path); }), path + ":" + c.error);
   }
-  EXPECT_EQ(error_of([] { load_bddl("/nonexistent/problem0.bddl"); }),
+  EXPECT_EQ(test::error_of([] { load_bddl("/nonexistent/problem0.bddl"); }),
             "/nonexistent/problem0.bddl: cannot open file");
 }
 
 TEST(BddlParser, RoomsInInroomAreNotObjects) {
   const Problem p = parse_bddl(with_goal("(inroom apple.n.01_1 garden)"), "inline");
   EXPECT_EQ(p.goal, atom("inroom", {"apple.n.01_1", "garden"}));
-  EXPECT_EQ(error_of([] { parse_bddl(with_goal("(inroom garden apple.n.01_1)"), "f"); }),
+  EXPECT_EQ(test::error_of([] { parse_bddl(with_goal("(inroom garden apple.n.01_1)"), "f"); }),
             "f:4:16: expected an object declared in :objects got 'garden'");
 }
 
@@ -346,7 +337,7 @@ TEST(BddlParser, DeepNestingIsRefusedNotOverflowed) {
   std::string goal = "(cooked apple.n.01_1)";
   for (int i = 0; i < 200; ++i) goal = "(and " + goal + ")";
   // define and :goal hold the first two levels; the 99th (and is the 101st.
-  EXPECT_EQ(error_of([&] { parse_bddl(with_goal(goal), "f"); }),
+  EXPECT_EQ(test::error_of([&] { parse_bddl(with_goal(goal), "f"); }),
             "f:4:" + std::to_string(8 + 5 * 98) + ": expected at most 100 nested lists got '('");
 }
 

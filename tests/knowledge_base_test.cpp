@@ -15,15 +15,6 @@ namespace {
 using States = std::vector<ExtendedState>;
 using Names = std::set<std::string>;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 // The shipped knowledge base (tasks/kb), loaded once for the suite.
 const KnowledgeBase& real_kb() {
   static const std::shared_ptr<const KnowledgeBase> kb = KnowledgeBase::load();
@@ -165,23 +156,23 @@ TEST(KnowledgeBase, PredicateHelpersReadTheData) {
 TEST(KnowledgeBase, UnknownSynsetNamesOtherSenses) {
   const KnowledgeBase& kb = real_kb();
   EXPECT_FALSE(kb.contains("apple.n.99"));
-  const std::string e = error_of([&] { kb.properties("apple.n.99"); });
+  const std::string e = test::error_of([&] { kb.properties("apple.n.99"); });
   EXPECT_NE(e.find("unknown synset 'apple.n.99'"), std::string::npos) << e;
   EXPECT_NE(e.find("apple.n.01"), std::string::npos) << e;
-  EXPECT_EQ(error_of([&] { kb.is_leaf("foo.n.99"); }), "unknown synset 'foo.n.99'");
-  EXPECT_EQ(error_of([&] { kb.is_a("apple.n.01", "frut.n.01"); }), "unknown synset 'frut.n.01'");
+  EXPECT_EQ(test::error_of([&] { kb.is_leaf("foo.n.99"); }), "unknown synset 'foo.n.99'");
+  EXPECT_EQ(test::error_of([&] { kb.is_a("apple.n.01", "frut.n.01"); }), "unknown synset 'frut.n.01'");
 }
 
 TEST(KnowledgeBase, MalformedFileGivesFileLineAndColumn) {
   const std::string dir =
       write_kb("kb_malformed", R"({"name": "a.n.01"})", "{\n  \"a.n.01\": {\n    oops\n}\n");
-  const std::string e = error_of([&] { KnowledgeBase::load(dir); });
+  const std::string e = test::error_of([&] { KnowledgeBase::load(dir); });
   EXPECT_NE(e.find("synsets_to_filtered_properties.json:3:"), std::string::npos) << e;
 }
 
 TEST(KnowledgeBase, BadFieldsAreNamed) {
   const std::string one_leaf = R"({"name": "a.n.01"})";
-  std::string e = error_of([&] {
+  std::string e = test::error_of([&] {
     KnowledgeBase::load(
         write_kb("kb_bad_param", one_leaf, R"({"a.n.01": {"cookable": {"cook_temperature": "hot"}}})"));
   });
@@ -189,13 +180,13 @@ TEST(KnowledgeBase, BadFieldsAreNamed) {
       e.find("synsets_to_filtered_properties.json: a.n.01.cookable.cook_temperature: expected a number"),
       std::string::npos)
       << e;
-  e = error_of(
+  e = test::error_of(
       [&] { KnowledgeBase::load(write_kb("kb_no_name", R"({"name": "a.n.01", "children": [{}]})", "{}")); });
   EXPECT_NE(e.find("hierarchy_owned.json.children[0]: missing field 'name'"), std::string::npos) << e;
-  e = error_of([&] { KnowledgeBase::load(write_kb("kb_unannotated", one_leaf, "{}")); });
+  e = test::error_of([&] { KnowledgeBase::load(write_kb("kb_unannotated", one_leaf, "{}")); });
   EXPECT_NE(e.find("leaf 'a.n.01' has no entry"), std::string::npos) << e;
   // b is a's child in one place and its parent in another.
-  e = error_of([&] {
+  e = test::error_of([&] {
     KnowledgeBase::load(write_kb("kb_cycle",
                                  R"({"name": "r.n.01", "children": [
                                       {"name": "a.n.01", "children": [{"name": "b.n.01"}]},

@@ -30,6 +30,17 @@ class ObjectStatesTest : public ::testing::Test {
     mj_forward(world_.model(), world_.data());
     for (int i = 0; i < steps; ++i) world_.step(4);
   }
+  // The apple keeps a temperature; the table is a stove, switched by a toggle
+  // when `needs_toggle`.
+  void make_stove(int apple, int table, bool needs_toggle) {
+    ObjectAbilities food;
+    food.temperature = true;
+    ObjectAbilities stove;
+    stove.heat_source = ThermalSource{200, 0.5, 0.05, needs_toggle, false, false};
+    stove.toggleable = needs_toggle;
+    world_.states().configure(apple, food);
+    world_.states().configure(table, stove);
+  }
   void run(double seconds) {
     for (int i = 0; i < static_cast<int>(seconds * 30); ++i) world_.step(4);
   }
@@ -40,13 +51,7 @@ class ObjectStatesTest : public ::testing::Test {
 
 TEST_F(ObjectStatesTest, HeatSourceCooksWhatIsNearItAndTheHighestTemperatureIsKept) {
   const int apple = object("apple_1"), table = object("table_1");
-  ObjectAbilities food;
-  food.temperature = true;
-  ObjectAbilities stove;
-  stove.heat_source = ThermalSource{200, 0.5, 0.05, true, false, false};
-  stove.toggleable = true;
-  world_.states().configure(apple, food);
-  world_.states().configure(table, stove);
+  make_stove(apple, table, true);
   put(apple, 1.5, 1.5, 0.76);
   run(2);
   EXPECT_NEAR(world_.states().state(apple).temperature, kRoomTemperature, 1e-9);  // stove off
@@ -65,12 +70,7 @@ TEST_F(ObjectStatesTest, HeatSourceCooksWhatIsNearItAndTheHighestTemperatureIsKe
 
 TEST_F(ObjectStatesTest, ObjectStateUpdatesCanBeSwitchedOff) {
   const int apple = object("apple_1"), table = object("table_1");
-  ObjectAbilities food;
-  food.temperature = true;
-  ObjectAbilities stove;
-  stove.heat_source = ThermalSource{200, 0.5, 0.05, false, false, false};
-  world_.states().configure(apple, food);
-  world_.states().configure(table, stove);
+  make_stove(apple, table, false);
   world_.set_state_updates(false);
   put(apple, 1.5, 1.5, 0.76);
   run(2);

@@ -11,15 +11,6 @@
 namespace chore {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(Scene, ApartmentHasFiveNamedRoomsAndAboutSixtyObjects) {
   auto scene = Scene::load("apartment");
   std::set<std::string> rooms;
@@ -65,7 +56,7 @@ TEST(Scene, StaticGeometryIsOneDrawnMeshAndMovingPartsKeepTheirGeoms) {
 }
 
 TEST(Scene, UnknownSceneNamesTheKnownOnes) {
-  const std::string e = error_of([] { Scene::load("no_such_scene"); });
+  const std::string e = test::error_of([] { Scene::load("no_such_scene"); });
   EXPECT_NE(e.find("unknown scene 'no_such_scene'"), std::string::npos) << e;
   EXPECT_NE(e.find("apartment"), std::string::npos) << e;
 }
@@ -73,7 +64,7 @@ TEST(Scene, UnknownSceneNamesTheKnownOnes) {
 TEST(Scene, MalformedJsonGivesFileLineAndColumn) {
   const auto dir = test::scratch_dir("malformed_json");
   test::write_file(dir / "bad.json", "{\n  \"name\": \"bad\",\n  \"rooms\": [ oops ]\n}\n");
-  const std::string e = error_of([&] { Scene::load((dir / "bad.json").string()); });
+  const std::string e = test::error_of([&] { Scene::load((dir / "bad.json").string()); });
   EXPECT_NE(e.find("bad.json:3:"), std::string::npos) << e;
 }
 
@@ -82,13 +73,13 @@ TEST(Scene, MissingFieldAndUnknownModelAreNamed) {
   const std::string head =
       R"({"rooms": [{"name": "r_0", "type": "r", "rects": [[0, 0, 2, 2]]}], "walls": [], "robot": {"pos": [1, 1]}, )";
   test::write_file(dir / "a.json", head + R"("objects": [{"name": "x", "pos": [1, 1, 0]}]})");
-  std::string e = error_of([&] { Scene::load((dir / "a.json").string()); });
+  std::string e = test::error_of([&] { Scene::load((dir / "a.json").string()); });
   EXPECT_NE(e.find("objects[0]: missing field 'model'"), std::string::npos) << e;
   test::write_file(dir / "b.json", head + R"("objects": [{"name": "x", "model": "teapot_9000", "pos": [1, 1, 0]}]})");
-  e = error_of([&] { Scene::load((dir / "b.json").string()); });
+  e = test::error_of([&] { Scene::load((dir / "b.json").string()); });
   EXPECT_NE(e.find("unknown object model 'teapot_9000'"), std::string::npos) << e;
   test::write_file(dir / "c.json", head + R"("objects": [{"name": "x", "model": "apple", "pos": [1, 1]}]})");
-  e = error_of([&] { Scene::load((dir / "c.json").string()); });
+  e = test::error_of([&] { Scene::load((dir / "c.json").string()); });
   EXPECT_NE(e.find("objects[0].pos: expected an array of 3 numbers"), std::string::npos) << e;
 }
 
@@ -99,7 +90,7 @@ TEST(Scene, MalformedRobotMjcfNamesTheFile) {
   test::write_file(dir / "robots" / "tiago.xml", "<mujoco>\n<worldbody>\n<body name=\"robot\">\n</mujoco>\n");
   SceneOptions options;
   options.assets_dir = dir.string();
-  const std::string e = error_of([&] { Scene::load(test::box_room(), options); });
+  const std::string e = test::error_of([&] { Scene::load(test::box_room(), options); });
   EXPECT_NE(e.find("tiago.xml: invalid robot MJCF"), std::string::npos) << e;
 }
 
@@ -108,7 +99,7 @@ TEST(Scene, MissingRobotFileNamesThePath) {
   std::filesystem::create_directory_symlink(default_assets_dir() + "/objects", dir / "objects");
   SceneOptions options;
   options.assets_dir = dir.string();
-  const std::string e = error_of([&] { Scene::load(test::box_room(), options); });
+  const std::string e = test::error_of([&] { Scene::load(test::box_room(), options); });
   EXPECT_NE(e.find("robots/tiago.xml: cannot open robot file"), std::string::npos) << e;
 }
 

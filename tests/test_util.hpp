@@ -2,10 +2,12 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <string>
 
 #include "env/env.hpp"
+#include "env/world/error.hpp"
 
 namespace chore::test {
 
@@ -37,6 +39,16 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// The message of the chore::Error that f throws, or "(no error)".
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
 }
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) {
