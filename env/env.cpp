@@ -126,9 +126,9 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   diverged_ = false;
   if (!activity_) return make_info();
   activity_->instantiate(*world_, rng_);
-  potential_ = activity_->potential(*world_);
-  const Score score = activity_->score(*world_);
-  return make_info(&score);
+  const Activity::Evaluation goal = activity_->evaluate(*world_);
+  potential_ = goal.potential;
+  return make_info(&goal.score);
 }
 
 Env::Outcome Env::advance(std::span<const float> action) {
@@ -168,10 +168,10 @@ Env::Outcome Env::advance(std::span<const float> action) {
   if (activity_ && !report.diverged) {
     // BEHAVIOR's potential reward: positive when a literal of the goal's first
     // option becomes true, negative when one is undone; success terminates.
-    score = activity_->score(*world_);
-    const double potential = activity_->potential(*world_);
-    out.reward = potential - potential_;
-    potential_ = potential;
+    const Activity::Evaluation goal = activity_->evaluate(*world_);
+    score = goal.score;
+    out.reward = goal.potential - potential_;
+    potential_ = goal.potential;
     out.terminated = score->success;
   }
   out.truncated = !out.terminated && (report.diverged || elapsed_ >= config_.max_episode_steps);

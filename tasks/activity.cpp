@@ -364,13 +364,17 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   return value != l.negated;
 }
 
-Score Activity::score(const World& w) const {
-  return chore::score(goal_, [&](const GroundLiteral& l) { return holds(w, l); });
-}
-
-double Activity::potential(const World& w) const {
-  if (goal_.options.empty()) return 0;
-  return chore::potential(goal_, 0, [&](const GroundLiteral& l) { return holds(w, l); });
+Activity::Evaluation Activity::evaluate(const World& w) const {
+  std::map<GroundLiteral, bool> known;
+  const Truth truth = [&](const GroundLiteral& l) {
+    const auto [it, fresh] = known.try_emplace(l, false);
+    if (fresh) it->second = holds(w, l);
+    return it->second;
+  };
+  Evaluation e;
+  e.score = chore::score(goal_, truth);
+  e.potential = goal_.options.empty() ? 0 : chore::potential(goal_, 0, truth);
+  return e;
 }
 
 void Activity::instantiate(World& w, Rng& rng) const {

@@ -60,9 +60,15 @@ class Activity {
   void instantiate(World& world, Rng& rng) const;
 
   bool holds(const World& world, const GroundLiteral& literal) const;
-  Score score(const World& world) const;
-  // BEHAVIOR's potential: the fraction of the goal's first option that holds.
-  double potential(const World& world) const;
+  // The goal against the world: success and Q, and BEHAVIOR's potential (the
+  // fraction of the goal's first option that holds), each literal checked once.
+  struct Evaluation {
+    Score score;
+    double potential = 0;
+  };
+  Evaluation evaluate(const World& world) const;
+  Score score(const World& world) const { return evaluate(world).score; }
+  double potential(const World& world) const { return evaluate(world).potential; }
 
  private:
   Activity() = default;
