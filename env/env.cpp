@@ -31,6 +31,7 @@ EnvAssets load_assets(const EnvConfig& config) {
   }
   SceneOptions options;
   options.robot = config.robot;
+  options.cloth = config.cloth;
   EnvAssets assets;
   assets.scene = Scene::load(scene, options);
   if (!config.activity.empty()) {

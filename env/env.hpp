@@ -36,6 +36,7 @@ struct EnvConfig {
   int max_episode_steps = 500;  // then the episode is truncated
   bool robot = true;            // false: a fixed camera, no robot (benchmarks)
   bool object_states = true;    // false: extended states are not updated (benchmarks)
+  bool cloth = true;            // false: cloths are rigid (faster; benchmarks)
   // Reset places the robot at the scene's start pose plus a seeded offset up to
   // this far (m) in x and y and 10x this (rad) in heading.
   double start_jitter = 0.1;

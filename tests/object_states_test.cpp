@@ -211,3 +211,44 @@ TEST_F(ObjectStatesTest, CoveredSamplesAreCovered) {
 
 }  // namespace
 }  // namespace chore
+
+namespace chore {
+namespace {
+
+TEST(Cloth, ARagIsOneObjectOfManyBodiesThatDrapesOverAnEdge) {
+  auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
+  const SceneObject* rag = scene->find_object("rag_1");
+  ASSERT_NE(rag, nullptr);
+  const mjModel* m = scene->model();
+  int bodies = 0;
+  for (int b = 0; b < m->nbody; ++b) bodies += scene->object_of_body(b) == static_cast<int>(rag - scene->objects().data());
+  EXPECT_EQ(bodies, 9);  // a 3 x 3 composite, rooted at its centre
+  // One column of tiles past the table's edge (the top is 0.75 m high, its +x
+  // edge at x = 2.1; tiles are 7 cm apart).
+  World world(scene);
+  const int joint = m->body_jntadr[rag->body];
+  double* q = world.data()->qpos + m->jnt_qposadr[joint];
+  q[0] = 2.06;
+  q[1] = 1.5;
+  q[2] = 0.77;
+  mj_forward(world.model(), world.data());
+  for (int i = 0; i < 60; ++i) world.step(4);
+  double lowest = 1e9, highest = -1e9;
+  for (int b = 0; b < m->nbody; ++b) {
+    if (m->body_rootid[b] != rag->body) continue;
+    lowest = std::min(lowest, world.data()->xpos[3 * b + 2]);
+    highest = std::max(highest, world.data()->xpos[3 * b + 2]);
+  }
+  // The part on the table lies flat on it; the column past the edge bends
+  // down (a rigid board with a third over the edge would stay level).
+  EXPECT_NEAR(highest, 0.756, 0.005);
+  EXPECT_LT(lowest, highest - 0.01);
+  // With cloth off, the same rag is one rigid body.
+  SceneOptions rigid;
+  rigid.cloth = false;
+  auto flat = Scene::load(test::data_path("scenes/predicate_room.json"), rigid);
+  EXPECT_EQ(flat->model()->nbody, m->nbody - 8);
+}
+
+}  // namespace
+}  // namespace chore

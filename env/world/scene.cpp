@@ -66,10 +66,20 @@ struct Light {
   Rgb rgb;
 };
 
+// A cloth: MuJoCo's composite grid of small bodies joined by hinges, drawn as
+// one skin, rooted at its centre body (which carries the free joint).
+struct Cloth {
+  int count = 5;          // bodies per side (odd: a centre body)
+  double spacing = 0.06;  // m between neighbours
+  double radius = 0.006;  // of the capsules that collide
+  Rgb rgb = {0.45, 0.65, 0.85};
+};
+
 struct ObjectModel {
   std::string category, synset;
   Link root;
   std::optional<Light> light;
+  std::optional<Cloth> cloth;
 };
 
 Eigen::Matrix3d rotation_xyz_degrees(const std::vector<double>& euler) {
@@ -140,6 +150,20 @@ ObjectModel read_object_model(const std::string& path) {
   ObjectModel m;
   m.category = j.string("category");
   m.synset = j.string("synset");
+  if (j.has("cloth")) {
+    const JsonReader c = j.at("cloth");
+    Cloth cloth;
+    cloth.count = static_cast<int>(c.number("count", 5));
+    cloth.spacing = c.number("spacing", 0.06);
+    cloth.radius = c.number("radius", 0.006);
+    cloth.rgb = to_rgb(c.numbers("rgb", 3, {0.45, 0.65, 0.85}));
+    if (cloth.count < 3 || cloth.count > 15 || cloth.count % 2 == 0) c.fail("count must be odd, 3..15");
+    if (!(cloth.spacing > 2 * cloth.radius) || !(cloth.radius > 0)) c.fail("need spacing > 2 x radius > 0");
+    m.cloth = cloth;
+    m.root.mass = j.number("mass");
+    if (!(m.root.mass > 0)) j.fail("mass must be positive");
+    return m;
+  }
   m.root = read_link(j, true);
   if (j.has("light")) {
     const JsonReader light = j.at("light");
@@ -234,6 +258,31 @@ void emit_child_links(std::string& xml, StaticMesh& mesh, const std::string& obj
     emit_child_links(xml, mesh, object, link, world, indent + "  ");
     xml += indent + "</body>\n";
   }
+}
+
+// MuJoCo names a composite's bodies <prefix>B<i>_<j>; a cloth's root is its centre.
+std::string root_body_name(const std::string& object, const ObjectModel& model, bool cloth) {
+  if (!model.cloth || !cloth) return object;
+  const std::string c = std::to_string(model.cloth->count / 2);
+  return object + "B" + c + "_" + c;
+}
+
+// The composite lies flat in the object's frame, just above its origin. Each
+// body is a capsule, drawn and colliding: MuJoCo 2.2.2's skins cost ~2 ms per
+// frame on llvmpipe (skin update and draw), a geom ~30 us and is culled out of
+// view; flat ellipsoids went through MPR contacts that threw the cloth about.
+std::string cloth_xml(const std::string& name, const Cloth& c, double mass) {
+  const double per_body = mass / (c.count * c.count);
+  return "      <composite type=\"cloth\" count=\"" + std::to_string(c.count) + " " +
+         std::to_string(c.count) + " 1\" spacing=\"" + fmt(c.spacing) + "\" prefix=\"" + name +
+         "\" flatinertia=\"0.01\">\n"
+         "        <joint kind=\"main\" damping=\"0.01\" armature=\"0.0005\"/>\n"
+         "        <geom type=\"capsule\" size=\"" + fmt(c.radius) + " " + fmt(c.spacing * 0.4) +
+         "\" mass=\"" + fmt(per_body) + "\" group=\"" + std::to_string(kStaticGroup) +
+         // contype 4, conaffinity 3: tiles touch the scene (1) and the robot (2), not each other.
+         "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " +
+         fmt(c.rgb[2]) + " 1\" friction=\"0.8 0.02 0.001\"/>\n"
+         "      </composite>\n";
 }
 
 // The robot file's children, spliced into the scene document.
@@ -380,6 +429,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
 
   // Objects.
   std::map<std::string, ObjectModel> models;
+  std::vector<std::string> root_bodies;  // per object: its root body's name
   const JsonReader objects = j.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) {
     const JsonReader o = objects.at(i);
@@ -409,14 +459,30 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
     pose.linear() = Eigen::AngleAxisd(o.number("yaw", 0.0) * M_PI / 180.0,
                                       Eigen::Vector3d::UnitZ()).toRotationMatrix();
 
-    world += "    <body name=\"" + object.name + "\" " + pose_attributes(pose) + ">\n";
+    const std::string body = root_body_name(object.name, model, options.cloth);
+    root_bodies.push_back(body);
+    if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
+    if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
+    world += "    <body name=\"" + body + "\" " + pose_attributes(pose) + ">\n";
     if (!object.fixed) {
       world += "      <freejoint name=\"" + object.name + "\"/>\n";
-      welds += "    <weld name=\"grasp_" + object.name + "\" body1=\"gripper\" body2=\"" +
-               object.name + "\" active=\"false\" solref=\"0.005 1\"/>\n";
+      welds += "    <weld name=\"grasp_" + object.name + "\" body1=\"gripper\" body2=\"" + body +
+               "\" active=\"false\" solref=\"0.005 1\"/>\n";
     }
-    emit_link_geoms(world, mesh, object.name, model.root, object.fixed, pose, "      ");
-    emit_child_links(world, mesh, object.name, model.root, pose, "      ");
+    if (model.cloth && options.cloth) {
+      world += cloth_xml(object.name, *model.cloth, model.root.mass);
+    } else if (model.cloth) {
+      // Cloth simulation off: one rigid tile of the cloth's size.
+      const Cloth& c = *model.cloth;
+      Geom tile;
+      tile.type = "box";
+      tile.size = {c.count * c.spacing / 2, c.count * c.spacing / 2, c.radius};
+      tile.rgb = c.rgb;
+      world += "      " + geom_xml(object.name + "/0", tile, true, model.root.mass) + "\n";
+    } else {
+      emit_link_geoms(world, mesh, object.name, model.root, object.fixed, pose, "      ");
+      emit_child_links(world, mesh, object.name, model.root, pose, "      ");
+    }
     if (model.light) {
       lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" +
                 fmt(Eigen::Vector3d(pose * model.light->pos)) +
@@ -496,7 +562,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   scene->body_object_.assign(model->nbody, -1);
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];
-    object.body = mj_name2id(model, mjOBJ_BODY, object.name.c_str());
+    object.body = mj_name2id(model, mjOBJ_BODY, root_bodies[i].c_str());
     for (int b = 0; b < model->nbody; ++b) {
       // Objects are children of the world: their links share the root body.
       if (model->body_rootid[b] == object.body) scene->body_object_[b] = static_cast<int>(i);

@@ -48,6 +48,7 @@ struct Pose2 {
 
 struct SceneOptions {
   bool robot = true;       // false: no robot, a fixed camera stands in (Table A.10 "- Robot")
+  bool cloth = true;       // false: cloths become rigid flat boxes (Table A.10 "- Fluid and Cloth")
   std::string assets_dir;  // empty: default_assets_dir()
 };
 
