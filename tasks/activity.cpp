@@ -27,7 +27,7 @@ const std::set<std::string> kUnaryStates = {"cooked", "burnt", "frozen", "hot", 
                                             "toggled_on", "sliced", "broken"};
 const std::set<std::string> kOther = {"inroom", "open", "saturated", "covered", "filled", "dusty",
                                       "stained", "grasped", "inhand", "infov", "inreach",
-                                      "insameroom"};
+                                      "insameroom", "folded", "unfolded", "attached"};
 // Second arguments that name a substance rather than an object.
 const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated"};
 
@@ -349,6 +349,9 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   } else if (p == "grasped" || p == "inhand") {
     // B1K: (grasped agent obj); BEHAVIOR-100 style: (inhand obj).
     value = grasped(w, object_arg(l.args.size() - 1));
+  } else if (p == "attached") {
+    // (attached a b): b may be the agent (held in the gripper).
+    value = attached(w, object_arg(0), arg(1).kind == Binding::Kind::agent ? -1 : object_arg(1));
   } else if (p == "covered") {
     value = covered(w, object_arg(0), lemma(type_of(l.args.at(1))));
   } else if (p == "dusty" || p == "stained") {
@@ -358,7 +361,7 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
         {"open", is_open},     {"cooked", cooked},   {"burnt", burnt},       {"frozen", frozen},
         {"hot", hot},          {"on_fire", on_fire}, {"soaked", soaked},     {"saturated", saturated},
         {"filled", filled},    {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken},
-        {"infov", infov},      {"inreach", inreach}};
+        {"infov", infov},      {"inreach", inreach}, {"folded", folded}, {"unfolded", unfolded}};
     value = unary.at(p)(w, object_arg(0));
   }
   return value != l.negated;

@@ -248,6 +248,16 @@ TEST(Cloth, ARagIsOneObjectOfManyBodiesThatDrapesOverAnEdge) {
   // down (a rigid board with a third over the edge would stay level).
   EXPECT_NEAR(highest, 0.756, 0.005);
   EXPECT_LT(lowest, highest - 0.01);
+  // Keypoints: the draped rag is still spread out; curled up, it is folded.
+  const int index = static_cast<int>(rag - scene->objects().data());
+  EXPECT_TRUE(unfolded(world, index));
+  EXPECT_FALSE(folded(world, index));
+  // Fold both side columns up about their hinges to the centre column.
+  world.data()->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "rag_1J0_2_1")]] = 1.5;
+  world.data()->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, "rag_1J0_0_1")]] = -1.5;
+  mj_forward(world.model(), world.data());
+  EXPECT_TRUE(folded(world, index));
+  EXPECT_FALSE(unfolded(world, index));
   // With cloth off, the same rag is one rigid body.
   SceneOptions rigid;
   rigid.cloth = false;

@@ -4,6 +4,7 @@
 #include "env/env.hpp"
 #include "env/world/error.hpp"
 #include "env/world/mujoco_errors.hpp"
+#include "env/world/predicates.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -89,6 +90,7 @@ TEST(World, AssistiveGraspHoldsAnObjectBothFingersTouchUntilOpened) {
   for (int i = 0; i < 15 && w.grasped_object() < 0; ++i) env.step(gripper_action(-1));
   ASSERT_GE(w.grasped_object(), 0);
   EXPECT_EQ(w.scene().objects()[w.grasped_object()].name, "small_block_1");
+  EXPECT_TRUE(attached(w, w.grasped_object(), -1));  // connected to the robot by the weld
   EXPECT_EQ(env.step(gripper_action(-1)).obs["is_grasping"].data<float>()[0], 1.0f);
   // With gravity back, the held block moves with the hand as the torso rises.
   w.model()->opt.gravity[2] = -9.81;
@@ -102,6 +104,7 @@ TEST(World, AssistiveGraspHoldsAnObjectBothFingersTouchUntilOpened) {
   const double z_held = obj[2];
   for (int i = 0; i < 30; ++i) env.step(gripper_action(1));
   EXPECT_LT(w.grasped_object(), 0);
+  EXPECT_FALSE(attached(w, static_cast<int>(w.scene().find_object("small_block_1") - w.scene().objects().data()), -1));
   EXPECT_LT(obj[2], 0.1) << "held at " << z_held;  // on the floor
 }
 

@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "env/world/object_geometry.hpp"
@@ -125,6 +126,48 @@ bool insameroom(const World& w, int a, int b) {
   const Eigen::Vector3d ca = object_aabb(w, a).center(), cb = object_aabb(w, b).center();
   const Room* ra = w.scene().room_at(ca.x(), ca.y());
   return ra && ra == w.scene().room_at(cb.x(), cb.y());
+}
+
+namespace {
+
+// The farthest pair of a cloth's corner keypoints over its flat diagonal; -1
+// for objects that are not cloths.
+double spread(const World& w, int a) {
+  const SceneObject& o = w.scene().objects()[a];
+  if (o.keypoints.empty()) return -1;
+  double widest = 0;
+  for (int i : o.keypoints) {
+    for (int j : o.keypoints) {
+      double d[3];
+      mju_sub3(d, w.data()->xpos + 3 * i, w.data()->xpos + 3 * j);
+      widest = std::max(widest, mju_norm3(d));
+    }
+  }
+  return widest / o.flat_diagonal;
+}
+
+}  // namespace
+
+bool folded(const World& w, int a) {
+  const double s = spread(w, a);
+  return s >= 0 && s < 0.75;
+}
+
+bool unfolded(const World& w, int a) { return spread(w, a) > 0.9; }
+
+bool attached(const World& w, int a, int b) {
+  const mjModel* m = w.model();
+  const Scene& scene = w.scene();
+  const int robot = w.robot() ? m->body_rootid[w.robot()->gripper_body] : -2;
+  auto is = [&](int body, int object) {
+    return object >= 0 ? scene.object_of_body(body) == object : m->body_rootid[body] == robot;
+  };
+  for (int e = 0; e < m->neq; ++e) {
+    if (!m->eq_active[e] || (m->eq_type[e] != mjEQ_WELD && m->eq_type[e] != mjEQ_CONNECT)) continue;
+    const int b1 = m->eq_obj1id[e], b2 = m->eq_obj2id[e];
+    if ((is(b1, a) && is(b2, b)) || (is(b2, a) && is(b1, b))) return true;
+  }
+  return false;
 }
 
 namespace {

@@ -33,6 +33,13 @@ bool infov(const World& world, int a);
 // a's box is within the arm's reach (1 m) of the robot's shoulder axis.
 bool inreach(const World& world, int a);
 bool insameroom(const World& world, int a, int b);
+// Cloths: the farthest pair of corner keypoints spans under 75% of the flat
+// diagonal (folded) or over 90% (unfolded); in between, neither.
+bool folded(const World& world, int a);
+bool unfolded(const World& world, int a);
+// a and b are held together by an active equality constraint (b = -1: the
+// robot, e.g. through the assistive grasp's weld).
+bool attached(const World& world, int a, int b);
 
 // Predicates on extended states (false for objects that do not keep the state).
 bool cooked(const World& world, int a);   // highest temperature reached >= cook temperature

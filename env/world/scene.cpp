@@ -430,6 +430,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   // Objects.
   std::map<std::string, ObjectModel> models;
   std::vector<std::string> root_bodies;  // per object: its root body's name
+  std::vector<std::optional<Cloth>> cloths;  // per object: its cloth, if simulated
   const JsonReader objects = j.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) {
     const JsonReader o = objects.at(i);
@@ -461,6 +462,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
 
     const std::string body = root_body_name(object.name, model, options.cloth);
     root_bodies.push_back(body);
+    cloths.push_back(model.cloth && options.cloth ? model.cloth : std::nullopt);
     if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
     if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
     world += "    <body name=\"" + body + "\" " + pose_attributes(pose) + ">\n";
@@ -563,6 +565,13 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];
     object.body = mj_name2id(model, mjOBJ_BODY, root_bodies[i].c_str());
+    if (const auto& cloth = cloths[i]) {
+      const std::string last = std::to_string(cloth->count - 1);
+      for (const std::string& corner : {std::string("0_0"), "0_" + last, last + "_0", last + "_" + last}) {
+        object.keypoints.push_back(mj_name2id(model, mjOBJ_BODY, (object.name + "B" + corner).c_str()));
+      }
+      object.flat_diagonal = (cloth->count - 1) * cloth->spacing * std::sqrt(2.0);
+    }
     for (int b = 0; b < model->nbody; ++b) {
       // Objects are children of the world: their links share the root body.
       if (model->body_rootid[b] == object.body) scene->body_object_[b] = static_cast<int>(i);

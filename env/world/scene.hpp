@@ -40,6 +40,9 @@ struct SceneObject {
   int grasp_weld = -1;   // equality id of the gripper weld (free objects only)
   std::vector<int> joints;  // articulated joints (drawers, doors)
   std::vector<int> geoms;   // collision geoms of the object and its links
+  // Cloth only: its four corner bodies (keypoints) and their diagonal when flat.
+  std::vector<int> keypoints;
+  double flat_diagonal = 0;
 };
 
 struct Pose2 {
