@@ -289,11 +289,17 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   } else if (l.predicate == "covered") {
     return sample_covered(w, first.index, lemma(type_of(l.args.at(1))), value, rng);
   } else if (kUnaryStates.count(l.predicate) || l.predicate == "saturated" || l.predicate == "filled") {
-    sample_state(w, l.predicate, first.index, value);
+    sample_state(w, l.predicate, first.index, value, liquid_of(l));
   } else {
     return holds(w, l);
   }
   return true;
+}
+
+// The liquid a soaked/saturated/filled literal names: its second argument's
+// synset lemma (B1K: water.n.06_1 -> "water"), or water (BEHAVIOR-100's unary soaked).
+std::string Activity::liquid_of(const Literal& l) const {
+  return l.args.size() >= 2 ? lemma(type_of(l.args[1])) : "water";
 }
 
 std::string Activity::type_of(const std::string& instance) const {
@@ -354,13 +360,17 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     value = attached(w, object_arg(0), arg(1).kind == Binding::Kind::agent ? -1 : object_arg(1));
   } else if (p == "covered") {
     value = covered(w, object_arg(0), lemma(type_of(l.args.at(1))));
+  } else if (p == "soaked" || p == "saturated" || p == "filled") {
+    const int a = object_arg(0);
+    const std::string liquid = liquid_of(l);
+    value = p == "soaked" ? soaked(w, a, liquid) : p == "saturated" ? saturated(w, a, liquid) : filled(w, a, liquid);
   } else if (p == "dusty" || p == "stained") {
     value = covered(w, object_arg(0), p == "dusty" ? "dust" : "stain");
   } else {
     static const std::map<std::string, bool (*)(const World&, int)> unary = {
         {"open", is_open},     {"cooked", cooked},   {"burnt", burnt},       {"frozen", frozen},
-        {"hot", hot},          {"on_fire", on_fire}, {"soaked", soaked},     {"saturated", saturated},
-        {"filled", filled},    {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken},
+        {"hot", hot},          {"on_fire", on_fire},
+        {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken},
         {"infov", infov},      {"inreach", inreach}, {"folded", folded}, {"unfolded", unfolded}};
     value = unary.at(p)(w, object_arg(0));
   }

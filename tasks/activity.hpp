@@ -74,6 +74,7 @@ class Activity {
   Activity() = default;
   bool sample_literal(World& world, const Literal& literal, Rng& rng) const;
   std::string type_of(const std::string& instance) const;
+  std::string liquid_of(const Literal& literal) const;
 
   std::string name_;
   Problem problem_;

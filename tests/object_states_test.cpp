@@ -95,6 +95,15 @@ TEST_F(ObjectStatesTest, WaterInAContainerSoaksWhatEntersIt) {
   EXPECT_FALSE(saturated(world_, rag));
   run(0.5);
   EXPECT_TRUE(saturated(world_, rag));
+  // Levels are kept per liquid: a bin of oil soaks in oil, not water.
+  world_.reset(scene_->robot_start());
+  sample_state(world_, "filled", bin, true, "oil");
+  EXPECT_TRUE(filled(world_, bin, "oil"));
+  EXPECT_FALSE(filled(world_, bin, "water"));
+  put(rag, 1.5, -1.5, 0.03);
+  run(1);
+  EXPECT_TRUE(soaked(world_, rag, "oil"));
+  EXPECT_FALSE(soaked(world_, rag, "water"));
 }
 
 TEST_F(ObjectStatesTest, ASoakedCleaningToolWipesStainsOffAndADryOneDoesNot) {
@@ -177,7 +186,8 @@ TEST_F(ObjectStatesTest, StateSamplersAgreeWithTheCheckers) {
   world_.states().configure(bin, bucket);
   const std::vector<std::pair<std::string, bool (*)(const World&, int)>> checks = {
       {"cooked", cooked}, {"burnt", burnt}, {"frozen", frozen}, {"hot", hot},
-      {"on_fire", on_fire}, {"soaked", soaked}, {"saturated", saturated},
+      {"on_fire", on_fire}, {"soaked", [](const World& w, int a) { return soaked(w, a); }},
+      {"saturated", [](const World& w, int a) { return saturated(w, a); }},
       {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken}};
   // 1,000 seeded samples per predicate, each of a random truth value.
   for (const auto& [name, check] : checks) {

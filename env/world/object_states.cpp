@@ -57,6 +57,7 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
   for (const auto& [container, ca] : abilities_) {
     const double level = states_[container].liquid_level;
     if (!ca.holds_liquid || level <= 0) continue;
+    const std::string& liquid = states_[container].liquid;
     Aabb water = object_aabb(w, container);
     water.lo.head<2>().array() += 0.01;
     water.hi.head<2>().array() -= 0.01;
@@ -64,7 +65,7 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
     for (const auto& [object, oa] : abilities_) {
       if (object == container || !oa.soakable) continue;
       if (overlaps(object_aabb(w, object), water)) {
-        double& soaked = states_[object].soaked;
+        double& soaked = states_[object].soaked[liquid];
         soaked = std::min(1.0, soaked + dt / kSoakSeconds);
       }
     }
@@ -92,7 +93,7 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
         const Eigen::Vector3d p(con.pos[0], con.pos[1], con.pos[2]);
         for (auto& [name, particles] : states_[other].dirt) {
           const Substance* sub = substance(name);
-          if (sub && sub->needs_soaked_tool && s.soaked < kSoakedLevel) continue;
+          if (sub && sub->needs_soaked_tool && !(s.soaked.count("water") && s.soaked.at("water") >= kSoakedLevel)) continue;
           std::erase_if(particles, [&](const Eigen::Vector3d& local) {
             return (to_world(w, other, local) - p).head<2>().norm() < kCleaningRadius;
           });

@@ -57,8 +57,9 @@ struct Substance {
 
 struct ObjectState {
   double temperature = kRoomTemperature, max_temperature = kRoomTemperature;
-  double soaked = 0;        // 0 .. 1: water absorbed (1 = saturated)
-  double liquid_level = 0;  // 0 .. 1 of the container's inner height (holds_liquid)
+  std::map<std::string, double> soaked;  // per liquid, 0 .. 1 absorbed (1 = saturated)
+  std::string liquid;       // what a container holds (holds_liquid) ...
+  double liquid_level = 0;  // ... up to this fraction of its inner height
   std::map<std::string, std::vector<Eigen::Vector3d>> dirt;  // particles in the object's frame
   bool toggled = false;
   int toggle_steps = 0;     // consecutive env steps the hand is at the toggle point

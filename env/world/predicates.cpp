@@ -206,14 +206,20 @@ bool on_fire(const World& w, int a) {
     return ab.temperature && s.temperature >= ab.ignition_temperature;
   });
 }
-bool soaked(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) {
-    return ab.soakable && s.soaked >= ObjectStates::kSoakedLevel;
+// How much of `liquid` a soakable object has absorbed (0 if none or not soakable).
+double absorbed(const World& w, int a, const std::string& liquid) {
+  double level = 0;
+  state_test(w, a, [&](const auto& ab, const auto& s) {
+    const auto it = s.soaked.find(liquid);
+    level = ab.soakable && it != s.soaked.end() ? it->second : 0;
+    return true;
   });
+  return level;
 }
-bool saturated(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.soakable && s.soaked >= 1.0; });
+bool soaked(const World& w, int a, const std::string& liquid) {
+  return absorbed(w, a, liquid) >= ObjectStates::kSoakedLevel;
 }
+bool saturated(const World& w, int a, const std::string& liquid) { return absorbed(w, a, liquid) >= 1.0; }
 bool covered(const World& w, int a, const std::string& substance) {
   return state_test(w, a, [&](const auto& ab, const auto& s) {
     const auto it = s.dirt.find(substance);
@@ -221,8 +227,10 @@ bool covered(const World& w, int a, const std::string& substance) {
            static_cast<int>(it->second.size()) >= ObjectStates::kCoveredParticles;
   });
 }
-bool filled(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) { return ab.holds_liquid && s.liquid_level > 0; });
+bool filled(const World& w, int a, const std::string& liquid) {
+  return state_test(w, a, [&](const auto& ab, const auto& s) {
+    return ab.holds_liquid && s.liquid == liquid && s.liquid_level > 0;
+  });
 }
 bool toggled_on(const World& w, int a) {
   return state_test(w, a, [](const auto& ab, const auto& s) { return ab.toggleable && s.toggled; });

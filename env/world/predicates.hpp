@@ -47,10 +47,11 @@ bool burnt(const World& world, int a);    // highest temperature reached >= burn
 bool frozen(const World& world, int a);   // temperature <= freeze temperature
 bool hot(const World& world, int a);      // temperature >= hot temperature (OmniGibson "heated")
 bool on_fire(const World& world, int a);  // temperature >= ignition temperature
-bool soaked(const World& world, int a);   // water absorbed >= half
-bool saturated(const World& world, int a);
+// Liquids by name ("water"): absorbed at least half of it, or all of it.
+bool soaked(const World& world, int a, const std::string& liquid = "water");
+bool saturated(const World& world, int a, const std::string& liquid = "water");
 bool covered(const World& world, int a, const std::string& substance);
-bool filled(const World& world, int a);   // holds liquid
+bool filled(const World& world, int a, const std::string& liquid = "water");
 bool toggled_on(const World& world, int a);
 bool sliced(const World& world, int a);
 bool broken(const World& world, int a);

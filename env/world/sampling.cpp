@@ -197,7 +197,7 @@ void sample_open(World& w, int a, bool open, Rng& rng) {
   mj_forward(m, w.data());
 }
 
-void sample_state(World& w, const std::string& predicate, int a, bool value) {
+void sample_state(World& w, const std::string& predicate, int a, bool value, const std::string& liquid) {
   const std::string& name = w.scene().objects()[a].name;
   const ObjectAbilities* ab = w.states().abilities(a);
   auto require = [&](bool has, const char* state) {
@@ -230,9 +230,10 @@ void sample_state(World& w, const std::string& predicate, int a, bool value) {
     s->max_temperature = std::max(s->max_temperature, target);
   } else if (predicate == "soaked" || predicate == "saturated") {
     require(ab && ab->soakable, "SoakedLevel");
-    s->soaked = value ? 1.0 : 0.0;
+    s->soaked[liquid] = value ? 1.0 : 0.0;
   } else if (predicate == "filled") {
     require(ab && ab->holds_liquid, "a liquid level");
+    s->liquid = liquid;
     s->liquid_level = value ? 0.5 : 0.0;
   } else if (predicate == "toggled_on") {
     require(ab && ab->toggleable, "ToggledState");

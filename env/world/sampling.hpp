@@ -32,7 +32,9 @@ void sample_open(World& world, int a, bool open, Rng& rng);
 // state the checker reads, as OmniGibson's samplers do (cooked: the highest
 // temperature reached is past the cook temperature). chore::Error for an
 // unknown predicate or an object that does not keep that state.
-void sample_state(World& world, const std::string& predicate, int a, bool value);
+// soaked, saturated and filled name their liquid.
+void sample_state(World& world, const std::string& predicate, int a, bool value,
+                  const std::string& liquid = "water");
 // Dirt particles of `substance` on a's upward-facing surfaces (value true:
 // `particles` of them, found by rays from above that hit a first), or none.
 bool sample_covered(World& world, int a, const std::string& substance, bool value, Rng& rng,
