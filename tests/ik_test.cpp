@@ -1,0 +1,64 @@
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include "env/world/world.hpp"
+#include "primitives/ik.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+// Applies an IK solution (torso, arm) to the world and returns the site position.
+Eigen::Vector3d set_arm(World& w, const std::vector<double>& joints) {
+  const Robot& r = *w.robot();
+  w.data()->qpos[r.torso.qpos] = joints[0];
+  for (int i = 0; i < Robot::kArmJoints; ++i) w.data()->qpos[r.arm[i].qpos] = joints[1 + i];
+  mj_forward(w.model(), w.data());
+  const double* p = w.data()->site_xpos + 3 * r.gripper_site;
+  return {p[0], p[1], p[2]};
+}
+
+TEST(Ik, ReachesAPoseInFrontFromTheTuckedArm) {
+  auto scene = Scene::load(test::box_room());
+  World world(scene);  // robot at the origin, facing +x, arm tucked
+  const Eigen::Vector3d before = set_arm(world, [&] {
+    std::vector<double> q = {Robot::kHomeTorso};
+    q.insert(q.end(), Robot::kTuckedArm.begin(), Robot::kTuckedArm.end());
+    return q;
+  }());
+  IkTarget target{Eigen::Vector3d(0.6, 0.0, 0.8), Eigen::Vector3d(1, 0, 0)};
+  const IkResult r = solve_ik(world, target);
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_LT(r.position_error, 0.005);
+  EXPECT_LT(r.angle_error, 0.05);
+  // The world is untouched by solving; applying the solution gets there.
+  const double* now = world.data()->site_xpos + 3 * world.robot()->gripper_site;
+  EXPECT_NEAR(now[0], before.x(), 1e-9);
+  EXPECT_LT((set_arm(world, r.joints) - target.position).norm(), 0.005);
+  // Within the joint limits.
+  const Robot& robot = *world.robot();
+  EXPECT_GE(r.joints[0], robot.torso.low);
+  EXPECT_LE(r.joints[0], robot.torso.high);
+  for (int i = 0; i < Robot::kArmJoints; ++i) {
+    EXPECT_GE(r.joints[1 + i], robot.arm[i].low);
+    EXPECT_LE(r.joints[1 + i], robot.arm[i].high);
+  }
+}
+
+TEST(Ik, APointAboveATableWithTheGripperPointingDown) {
+  World world(Scene::load(test::box_room()));
+  const IkResult r = solve_ik(world, {Eigen::Vector3d(0.55, -0.1, 0.9), Eigen::Vector3d(0, 0, -1)});
+  ASSERT_TRUE(r.success) << r.reason;
+  EXPECT_LT((set_arm(world, r.joints) - Eigen::Vector3d(0.55, -0.1, 0.9)).norm(), 0.005);
+}
+
+TEST(Ik, UnreachableTargetsFailWithAReason) {
+  World world(Scene::load(test::box_room()));
+  const IkResult r = solve_ik(world, {Eigen::Vector3d(2.5, 0, 0.8), std::nullopt});
+  EXPECT_FALSE(r.success);
+  EXPECT_GT(r.position_error, 1.0);
+  EXPECT_NE(r.reason.find("no arm configuration reaches the target"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace chore
