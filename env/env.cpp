@@ -209,12 +209,12 @@ void Env::write_state(ArrayDict& obs, int index) const {
                      d->qvel[r->base_yaw.dof]}) {
       p[k++] = static_cast<float>(v);
     }
-    std::vector<const RobotJoint*> joints = {&r->torso};
-    for (const RobotJoint& j : r->arm) joints.push_back(&j);
-    joints.push_back(&r->head_pan);
-    joints.push_back(&r->head_tilt);
-    for (const RobotJoint* j : joints) p[k++] = static_cast<float>(d->qpos[j->qpos]);
-    for (const RobotJoint* j : joints) p[k++] = static_cast<float>(d->qvel[j->dof]);
+    const auto arm = r->torso_and_arm();
+    const std::array<const RobotJoint*, 2> head = {&r->head_pan, &r->head_tilt};
+    for (const RobotJoint* j : arm) p[k++] = static_cast<float>(d->qpos[j->qpos]);
+    for (const RobotJoint* j : head) p[k++] = static_cast<float>(d->qpos[j->qpos]);
+    for (const RobotJoint* j : arm) p[k++] = static_cast<float>(d->qvel[j->dof]);
+    for (const RobotJoint* j : head) p[k++] = static_cast<float>(d->qvel[j->dof]);
     p[k++] = static_cast<float>(d->qpos[r->gripper_left.qpos]);
     p[k++] = static_cast<float>(d->qpos[r->gripper_right.qpos]);
     p[k++] = grasping ? 1.0f : 0.0f;

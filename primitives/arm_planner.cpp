@@ -3,26 +3,20 @@
 #include <mujoco/mujoco.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
 
 #include <memory>
 
+#include "primitives/rrt_connect.hpp"
+
 namespace chore {
 namespace {
-
-std::vector<const RobotJoint*> arm_joints(const Robot& r) {
-  std::vector<const RobotJoint*> joints = {&r.torso};
-  for (const RobotJoint& j : r.arm) joints.push_back(&j);
-  return joints;
-}
 
 // A scratch mjData for collision queries, so the world is never touched.
 class CollisionProbe {
  public:
   explicit CollisionProbe(const World& world)
       : model_(world.model()), data_(mj_makeData(model_), mj_deleteData),
-        joints_(arm_joints(*world.robot())),
+        joints_(world.robot()->torso_and_arm()),
         robot_(model_->body_rootid[world.robot()->gripper_body]) {
     mj_copyData(data_.get(), model_, world.data());
   }
@@ -44,7 +38,7 @@ class CollisionProbe {
  private:
   const mjModel* model_;
   std::unique_ptr<mjData, void (*)(mjData*)> data_;
-  std::vector<const RobotJoint*> joints_;
+  std::array<const RobotJoint*, 1 + Robot::kArmJoints> joints_;
   int robot_;
 };
 
@@ -58,8 +52,7 @@ bool arm_in_collision(const World& world, const ArmConfiguration& q) {
 ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, double time_limit) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
-  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-  const std::vector<const RobotJoint*> joints = arm_joints(*world.robot());
+  const auto joints = world.robot()->torso_and_arm();
   ArmPath out;
   ArmConfiguration start;
   for (size_t k = 0; k < joints.size(); ++k) start[k] = world.data()->qpos[joints[k]->qpos];
@@ -90,12 +83,10 @@ ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, double t
     to[k] = goal[k];
   }
   setup.setStartAndGoalStates(from, to);
-  setup.setPlanner(std::make_shared<og::RRTConnect>(setup.getSpaceInformation()));
-  if (setup.solve(time_limit) != ob::PlannerStatus::EXACT_SOLUTION) {
+  if (!solve_and_simplify(setup, time_limit)) {
     out.reason = "no collision-free arm path found in " + std::to_string(time_limit) + " s";
     return out;
   }
-  setup.simplifySolution();
   for (const ob::State* s : setup.getSolutionPath().getStates()) {
     ArmConfiguration q;
     for (size_t k = 0; k < joints.size(); ++k) q[k] = s->as<ob::RealVectorStateSpace::StateType>()->values[k];

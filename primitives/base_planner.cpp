@@ -3,13 +3,12 @@
 #include <mujoco/mujoco.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
-#include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <cmath>
 
 #include "env/world/object_geometry.hpp"
+#include "primitives/rrt_connect.hpp"
 
 namespace chore {
 namespace {
@@ -70,7 +69,6 @@ BasePath plan_base_path(const World& world, const OccupancyMap& map, const Pose2
                         unsigned seed, double time_limit) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
-  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   ompl::RNG::setSeed(seed);
   BasePath out;
   const Pose2 start = world.base_pose();
@@ -102,12 +100,10 @@ BasePath plan_base_path(const World& world, const OccupancyMap& map, const Pose2
   to->setXY(goal.x, goal.y);
   to->setYaw(wrap(goal.yaw));
   setup.setStartAndGoalStates(from, to);
-  setup.setPlanner(std::make_shared<og::RRTConnect>(setup.getSpaceInformation()));
-  if (setup.solve(time_limit) != ob::PlannerStatus::EXACT_SOLUTION) {
+  if (!solve_and_simplify(setup, time_limit)) {
     out.reason = "no collision-free base path found in " + std::to_string(time_limit) + " s";
     return out;
   }
-  setup.simplifySolution();
   for (const ob::State* s : setup.getSolutionPath().getStates()) {
     const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
     out.waypoints.push_back({se2->getX(), se2->getY(), se2->getYaw()});

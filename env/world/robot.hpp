@@ -26,6 +26,14 @@ struct Robot {
   std::array<RobotJoint, kArmJoints> arm;
   RobotJoint gripper_left, gripper_right;
   RobotJoint head_pan, head_tilt;
+  // The joints an arm configuration lists: torso, arm_1 .. arm_7.
+  std::array<const RobotJoint*, 1 + kArmJoints> torso_and_arm() const {
+    std::array<const RobotJoint*, 1 + kArmJoints> joints;
+    joints[0] = &torso;
+    for (int i = 0; i < kArmJoints; ++i) joints[1 + i] = &arm[i];
+    return joints;
+  }
+
   int gripper_body = -1, left_finger_body = -1, right_finger_body = -1;
   int gripper_site = -1, lidar_site = -1, camera = -1;
 
