@@ -9,54 +9,55 @@
 #include "primitives/rrt_connect.hpp"
 
 namespace chore {
-namespace {
 
-// A scratch mjData for collision queries, so the world is never touched.
-class CollisionProbe {
- public:
-  explicit CollisionProbe(const World& world)
-      : model_(world.model()), data_(mj_makeData(model_), mj_deleteData),
-        joints_(world.robot()->torso_and_arm()),
-        robot_(model_->body_rootid[world.robot()->gripper_body]) {
-    mj_copyData(data_.get(), model_, world.data());
-  }
-
-  bool collides(const double* q) {
-    for (size_t k = 0; k < joints_.size(); ++k) data_->qpos[joints_[k]->qpos] = q[k];
-    mj_kinematics(model_, data_.get());
-    mj_collision(model_, data_.get());
-    for (int c = 0; c < data_->ncon; ++c) {
-      const mjContact& con = data_->contact[c];
-      if (model_->body_rootid[model_->geom_bodyid[con.geom1]] == robot_ ||
-          model_->body_rootid[model_->geom_bodyid[con.geom2]] == robot_) {
-        return true;
-      }
-    }
-    return false;
-  }
-
- private:
-  const mjModel* model_;
-  std::unique_ptr<mjData, void (*)(mjData*)> data_;
-  std::array<const RobotJoint*, 1 + Robot::kArmJoints> joints_;
-  int robot_;
-};
-
-}  // namespace
-
-bool arm_in_collision(const World& world, const ArmConfiguration& q) {
-  CollisionProbe probe(world);
-  return probe.collides(q.data());
+ArmCollisionChecker::ArmCollisionChecker(const World& world)
+    : world_(world), model_(world.model()), data_(mj_makeData(model_)),
+      robot_(model_->body_rootid[world.robot()->gripper_body]) {
+  mj_copyData(data_, model_, world.data());
+  const int held = world.grasped_object();
+  if (held >= 0) held_ = world.scene().objects()[held].body;
 }
 
-ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, double time_limit) {
+ArmCollisionChecker::~ArmCollisionChecker() { mj_deleteData(data_); }
+
+bool ArmCollisionChecker::collides(const double* q, const Pose2* base) {
+  mjData* d = data_;
+  const Robot& r = *world_.robot();
+  if (base) {
+    d->qpos[r.base_x.qpos] = base->x;
+    d->qpos[r.base_y.qpos] = base->y;
+    d->qpos[r.base_yaw.qpos] = base->yaw;
+  }
+  const auto joints = r.torso_and_arm();
+  for (size_t k = 0; k < joints.size(); ++k) d->qpos[joints[k]->qpos] = q[k];
+  mj_kinematics(model_, d);
+  if (held_ >= 0) {
+    world_.carry_grasped(d);
+    mj_kinematics(model_, d);
+  }
+  mj_collision(model_, d);
+  for (int c = 0; c < d->ncon; ++c) {
+    const int r1 = model_->body_rootid[model_->geom_bodyid[d->contact[c].geom1]];
+    const int r2 = model_->body_rootid[model_->geom_bodyid[d->contact[c].geom2]];
+    const bool mine1 = r1 == robot_ || r1 == held_, mine2 = r2 == robot_ || r2 == held_;
+    if (mine1 != mine2) return true;  // the robot and its load against anything else
+  }
+  return false;
+}
+
+
+bool arm_in_collision(const World& world, const ArmConfiguration& q) {
+  return ArmCollisionChecker(world).collides(q.data());
+}
+
+ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t seed,
+                      unsigned iterations) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
   const auto joints = world.robot()->torso_and_arm();
   ArmPath out;
-  ArmConfiguration start;
-  for (size_t k = 0; k < joints.size(); ++k) start[k] = world.data()->qpos[joints[k]->qpos];
-  auto probe = std::make_shared<CollisionProbe>(world);
+  const ArmConfiguration start = arm_configuration(world);
+  auto probe = std::make_shared<ArmCollisionChecker>(world);
   if (probe->collides(start.data())) {
     out.reason = "the arm's start configuration is in collision";
     return out;
@@ -83,8 +84,8 @@ ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, double t
     to[k] = goal[k];
   }
   setup.setStartAndGoalStates(from, to);
-  if (!solve_and_simplify(setup, time_limit)) {
-    out.reason = "no collision-free arm path found in " + std::to_string(time_limit) + " s";
+  if (!solve_and_simplify(setup, seed, iterations)) {
+    out.reason = "no collision-free arm path found in " + std::to_string(iterations) + " iterations";
     return out;
   }
   for (const ob::State* s : setup.getSolutionPath().getStates()) {

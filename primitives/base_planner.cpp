@@ -3,7 +3,6 @@
 #include <mujoco/mujoco.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
-#include <ompl/util/RandomNumbers.h>
 
 #include <cmath>
 
@@ -15,6 +14,7 @@ namespace {
 
 constexpr double kFloorClearance = 0.02;  // geoms below this are floors
 constexpr double kRobotHeight = 1.5;      // m: what the base, torso and tucked arm sweep
+constexpr double kMaxEscape = 0.4;        // m the base may move straight out of inflated space
 
 // OMPL's SE2 takes headings in [-pi, pi): std::remainder alone can give +pi.
 double wrap(double yaw) {
@@ -42,10 +42,12 @@ OccupancyMap::OccupancyMap(const World& world, double inflation) {
   height_ = static_cast<int>(std::ceil((bounds.hi.y() - y0_) / kResolution));
   occupied_.assign(static_cast<size_t>(width_) * height_, 0);
   const int robot = world.robot() ? m->body_rootid[world.robot()->gripper_body] : -1;
+  const int held = world.grasped_object() >= 0 ? world.scene().objects()[world.grasped_object()].body : -1;
   const int grow = static_cast<int>(std::ceil(inflation / kResolution));
   for (int g = 0; g < m->ngeom; ++g) {
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
-    if (m->body_rootid[m->geom_bodyid[g]] == robot) continue;
+    const int root = m->body_rootid[m->geom_bodyid[g]];
+    if (root == robot || root == held) continue;  // the robot and what it carries move along
     const Aabb box = geom_aabb(world, g);
     if (box.hi.z() < kFloorClearance || box.lo.z() > kRobotHeight) continue;
     const int i0 = std::max(0, static_cast<int>(std::floor((box.lo.x() - x0_) / kResolution)) - grow);
@@ -65,18 +67,102 @@ bool OccupancyMap::free(double x, double y) const {
   return !occupied_[static_cast<size_t>(j) * width_ + i];
 }
 
-BasePath plan_base_path(const World& world, const OccupancyMap& map, const Pose2& goal,
-                        unsigned seed, double time_limit) {
+namespace {
+
+// Robot-frame horizontal box of a geom.
+void grow_robot_frame(const World& world, int g, const Pose2& base, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+  const Aabb box = geom_aabb(world, g);
+  const double c = std::cos(base.yaw), s = std::sin(base.yaw);
+  for (double x : {box.lo.x(), box.hi.x()}) {
+    for (double y : {box.lo.y(), box.hi.y()}) {
+      const Eigen::Vector2d p(c * (x - base.x) + s * (y - base.y), -s * (x - base.x) + c * (y - base.y));
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+}
+
+bool descends_from(const mjModel* m, int body, int ancestor) {
+  for (; body > 0; body = m->body_parentid[body]) {
+    if (body == ancestor) return true;
+  }
+  return false;
+}
+
+double body_radius_of(const World& world) {
+  const mjModel* m = world.model();
+  const mjData* d = world.data();
+  const Robot& r = *world.robot();
+  const Pose2 base = world.base_pose();
+  const int robot = m->body_rootid[r.gripper_body], arm = m->jnt_bodyid[r.arm[0].joint];
+  double radius = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int b = m->geom_bodyid[g];
+    if (m->body_rootid[b] != robot || descends_from(m, b, arm)) continue;
+    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+    if (m->geom_type[g] == mjGEOM_CYLINDER && std::abs(d->geom_xmat[9 * g + 8]) > 0.99) {
+      // Upright cylinders (the base): exact, not their box's corners.
+      radius = std::max(radius, std::hypot(d->geom_xpos[3 * g] - base.x, d->geom_xpos[3 * g + 1] - base.y) +
+                                    m->geom_size[3 * g]);
+      continue;
+    }
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
+    grow_robot_frame(world, g, base, lo, hi);
+    for (double x : {lo.x(), hi.x()}) {
+      for (double y : {lo.y(), hi.y()}) radius = std::max(radius, std::hypot(x, y));
+    }
+  }
+  return radius;
+}
+
+}  // namespace
+
+Footprint::Footprint(const World& world)
+    : body_radius_(body_radius_of(world)), body_(world, body_radius_ + kMargin) {
+  const mjModel* m = world.model();
+  const Robot& r = *world.robot();
+  const Pose2 base = world.base_pose();
+  // The hand and its load: the rest of the arm stays over the base in the
+  // tucked and carry poses (and the body disk covers it).
+  const int hand = r.gripper_body;
+  const int held = world.grasped_object() >= 0 ? world.scene().objects()[world.grasped_object()].body : -2;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int b = m->geom_bodyid[g];
+    if (!descends_from(m, b, hand) && m->body_rootid[b] != held) continue;
+    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+    grow_robot_frame(world, g, base, lo, hi);
+  }
+  arm_centre_ = (lo + hi) / 2;
+  const double arm_radius = (hi - lo).norm() / 2;
+  if (arm_centre_.norm() + arm_radius > body_radius_) arm_.emplace(world, arm_radius + kMargin);
+}
+
+bool Footprint::free(const Pose2& p) const {
+  if (!body_.free(p.x, p.y)) return false;
+  if (!arm_) return true;
+  const double c = std::cos(p.yaw), s = std::sin(p.yaw);
+  return arm_->free(p.x + c * arm_centre_.x() - s * arm_centre_.y(), p.y + s * arm_centre_.x() + c * arm_centre_.y());
+}
+
+BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal,
+                        uint64_t seed, unsigned iterations) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
-  ompl::RNG::setSeed(seed);
   BasePath out;
-  const Pose2 start = world.base_pose();
-  if (!map.free(start.x, start.y)) {
-    out.reason = "the robot's start pose is not in free space";
-    return out;
+  const OccupancyMap& map = footprint.body_map();
+  const Pose2 at = world.base_pose();
+  Pose2 start = at;
+  for (double r = OccupancyMap::kResolution; !footprint.free(start); r += OccupancyMap::kResolution) {
+    if (r > kMaxEscape) {
+      out.reason = "the robot is boxed in: no free space within " + std::to_string(kMaxEscape) + " m";
+      return out;
+    }
+    for (int k = 0; k < 16 && !footprint.free(start); ++k) {
+      start = {at.x + r * std::cos(k * M_PI / 8), at.y + r * std::sin(k * M_PI / 8), at.yaw};
+    }
   }
-  if (!map.free(goal.x, goal.y)) {
+  if (!footprint.free(goal)) {
     out.reason = "the goal pose is not in free space";
     return out;
   }
@@ -88,9 +174,9 @@ BasePath plan_base_path(const World& world, const OccupancyMap& map, const Pose2
   bounds.setHigh(1, map.max_y());
   space->setBounds(bounds);
   og::SimpleSetup setup(space);
-  setup.setStateValidityChecker([&map](const ob::State* s) {
+  setup.setStateValidityChecker([&footprint](const ob::State* s) {
     const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
-    return map.free(se2->getX(), se2->getY());  // a round base: heading does not matter
+    return footprint.free({se2->getX(), se2->getY(), se2->getYaw()});
   });
   setup.getSpaceInformation()->setStateValidityCheckingResolution(
       OccupancyMap::kResolution / std::max(map.max_x() - map.min_x(), map.max_y() - map.min_y()));
@@ -100,10 +186,11 @@ BasePath plan_base_path(const World& world, const OccupancyMap& map, const Pose2
   to->setXY(goal.x, goal.y);
   to->setYaw(wrap(goal.yaw));
   setup.setStartAndGoalStates(from, to);
-  if (!solve_and_simplify(setup, time_limit)) {
-    out.reason = "no collision-free base path found in " + std::to_string(time_limit) + " s";
+  if (!solve_and_simplify(setup, seed, iterations)) {
+    out.reason = "no collision-free base path found in " + std::to_string(iterations) + " iterations";
     return out;
   }
+  if (start.x != at.x || start.y != at.y) out.waypoints.push_back(at);
   for (const ob::State* s : setup.getSolutionPath().getStates()) {
     const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
     out.waypoints.push_back({se2->getX(), se2->getY(), se2->getYaw()});

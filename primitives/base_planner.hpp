@@ -4,6 +4,10 @@
 // along these paths.
 #pragma once
 
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,7 +20,7 @@ class OccupancyMap {
   static constexpr double kResolution = 0.05;  // m per cell
   // Cells covered by a collision geom of the scene between the floor and the
   // robot's height, grown by `inflation` (the base radius plus a margin).
-  // Free objects count as obstacles where they are now; the robot does not.
+  // Free objects count as obstacles where they are now; the robot and what it holds do not.
   OccupancyMap(const World& world, double inflation);
 
   bool free(double x, double y) const;
@@ -31,16 +35,36 @@ class OccupancyMap {
   std::vector<unsigned char> occupied_;
 };
 
+// The robot as the base planner sees it, measured in its current
+// configuration: a disk around the base centre (base, torso, head) and, when
+// the arm or what it holds reaches beyond that disk, a second disk around
+// them, ahead of the base. Each is checked on the occupancy grid inflated by
+// its radius, so the load may pass beside furniture the base could not.
+class Footprint {
+ public:
+  static constexpr double kMargin = 0.03;  // m added to both radii
+  explicit Footprint(const World& world);
+  bool free(const Pose2& pose) const;
+  double body_radius() const { return body_radius_; }
+  const OccupancyMap& body_map() const { return body_; }
+
+ private:
+  double body_radius_ = 0;
+  OccupancyMap body_;
+  Eigen::Vector2d arm_centre_ = Eigen::Vector2d::Zero();  // robot frame
+  std::optional<OccupancyMap> arm_;
+};
+
 struct BasePath {
   bool success = false;
   std::vector<Pose2> waypoints;  // start first, goal last
   std::string reason;
 };
 
-// A path from the world's current base pose to `goal`. OMPL seeds its random
-// numbers once per process: paths repeat across runs of one program, not per
-// call (bit-exact primitive episodes will need a sampler of their own).
-BasePath plan_base_path(const World& world, const OccupancyMap& map, const Pose2& goal,
-                        unsigned seed, double time_limit = 1.0);
+// A path from the world's current base pose to `goal`; the same seed gives the
+// same path. A start inside inflated obstacles (an opened drawer over the
+// base) is first left by the shortest straight move out.
+BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal,
+                        uint64_t seed, unsigned iterations = 50000);
 
 }  // namespace chore

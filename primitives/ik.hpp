@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,9 +14,15 @@
 
 namespace chore {
 
+// torso, arm_1 .. arm_7
+using ArmConfiguration = std::array<double, 1 + Robot::kArmJoints>;
+// The world's current torso and arm joint values.
+ArmConfiguration arm_configuration(const World& world);
+
 struct IkTarget {
   Eigen::Vector3d position;                 // of the gripper_center site, world frame
   std::optional<Eigen::Vector3d> approach;  // direction the gripper's x axis should point, if any
+  std::optional<Eigen::Vector3d> closing;   // direction of its y axis (the fingers' line), if any
 };
 
 struct IkOptions {
@@ -24,16 +31,35 @@ struct IkOptions {
   double position_tolerance = 0.005;  // m
   double angle_tolerance = 0.05;      // rad between approach and the gripper's x axis
   bool use_torso = true;
+  // Solve as if the base stood here / the arm started here (default: as in the world).
+  std::optional<Pose2> base;
+  std::optional<ArmConfiguration> start;
 };
 
 struct IkResult {
   bool success = false;
   double position_error = 0, angle_error = 0;
-  std::vector<double> joints;  // torso, then arm_1..7: the solution (or the best found)
+  ArmConfiguration joints{};  // the solution (or the best found); torso as given without use_torso
   std::string reason;          // why it failed
 };
 
-// Starts from the world's current configuration; joint limits are respected.
+// Solves on a scratch copy of the world's state taken at construction, reused
+// across calls (primitives solve many small problems along a line).
+class IkSolver {
+ public:
+  explicit IkSolver(const World& world);
+  ~IkSolver();
+  IkSolver(const IkSolver&) = delete;
+  IkSolver& operator=(const IkSolver&) = delete;
+  // Starts from the world's configuration (or options.start); joint limits are respected.
+  IkResult solve(const IkTarget& target, const IkOptions& options = {});
+
+ private:
+  const World& world_;
+  mjData_* data_;
+};
+
+// One solve on a fresh scratch copy.
 IkResult solve_ik(const World& world, const IkTarget& target, const IkOptions& options = {});
 
 }  // namespace chore

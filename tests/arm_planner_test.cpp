@@ -14,7 +14,7 @@ const ArmConfiguration kUntucked = {0.15, 0.74, -0.61, -0.28, 2.06, -0.63, -1.29
 TEST(ArmPlanner, PlansFromTuckedToReachingWithoutTouchingAnything) {
   World world(Scene::load(test::box_room()));
   ASSERT_FALSE(arm_in_collision(world, kUntucked));
-  const ArmPath path = plan_arm_path(world, kUntucked);
+  const ArmPath path = plan_arm_path(world, kUntucked, 7);
   ASSERT_TRUE(path.success) << path.reason;
   ASSERT_GE(path.waypoints.size(), 2u);
   EXPECT_EQ(path.waypoints.back(), kUntucked);
@@ -38,7 +38,7 @@ TEST(ArmPlanner, AGoalInsideAnObstacleIsRefused) {
   base.x = 2.0;
   world.reset(base);
   EXPECT_TRUE(arm_in_collision(world, kUntucked));
-  const ArmPath path = plan_arm_path(world, kUntucked);
+  const ArmPath path = plan_arm_path(world, kUntucked, 7);
   EXPECT_FALSE(path.success);
   EXPECT_EQ(path.reason, "the arm's goal configuration is in collision");
 }

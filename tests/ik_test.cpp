@@ -9,7 +9,7 @@ namespace chore {
 namespace {
 
 // Applies an IK solution (torso, arm) to the world and returns the site position.
-Eigen::Vector3d set_arm(World& w, const std::vector<double>& joints) {
+Eigen::Vector3d set_arm(World& w, const ArmConfiguration& joints) {
   const Robot& r = *w.robot();
   w.data()->qpos[r.torso.qpos] = joints[0];
   for (int i = 0; i < Robot::kArmJoints; ++i) w.data()->qpos[r.arm[i].qpos] = joints[1 + i];
@@ -21,11 +21,7 @@ Eigen::Vector3d set_arm(World& w, const std::vector<double>& joints) {
 TEST(Ik, ReachesAPoseInFrontFromTheTuckedArm) {
   auto scene = Scene::load(test::box_room());
   World world(scene);  // robot at the origin, facing +x, arm tucked
-  const Eigen::Vector3d before = set_arm(world, [&] {
-    std::vector<double> q = {Robot::kHomeTorso};
-    q.insert(q.end(), Robot::kTuckedArm.begin(), Robot::kTuckedArm.end());
-    return q;
-  }());
+  const Eigen::Vector3d before = set_arm(world, arm_configuration(world));
   IkTarget target{Eigen::Vector3d(0.6, 0.0, 0.8), Eigen::Vector3d(1, 0, 0)};
   const IkResult r = solve_ik(world, target);
   ASSERT_TRUE(r.success) << r.reason;
@@ -58,6 +54,30 @@ TEST(Ik, UnreachableTargetsFailWithAReason) {
   EXPECT_FALSE(r.success);
   EXPECT_GT(r.position_error, 1.0);
   EXPECT_NE(r.reason.find("no arm configuration reaches the target"), std::string::npos);
+}
+
+TEST(Ik, AClosingAxisTargetTurnsTheFingersLine) {
+  World world(Scene::load(test::box_room()));
+  // Hand forward at the untucked point, fingers closing vertically (a drawer handle's grip).
+  const IkTarget target{Eigen::Vector3d(0.6, 0.0, 0.8), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1)};
+  const IkResult r = solve_ik(world, target);
+  ASSERT_TRUE(r.success) << r.reason;
+  set_arm(world, r.joints);
+  const double* m = world.data()->site_xmat + 9 * world.robot()->gripper_site;
+  EXPECT_GT(m[0], 0.99);                // x axis (approach) along world x
+  EXPECT_GT(std::abs(m[7]), 0.99);      // y axis (closing) along world z
+}
+
+TEST(Ik, ASolverSolvesFromAnotherBasePoseWithoutMovingTheWorld) {
+  World world(Scene::load(test::box_room()));
+  IkSolver solver(world);
+  IkOptions options;
+  options.base = Pose2{1.0, 0.0, 0.0};
+  // 0.6 m ahead of a base standing at x = 1: reachable from there, not from the origin.
+  const IkTarget target{Eigen::Vector3d(1.6, 0.0, 0.8), Eigen::Vector3d(1, 0, 0)};
+  EXPECT_TRUE(solver.solve(target, options).success);
+  EXPECT_FALSE(solver.solve(target).success);
+  EXPECT_EQ(world.base_pose().x, 0.0);
 }
 
 }  // namespace

@@ -242,9 +242,9 @@ void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& pref
   }
 }
 
-void emit_child_links(std::string& xml, StaticMesh& mesh, const std::string& object,
-                      const Link& parent, const Eigen::Isometry3d& parent_world,
-                      const std::string& indent) {
+void emit_child_links(std::string& xml, std::string& welds, StaticMesh& mesh,
+                      const std::string& object, const Link& parent,
+                      const Eigen::Isometry3d& parent_world, const std::string& indent) {
   for (const Link& link : parent.links) {
     const std::string name = object + "/" + link.name;
     Eigen::Isometry3d world = parent_world;
@@ -255,8 +255,11 @@ void emit_child_links(std::string& xml, StaticMesh& mesh, const std::string& obj
            fmt(link.range[1]) + "\" limited=\"true\" damping=\"" + fmt(link.damping) +
            "\" armature=\"0.01\"/>\n";
     emit_link_geoms(xml, mesh, name, link, false, world, indent + "  ");
-    emit_child_links(xml, mesh, object, link, world, indent + "  ");
+    emit_child_links(xml, welds, mesh, object, link, world, indent + "  ");
     xml += indent + "</body>\n";
+    // The gripper can hold a drawer or door by its link (OmniGibson's assisted grasp does).
+    welds += "    <weld name=\"grasp_" + name + "\" body1=\"gripper\" body2=\"" + name +
+             "\" active=\"false\" solref=\"0.005 1\"/>\n";
   }
 }
 
@@ -483,7 +486,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       world += "      " + geom_xml(object.name + "/0", tile, true, model.root.mass) + "\n";
     } else {
       emit_link_geoms(world, mesh, object.name, model.root, object.fixed, pose, "      ");
-      emit_child_links(world, mesh, object.name, model.root, pose, "      ");
+      emit_child_links(world, welds, mesh, object.name, model.root, pose, "      ");
     }
     if (model.light) {
       lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" +
@@ -589,6 +592,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       const char* jname = mj_id2name(model, mjOBJ_JOINT, jnt);
       if (jname && std::string_view(jname).starts_with(object.name + "/")) {
         object.joints.push_back(jnt);
+        object.link_welds.push_back(
+            options.robot ? mj_name2id(model, mjOBJ_EQUALITY, ("grasp_" + std::string(jname)).c_str()) : -1);
       }
     }
   }

@@ -39,6 +39,7 @@ struct SceneObject {
   int body = -1;         // root body id
   int grasp_weld = -1;   // equality id of the gripper weld (free objects only)
   std::vector<int> joints;  // articulated joints (drawers, doors)
+  std::vector<int> link_welds;  // per joint: the gripper weld of the link it moves
   std::vector<int> geoms;   // collision geoms of the object and its links
   // Cloth only: its four corner bodies (keypoints) and their diagonal when flat.
   std::vector<int> keypoints;

@@ -116,53 +116,117 @@ void World::update_grasp(StepReport& report) {
   }
   if (!closing) return;
   // An object touched by both fingers is attached (OmniGibson's assisted grasp).
-  std::vector<int> left, right;  // root bodies each finger touches
+  std::vector<int> left, right;  // bodies each finger touches
   for (int c = 0; c < data_->ncon; ++c) {
     const mjContact& con = data_->contact[c];
     const int b1 = model_->geom_bodyid[con.geom1], b2 = model_->geom_bodyid[con.geom2];
     for (const auto& [finger, other] : {std::pair{b1, b2}, std::pair{b2, b1}}) {
-      if (finger == r.left_finger_body) left.push_back(model_->body_rootid[other]);
-      if (finger == r.right_finger_body) right.push_back(model_->body_rootid[other]);
+      if (finger == r.left_finger_body) left.push_back(other);
+      if (finger == r.right_finger_body) right.push_back(other);
     }
   }
+  // Both fingers on `body` itself (a link), or anywhere on the tree rooted there (an object).
+  const auto touched = [&](int body, bool tree) {
+    const auto on = [&](int b) { return b == body || (tree && model_->body_rootid[b] == body); };
+    return std::any_of(left.begin(), left.end(), on) && std::any_of(right.begin(), right.end(), on);
+  };
   const auto& objects = scene_->objects();
   for (size_t i = 0; i < objects.size(); ++i) {
-    const int body = objects[i].body;
-    if (objects[i].fixed || std::find(left.begin(), left.end(), body) == left.end() ||
-        std::find(right.begin(), right.end(), body) == right.end()) {
-      continue;
+    const SceneObject& o = objects[i];
+    // Links of articulated objects (drawers, doors) are held where they are,
+    // whatever the object weighs: the joint carries the load.
+    for (size_t k = 0; k < o.joints.size(); ++k) {
+      const int link = model_->jnt_bodyid[o.joints[k]];
+      if (o.link_welds[k] >= 0 && touched(link, false)) {
+        attach(static_cast<int>(i), o.link_welds[k]);
+        return;
+      }
     }
-    if (model_->body_subtreemass[body] > kGraspMassLimit) {
+    if (o.fixed || !touched(o.body, true)) continue;
+    if (model_->body_subtreemass[o.body] > kGraspMassLimit) {
       report.grasp_refused = true;
       return;
     }
-    attach(static_cast<int>(i));
+    attach(static_cast<int>(i), o.grasp_weld);
     return;
   }
 }
 
-void World::attach(int object) {
-  const SceneObject& o = scene_->objects()[object];
-  const int hand = robot_->gripper_body, body = o.body;
+int World::grasped_body() const {
+  return grasped_weld_ < 0 ? -1 : model_->eq_obj2id[grasped_weld_];
+}
+
+void World::attach(int object, int weld) {
+  const int hand = robot_->gripper_body, body = model_->eq_obj2id[weld];
   // Weld error in MuJoCo 2.2.2: (x_hand + R_hand * relpos) - (x_body + R_body * anchor),
   // orientation q_hand * relquat vs q_body. Zero error in the current pose:
-  mjtNum* eq = model_->eq_data + mjNEQDATA * o.grasp_weld;
+  mjtNum* eq = model_->eq_data + mjNEQDATA * weld;
   mjtNum delta[3], relpos[3], hand_inverse[4];
-  mju_zero3(eq);  // anchor at the object's origin
+  mju_zero3(eq);  // anchor at the body's origin
   mju_sub3(delta, data_->xpos + 3 * body, data_->xpos + 3 * hand);
   mju_rotVecMatT(relpos, delta, data_->xmat + 9 * hand);
   mju_copy3(eq + 3, relpos);
   mju_negQuat(hand_inverse, data_->xquat + 4 * hand);
   mju_mulQuat(eq + 6, hand_inverse, data_->xquat + 4 * body);
   eq[10] = 1.0;  // torquescale
-  model_->eq_active[o.grasp_weld] = 1;
+  model_->eq_active[weld] = 1;
   grasped_ = object;
+  grasped_weld_ = weld;
+}
+
+bool World::hold(int object) {
+  const SceneObject& o = scene_->objects().at(object);
+  if (o.fixed || o.grasp_weld < 0) throw Error("world: '" + o.name + "' is not a free object");
+  if (model_->body_subtreemass[o.body] > kGraspMassLimit) return false;
+  release();
+  attach(object, o.grasp_weld);
+  return true;
 }
 
 void World::release() {
   if (grasped_ < 0) return;
-  model_->eq_active[scene_->objects()[grasped_].grasp_weld] = 0;
-  grasped_ = -1;
+  model_->eq_active[grasped_weld_] = 0;
+  grasped_ = grasped_weld_ = -1;
+}
+
+void World::carry_grasped(mjData* d) const {
+  const int body = grasped_body();
+  if (body < 0 || model_->body_jntnum[body] != 1 || model_->jnt_type[model_->body_jntadr[body]] != mjJNT_FREE) {
+    return;  // nothing held, or a link: it stays on its joint
+  }
+  // The weld's relative pose, applied: x_body = x_hand + R_hand relpos, q_body = q_hand relquat.
+  const mjtNum* eq = model_->eq_data + mjNEQDATA * grasped_weld_;
+  const int hand = robot_->gripper_body, joint = model_->body_jntadr[body];
+  mjtNum* qpos = d->qpos + model_->jnt_qposadr[joint];
+  mjtNum offset[3];
+  mju_rotVecMat(offset, eq + 3, d->xmat + 9 * hand);
+  mju_add3(qpos, d->xpos + 3 * hand, offset);
+  mju_mulQuat(qpos + 3, d->xquat + 4 * hand, eq + 6);
+  mju_zero(d->qvel + model_->jnt_dofadr[joint], 6);
+}
+
+void World::command_gripper(bool open) {
+  const double finger = open ? Robot::kGripperOpen : 0.0;
+  command_position(robot_->gripper_left, finger);
+  command_position(robot_->gripper_right, finger);
+}
+
+void World::set_robot_configuration(const Pose2& base, const double* torso_and_arm) {
+  const Robot& r = *robot_;
+  data_->qpos[r.base_x.qpos] = base.x;
+  data_->qpos[r.base_y.qpos] = base.y;
+  data_->qpos[r.base_yaw.qpos] = base.yaw;
+  const auto joints = r.torso_and_arm();
+  for (size_t k = 0; k < joints.size(); ++k) {
+    data_->qpos[joints[k]->qpos] = torso_and_arm[k];
+    data_->ctrl[joints[k]->actuator] = torso_and_arm[k];
+  }
+  for (const RobotJoint* j : {&r.base_x, &r.base_y, &r.base_yaw}) data_->qvel[j->dof] = 0;
+  for (const RobotJoint* j : joints) data_->qvel[j->dof] = 0;
+  base_command_[0] = base_command_[1] = base_command_[2] = 0;
+  mj_kinematics(model_, data_);
+  carry_grasped(data_);
+  mj_forward(model_, data_);
 }
 
 }  // namespace chore

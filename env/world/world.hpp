@@ -62,21 +62,38 @@ class World {
   void set_state_updates(bool enabled) { state_updates_ = enabled; }
 
   // Index into scene().objects() of the object held by the gripper, or -1.
+  // A drawer or door held by its handle counts as grasping its object.
   int grasped_object() const { return grasped_; }
+  // The body the gripper holds (an object's root or an articulated link), or -1.
+  int grasped_body() const;
+
+  // Kinematic move (symbolic primitives): the base, torso and arm jump to the
+  // given joint values, their controllers hold them there, velocities are zero,
+  // and a held object moves with the gripper. Contacts are recomputed.
+  void set_robot_configuration(const Pose2& base, const double* torso_and_arm);
+  // Moves the held free object, in `d` after mj_kinematics, to where the grasp
+  // holds it relative to the gripper (then kinematics must run again).
+  void carry_grasped(mjData_* d) const;
+  // Gripper command: open (the assistive grasp releases) or closed.
+  void command_gripper(bool open);
+  // Symbolic grasping: attaches free object `object` to the hand where it is
+  // now, as the assistive grasp would; false (nothing attached) over the mass limit.
+  bool hold(int object);
+  // Lets go of whatever the hand holds.
+  void release();
   Pose2 base_pose() const;
   double time() const;
 
  private:
   void update_grasp(StepReport& report);
-  void attach(int object);
-  void release();
+  void attach(int object, int weld);
 
   std::shared_ptr<const Scene> scene_;
   mjModel_* model_ = nullptr;
   mjData_* data_ = nullptr;
   std::optional<Robot> robot_;
   double base_command_[3] = {0, 0, 0};
-  int grasped_ = -1;
+  int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
 };

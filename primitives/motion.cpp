@@ -1,0 +1,340 @@
+#include "primitives/motion.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "env/world/object_geometry.hpp"
+#include "primitives/arm_planner.hpp"
+#include "primitives/base_planner.hpp"
+#include "primitives/trajectory.hpp"
+
+namespace chore {
+namespace {
+
+constexpr int kSubsteps = 4;                // physics steps per control step, as the env's
+constexpr double kControlDt = kSubsteps / 120.0;
+constexpr double kLineSpacing = 0.01;       // m between IK waypoints of a line
+constexpr double kArmSpeed = 1.5, kArmAcceleration = 4.0;     // rad/s, rad/s^2 (torso: m/s, a tenth)
+constexpr double kBaseSpeed = 0.8, kBaseAcceleration = 1.0;   // m/s, m/s^2 (heading: 2x, rad)
+constexpr double kArmTolerance = 0.03;      // rad: a motion has arrived
+constexpr double kBaseTolerance = 0.04;     // m (and 2x in rad)
+constexpr int kSettleSteps = 30;            // control steps allowed to arrive after a trajectory
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+Eigen::VectorXd to_vector(const ArmConfiguration& q) {
+  return Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
+}
+
+
+TrajectoryLimits arm_limits(double speed_scale) {
+  TrajectoryLimits limits;
+  limits.max_velocity = Eigen::VectorXd::Constant(1 + Robot::kArmJoints, kArmSpeed * speed_scale);
+  limits.max_acceleration = Eigen::VectorXd::Constant(1 + Robot::kArmJoints, kArmAcceleration);
+  limits.max_velocity[0] *= 0.1;  // the torso lifts in metres
+  limits.max_acceleration[0] *= 0.1;
+  return limits;
+}
+
+}  // namespace
+
+// Tucked: Robot::kTuckedArm. Untucked: the hand 0.6 m ahead at 0.8 m, pointing
+// forward. Carry: the hand up and close in front of the torso, pointing down, so
+// a held object stays inside a small footprint while the robot drives.
+const ArmConfiguration kTuckedConfiguration = {Robot::kHomeTorso, 0.12, -1.45, -1.06, 2.13, 1.23, -1.26, -1.00};
+const ArmConfiguration kUntuckedConfiguration = {0.15, 0.74, -0.61, -0.28, 2.06, -0.63, -1.29, -0.07};
+const ArmConfiguration kCarryConfiguration = {0.35, 0.85, 0.20, -0.08, 2.19, 1.69, -1.39, -0.07};
+
+Motion::Motion(World& world, const PrimitiveOptions& options, uint64_t seed, PrimitiveResult& result)
+    : world_(world), options_(options), seeds_(seed), result_(result), ik_(world) {}
+
+bool Motion::fail(PrimitiveStatus status, const std::string& reason) {
+  result_.status = status;
+  result_.reason = reason;
+  return false;
+}
+
+void Motion::step_physics(int env_steps) {
+  const Clock::time_point start = Clock::now();
+  for (int i = 0; i < env_steps && !result_.diverged; ++i) {
+    const World::StepReport report = world_.step(kSubsteps);
+    result_.physics_steps += kSubsteps;
+    result_.diverged |= report.diverged;
+    result_.grasp_refused |= report.grasp_refused;
+  }
+  result_.execution_seconds += since(start);
+}
+
+Eigen::Vector3d Motion::hand_position() const {
+  const double* p = world_.data()->site_xpos + 3 * world_.robot()->gripper_site;
+  return {p[0], p[1], p[2]};
+}
+
+Eigen::Vector3d Motion::hand_axis(int column) const {
+  const double* r = world_.data()->site_xmat + 9 * world_.robot()->gripper_site;
+  return {r[column], r[3 + column], r[6 + column]};
+}
+
+bool Motion::hand_in_contact() const {
+  const mjModel* m = world_.model();
+  const mjData* d = world_.data();
+  const Robot& r = *world_.robot();
+  const int held = world_.grasped_body();
+  const int robot = m->body_rootid[r.gripper_body];
+  const auto hand = [&](int body) {
+    return body == r.gripper_body || body == r.left_finger_body || body == r.right_finger_body ||
+           (held >= 0 && (body == held || m->body_rootid[body] == m->body_rootid[held]));
+  };
+  for (int c = 0; c < d->ncon; ++c) {
+    const int b1 = m->geom_bodyid[d->contact[c].geom1], b2 = m->geom_bodyid[d->contact[c].geom2];
+    const bool robot1 = m->body_rootid[b1] == robot || hand(b1), robot2 = m->body_rootid[b2] == robot || hand(b2);
+    if ((hand(b1) && !robot2) || (hand(b2) && !robot1)) return true;
+  }
+  return false;
+}
+
+bool Motion::track_arm(const std::vector<ArmConfiguration>& path, double speed_scale) {
+  const Clock::time_point start = Clock::now();
+  std::vector<Eigen::VectorXd> points;
+  for (const ArmConfiguration& q : path) points.push_back(to_vector(q));
+  ArmCollisionChecker checker(world_);
+  const Trajectory trajectory = make_trajectory(
+      points, arm_limits(speed_scale), kControlDt, 0.05,
+      [&checker](const Eigen::VectorXd& q) { return !checker.collides(q.data()); });
+  result_.planning_seconds += since(start);
+  const auto joints = world_.robot()->torso_and_arm();
+  for (const Eigen::VectorXd& q : trajectory.samples) {
+    for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], q[static_cast<Eigen::Index>(k)]);
+    step_physics(1);
+    if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
+  }
+  const ArmConfiguration& goal = path.back();
+  for (int i = 0; i < kSettleSteps; ++i) {
+    const ArmConfiguration now = arm_configuration(world_);
+    double error = 0;
+    for (size_t k = 0; k < goal.size(); ++k) error = std::max(error, std::abs(now[k] - goal[k]));
+    if (error < kArmTolerance) return true;
+    step_physics(1);
+  }
+  return fail(PrimitiveStatus::motion_planning_failure, "the arm did not reach its goal (blocked)");
+}
+
+bool Motion::arm_to(const ArmConfiguration& goal) {
+  if (!physical()) {
+    // Symbolic: the end state, when it is collision-free (no path search, as
+    // OmniGibson's symbolic primitives teleport).
+    const Clock::time_point t = Clock::now();
+    const bool blocked = arm_in_collision(world_, goal);
+    result_.planning_seconds += since(t);
+    if (blocked) return fail(PrimitiveStatus::motion_planning_failure, "the arm's goal configuration is in collision");
+    const Clock::time_point e = Clock::now();
+    world_.set_robot_configuration(world_.base_pose(), goal.data());
+    result_.execution_seconds += since(e);
+    return true;
+  }
+  // Touching something (after a grasp or a stroke): back off along the approach first.
+  if (arm_in_collision(world_, arm_configuration(world_))) line(-hand_axis(0) * 0.05, false, 0.2, 0.0);
+  const Clock::time_point start = Clock::now();
+  const ArmPath path = plan_arm_path(world_, goal, next_seed(), options_.arm_iterations);
+  result_.planning_seconds += since(start);
+  if (!path.success) return fail(PrimitiveStatus::motion_planning_failure, path.reason);
+  return track_arm(path.waypoints, 1.0);
+}
+
+bool Motion::base_to(const Pose2& goal, const Footprint& footprint) {
+  const Clock::time_point start = Clock::now();
+  const BasePath path = plan_base_path(world_, footprint, goal, next_seed(), options_.base_iterations);
+  result_.planning_seconds += since(start);
+  if (!path.success) return fail(PrimitiveStatus::motion_planning_failure, path.reason);
+  if (!physical()) {
+    const Clock::time_point t = Clock::now();
+    world_.set_robot_configuration(goal, arm_configuration(world_).data());
+    result_.execution_seconds += since(t);
+    return true;
+  }
+  // Headings unwrapped along the path, so the trajectory turns the short way.
+  std::vector<Eigen::VectorXd> points;
+  double yaw = world_.base_pose().yaw;
+  for (const Pose2& p : path.waypoints) {
+    yaw += std::remainder(p.yaw - yaw, 2 * M_PI);
+    points.push_back(Eigen::Vector3d(p.x, p.y, yaw));
+  }
+  points.front() = Eigen::Vector3d(world_.base_pose().x, world_.base_pose().y, world_.base_pose().yaw);
+  TrajectoryLimits limits;
+  limits.max_velocity = Eigen::Vector3d(kBaseSpeed, kBaseSpeed, 2 * kBaseSpeed);
+  limits.max_acceleration = Eigen::Vector3d(kBaseAcceleration, kBaseAcceleration, 2 * kBaseAcceleration);
+  const Clock::time_point t = Clock::now();
+  const Trajectory trajectory = make_trajectory(
+      points, limits, kControlDt, OccupancyMap::kResolution,
+      [&footprint](const Eigen::VectorXd& p) { return footprint.free({p[0], p[1], p[2]}); });
+  result_.planning_seconds += since(t);
+  // Velocity commands towards the next sample, from where the base is now:
+  // feed-forward and feedback in one.
+  auto drive_towards = [&](const Eigen::Vector3d& target) {
+    const Pose2 now = world_.base_pose();
+    const double vx = (target[0] - now.x) / kControlDt, vy = (target[1] - now.y) / kControlDt;
+    const double turn = std::remainder(target[2] - now.yaw, 2 * M_PI) / kControlDt;
+    const double c = std::cos(now.yaw), s = std::sin(now.yaw);
+    world_.command_base_velocity(c * vx + s * vy, -s * vx + c * vy, turn);
+    step_physics(1);
+  };
+  for (size_t k = 1; k < trajectory.samples.size() && !result_.diverged; ++k) {
+    drive_towards(trajectory.samples[k]);
+  }
+  const Eigen::Vector3d end = trajectory.samples.back();
+  for (int i = 0; i < kSettleSteps && !result_.diverged; ++i) {
+    const Pose2 now = world_.base_pose();
+    if (std::hypot(end[0] - now.x, end[1] - now.y) < kBaseTolerance &&
+        std::abs(std::remainder(end[2] - now.yaw, 2 * M_PI)) < 2 * kBaseTolerance) {
+      break;
+    }
+    // Gentler gains while settling: a tenth of the distance per step.
+    const Eigen::Vector3d p(now.x, now.y, now.yaw);
+    Eigen::Vector3d towards = p + 0.3 * (end - p);
+    towards[2] = now.yaw + 0.3 * std::remainder(end[2] - now.yaw, 2 * M_PI);
+    drive_towards(towards);
+  }
+  world_.command_base_velocity(0, 0, 0);
+  step_physics(2);  // come to rest
+  if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
+  const Pose2 now = world_.base_pose();
+  if (std::hypot(end[0] - now.x, end[1] - now.y) > 3 * kBaseTolerance) {
+    return fail(PrimitiveStatus::motion_planning_failure, "the base did not reach its goal (blocked)");
+  }
+  return true;
+}
+
+bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed, double min_fraction) {
+  touched_ = false;
+  const Clock::time_point start = Clock::now();
+  const int n = std::max(1, static_cast<int>(std::ceil(delta.norm() / kLineSpacing)));
+  const Eigen::Vector3d from = hand_position();
+  // The approach axis is held; the roll about it may drift (the IK steps from
+  // the last solution, so it barely does), which keeps long lines feasible.
+  IkTarget target{from, hand_axis(0), std::nullopt};
+  IkOptions options;
+  options.start = arm_configuration(world_);
+  options.iterations = 100;
+  std::vector<ArmConfiguration> path = {*options.start};
+  bool cut_short = false;
+  for (int i = 1; i <= n; ++i) {
+    target.position = from + delta * (static_cast<double>(i) / n);
+    const IkResult r = ik_.solve(target, options);
+    if (!r.success) {
+      // As far as the arm reaches; with until_contact, contact decides below.
+      cut_short = true;
+      if (until_contact || i > min_fraction * n) break;
+      result_.planning_seconds += since(start);
+      return fail(PrimitiveStatus::motion_planning_failure,
+                  "the hand cannot follow a line beyond " + std::to_string(100 * (i - 1) / n) + "% of its " +
+                  std::to_string(delta.norm()) + " m (" + r.reason + ")");
+    }
+    path.push_back(r.joints);
+    options.start = r.joints;
+  }
+  result_.planning_seconds += since(start);
+  if (!physical()) {
+    // Waypoint by waypoint, the state rules running for the time the motion takes.
+    const Clock::time_point t = Clock::now();
+    const double dt = kLineSpacing / speed;
+    for (size_t i = 1; i < path.size(); ++i) {
+      world_.set_robot_configuration(world_.base_pose(), path[i].data());
+      world_.states().after_physics_step(world_, dt);
+      if (until_contact && hand_in_contact()) {
+        touched_ = true;
+        break;
+      }
+    }
+    result_.execution_seconds += since(t);
+    return touched_ || !cut_short || !until_contact ||
+           fail(PrimitiveStatus::motion_planning_failure, "the hand cannot reach down to the contact");
+  }
+  // Each waypoint is kLineSpacing apart: reached in kLineSpacing / speed seconds.
+  const double waypoint_time = kLineSpacing / speed;
+  const auto joints = world_.robot()->torso_and_arm();
+  const int per_waypoint = std::max(1, static_cast<int>(std::round(waypoint_time / kControlDt)));
+  for (size_t i = 1; i < path.size() && !touched_; ++i) {
+    // Several waypoints per control step when fast, several steps per waypoint when slow.
+    for (int s = 0; s < per_waypoint; ++s) {
+      for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], path[i][k]);
+      step_physics(1);
+      if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
+      if (until_contact && hand_in_contact()) {
+        touched_ = true;
+        break;
+      }
+    }
+  }
+  if (touched_) {
+    // Stop pressing: hold where the arm is.
+    const ArmConfiguration now = arm_configuration(world_);
+    for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], now[k]);
+  } else {
+    step_physics(3);  // let the controllers catch up with the last waypoint
+  }
+  return touched_ || !cut_short || !until_contact ||
+         fail(PrimitiveStatus::motion_planning_failure, "the hand cannot reach down to the contact");
+}
+
+bool Motion::base_line(const Eigen::Vector3d& delta, double speed) {
+  const Pose2 from = world_.base_pose();
+  const Pose2 to{from.x + delta.x(), from.y + delta.y(), from.yaw};
+  {
+    const Clock::time_point t = Clock::now();
+    const Footprint footprint(world_);
+    const int n = std::max(1, static_cast<int>(std::ceil(delta.norm() / OccupancyMap::kResolution)));
+    bool clear = true;
+    for (int i = 1; i <= n && clear; ++i) {
+      const double f = static_cast<double>(i) / n;
+      clear = footprint.body_map().free(from.x + f * delta.x(), from.y + f * delta.y());
+    }
+    result_.planning_seconds += since(t);
+    if (!clear) return fail(PrimitiveStatus::motion_planning_failure, "no room to back the base out");
+  }
+  if (!physical()) {
+    const Clock::time_point t = Clock::now();
+    world_.set_robot_configuration(to, arm_configuration(world_).data());
+    result_.execution_seconds += since(t);
+    return true;
+  }
+  const int steps = std::max(1, static_cast<int>(std::ceil(delta.norm() / speed / kControlDt)));
+  for (int i = 1; i <= steps && !result_.diverged; ++i) {
+    const double f = static_cast<double>(i) / steps;
+    const Pose2 now = world_.base_pose();
+    const double vx = (from.x + f * delta.x() - now.x) / kControlDt, vy = (from.y + f * delta.y() - now.y) / kControlDt;
+    const double c = std::cos(now.yaw), s = std::sin(now.yaw);
+    world_.command_base_velocity(c * vx + s * vy, -s * vx + c * vy, std::remainder(from.yaw - now.yaw, 2 * M_PI) / kControlDt);
+    step_physics(1);
+  }
+  world_.command_base_velocity(0, 0, 0);
+  step_physics(2);
+  if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
+  return true;
+}
+
+void Motion::gripper(bool open) {
+  world_.command_gripper(open);
+  if (physical()) {
+    step_physics(8);
+  } else if (open) {
+    world_.release();  // symbolic grasps are made by the primitive (World::hold)
+  }
+}
+
+void Motion::wait(double seconds) {
+  if (physical()) {
+    step_physics(static_cast<int>(std::ceil(seconds / kControlDt)));
+    return;
+  }
+  world_.states().after_physics_step(world_, seconds);
+}
+
+bool Motion::tuck() {
+  return arm_to(world_.grasped_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration);
+}
+
+}  // namespace chore

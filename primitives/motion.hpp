@@ -1,0 +1,76 @@
+// The motions primitives are composed of, executed in one mode: planned,
+// smoothed and tracked by the robot's controllers in physics, or (symbolic)
+// checked and applied kinematically. Internal to primitives/.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <random>
+
+#include "primitives/base_planner.hpp"
+#include "primitives/ik.hpp"
+#include "primitives/primitive.hpp"
+
+namespace chore {
+
+class Motion {
+ public:
+  Motion(World& world, const PrimitiveOptions& options, uint64_t seed, PrimitiveResult& result);
+
+  World& world() { return world_; }
+  bool physical() const { return options_.mode == ExecutionMode::physical; }
+  // A fresh seed for a planner or sampler, from the primitive's seed.
+  uint64_t next_seed() { return seeds_(); }
+
+  // Each motion returns false after setting result's status and reason.
+  bool fail(PrimitiveStatus status, const std::string& reason);
+
+  // Collision-free arm path to `goal` (torso and arm), planned and executed.
+  bool arm_to(const ArmConfiguration& goal);
+  // Collision-free base path to `goal` for `footprint`, planned and executed.
+  bool base_to(const Pose2& goal, const Footprint& footprint);
+  // The hand's centre along a straight line by `delta` (world frame), keeping
+  // its orientation, at `speed` m/s, as far as IK can follow; less than
+  // `min_fraction` of it is a motion-planning failure. With `until_contact` it
+  // stops at the first contact of the hand (or what it holds) with anything
+  // else; touched() says whether it did. In symbolic mode the state rules (soaking, cleaning) run
+  // at every waypoint for the time the motion would take.
+  bool line(const Eigen::Vector3d& delta, bool until_contact, double speed = 0.2,
+            double min_fraction = 1.0);
+  bool touched() const { return touched_; }
+  // The base along a straight line by `delta` (world frame, heading kept), the
+  // arm held: the hand, and what it holds, follow (pulling a drawer open).
+  bool base_line(const Eigen::Vector3d& delta, double speed = 0.15);
+  // Opens or closes the gripper and waits for the fingers; the assistive
+  // grasp attaches or releases as they do.
+  void gripper(bool open);
+  // Holds still for `seconds` (physics runs; symbolic: the state rules run once over that time).
+  void wait(double seconds);
+  // Tucked arm when the hand is empty; the carry pose while it holds something.
+  bool tuck();
+
+  // The hand's centre and axes now.
+  Eigen::Vector3d hand_position() const;
+  Eigen::Vector3d hand_axis(int column) const;  // 0: approach, 1: closing
+  IkSolver& ik() { return ik_; }
+
+ private:
+  void step_physics(int env_steps);  // with divergence bookkeeping
+  bool hand_in_contact() const;
+  bool track_arm(const std::vector<ArmConfiguration>& path, double max_speed);
+
+  World& world_;
+  PrimitiveOptions options_;
+  std::mt19937_64 seeds_;
+  PrimitiveResult& result_;
+  IkSolver ik_;
+  bool touched_ = false;
+};
+
+// Arm configurations the primitives move through: tucked (home), untucked
+// (hand out in front, ready to reach) and carrying (hand up and in, holding).
+extern const ArmConfiguration kTuckedConfiguration;
+extern const ArmConfiguration kUntuckedConfiguration;
+extern const ArmConfiguration kCarryConfiguration;
+
+}  // namespace chore

@@ -1,0 +1,522 @@
+#include "primitives/primitive.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "env/world/error.hpp"
+#include "env/world/object_geometry.hpp"
+#include "env/world/predicates.hpp"
+#include "primitives/arm_planner.hpp"
+#include "primitives/base_planner.hpp"
+#include "primitives/motion.hpp"
+
+namespace chore {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+const Eigen::Vector3d kDown(0, 0, -1), kUp(0, 0, 1);
+constexpr double kFingerReach = 0.04;   // m from the hand's centre to the fingertips
+constexpr double kClearance = 0.10;     // m above a target before descending
+constexpr double kLift = 0.15;          // m raised after grasping or releasing
+constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
+
+const char* const kTypeNames[] = {"navigate", "pick", "place", "push", "dip", "wipe"};
+const char* const kModeNames[] = {"physical", "symbolic"};
+const char* const kStatusNames[] = {"success", "motion_planning_failure", "grasp_failure",
+                                    "place_failure", "precondition_failure"};
+
+// The articulated joint a push opens, and the geometry it moves.
+struct Articulation {
+  int joint = -1, link = -1;
+  Eigen::Vector3d axis;    // world direction in which the link opens
+  Eigen::Vector3d handle;  // centre of the link's geom furthest along axis
+  double low = 0, high = 0, value = 0;
+};
+
+std::optional<Articulation> articulation(const World& w, int object) {
+  const SceneObject& o = w.scene().objects()[object];
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  for (int joint : o.joints) {
+    if (m->jnt_type[joint] != mjJNT_SLIDE) continue;  // hinged doors: not yet (docs/primitives.md)
+    Articulation a;
+    a.joint = joint;
+    a.link = m->jnt_bodyid[joint];
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->xmat + 9 * a.link);
+    a.axis = r * Eigen::Vector3d(m->jnt_axis[3 * joint], m->jnt_axis[3 * joint + 1], m->jnt_axis[3 * joint + 2]);
+    a.low = m->jnt_range[2 * joint];
+    a.high = m->jnt_range[2 * joint + 1];
+    a.value = d->qpos[m->jnt_qposadr[joint]];
+    double furthest = -1e9;
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (m->geom_bodyid[g] != a.link) continue;
+      const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+      const Aabb box = geom_aabb(w, g);
+      const double reach = std::max(a.axis.dot(box.lo), a.axis.dot(box.hi));
+      if (reach > furthest + 1e-6) {
+        furthest = reach;
+        a.handle = c;
+      }
+    }
+    return a;
+  }
+  return std::nullopt;
+}
+
+double open_fraction(const Articulation& a) { return (a.value - a.low) / (a.high - a.low); }
+
+// Where a primitive acts on an object: the hand's target and approach.
+struct Approach {
+  Eigen::Vector3d point;      // on the object: top centre, handle, dirt, ...
+  Eigen::Vector3d direction;  // the hand's approach axis there
+  std::optional<Eigen::Vector3d> closing;
+};
+
+// The top of what a place or dip aims at: an open drawer's exposed part, else the object's box.
+Eigen::Vector3d top_centre(const World& w, int object) {
+  if (const auto a = articulation(w, object); a && open_fraction(*a) > 0.3) {
+    Aabb link;
+    for (int g = 0; g < w.model()->ngeom; ++g) {
+      if (w.model()->geom_bodyid[g] == a->link) link.grow(geom_aabb(w, g));
+    }
+    // The part outside the cabinet: from the drawer's front back by how far it is open.
+    const double front = std::max(a->axis.dot(link.lo), a->axis.dot(link.hi));
+    const double open = a->value - a->low;
+    Eigen::Vector3d p = link.center() + a->axis * (front - open / 2 - a->axis.dot(link.center()));
+    p.z() = link.hi.z();
+    return p;
+  }
+  const Aabb box = object_aabb(w, object);
+  return {box.center().x(), box.center().y(), box.hi.z()};
+}
+
+// The densest patch of dirt (most particles within 0.25 m), or the top centre when clean.
+Eigen::Vector3d dirt_centre(const World& w, int object) {
+  std::vector<Eigen::Vector3d> particles;
+  const ObjectStates& states = w.states();
+  if (states.tracked(object)) {
+    const int body = w.scene().objects()[object].body;
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
+    const Eigen::Vector3d origin(w.data()->xpos[3 * body], w.data()->xpos[3 * body + 1], w.data()->xpos[3 * body + 2]);
+    for (const auto& [name, local] : states.state(object).dirt) {
+      for (const Eigen::Vector3d& p : local) particles.push_back(origin + r * p);
+    }
+  }
+  if (particles.empty()) return top_centre(w, object);
+  size_t best = 0, best_count = 0;
+  for (size_t i = 0; i < particles.size(); ++i) {
+    size_t count = 0;
+    for (const Eigen::Vector3d& q : particles) count += (q - particles[i]).head<2>().norm() < 0.25;
+    if (count > best_count) best = i, best_count = count;
+  }
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const Eigen::Vector3d& q : particles) {
+    if ((q - particles[best]).head<2>().norm() < 0.25) centre += q, ++n;
+  }
+  return centre / n;
+}
+
+Approach approach_for(const World& w, PrimitiveType type, int object) {
+  if (type == PrimitiveType::push) {
+    if (const auto a = articulation(w, object)) return {a->handle, -a->axis, kUp};
+  }
+  if (type == PrimitiveType::wipe) return {dirt_centre(w, object), kDown, std::nullopt};
+  return {top_centre(w, object), kDown, std::nullopt};
+}
+
+// How far a held object hangs below the hand's centre (0 with an empty hand).
+double load_below_hand(const World& w) {
+  const int held = w.grasped_object();
+  if (held < 0 || w.grasped_body() != w.scene().objects()[held].body) return 0;
+  const double hand = w.data()->site_xpos[3 * w.robot()->gripper_site + 2];
+  return std::max(0.0, hand - object_aabb(w, held).lo.z());
+}
+
+// The hand's pre-pose: kClearance before the approach point, fingertips (or load) first.
+IkTarget pre_pose(const World& w, const Approach& a) {
+  const double standoff = kClearance + (a.direction.z() < -0.5 ? std::max(kFingerReach, load_below_hand(w)) : kFingerReach);
+  return {a.point - a.direction * standoff, a.direction, a.closing};
+}
+
+bool holding_free_object(const World& w) {
+  const int held = w.grasped_object();
+  return held >= 0 && w.grasped_body() == w.scene().objects()[held].body;
+}
+
+// A collision-free IK solution for the pre-pose of `a` with the base at
+// `base` (from the untucked arm), from which the hand can also reach the
+// approach point itself when the primitive descends to it.
+std::optional<ArmConfiguration> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w,
+                                      const Approach& a, const Pose2& base, bool descends) {
+  IkOptions options;
+  options.base = base;
+  options.start = kUntuckedConfiguration;
+  options.iterations = 100;
+  const IkTarget pre = pre_pose(w, a);
+  const IkResult r = ik.solve(pre, options);
+  if (!r.success || checker.collides(r.joints.data(), &base)) return std::nullopt;
+  if (descends) {
+    options.start = r.joints;
+    IkTarget contact = pre;
+    contact.position = a.point + a.direction * (kContactDepth - kFingerReach);
+    if (!ik.solve(contact, options).success) return std::nullopt;
+  }
+  return r.joints;
+}
+
+bool descends(PrimitiveType type) { return type != PrimitiveType::place && type != PrimitiveType::navigate; }
+
+class Executor {
+ public:
+  Executor(World& w, PrimitiveType type, int object, uint64_t seed, const PrimitiveOptions& options)
+      : w_(w), type_(type), object_(object), options_(options), motion_(w, options, seed, result_) {
+    result_.mode = options.mode;
+  }
+
+  PrimitiveResult run() {
+    bool ok = false;
+    switch (type_) {
+      case PrimitiveType::navigate: ok = navigate(); break;
+      case PrimitiveType::pick: ok = pick(); break;
+      case PrimitiveType::place: ok = place(); break;
+      case PrimitiveType::push: ok = push(); break;
+      case PrimitiveType::dip: ok = dip(); break;
+      case PrimitiveType::wipe: ok = wipe(); break;
+    }
+    // A failed manipulation still ends tucked where it can, so the robot can drive on.
+    if (!ok && !result_.diverged && type_ != PrimitiveType::navigate) {
+      const PrimitiveResult failed = result_;
+      motion_.tuck();
+      const double planning = result_.planning_seconds, execution = result_.execution_seconds;
+      const int64_t steps = result_.physics_steps;
+      result_ = failed;
+      result_.planning_seconds = planning;
+      result_.execution_seconds = execution;
+      result_.physics_steps = steps;
+    }
+    return result_;
+  }
+
+ private:
+  const std::string& name() const { return w_.scene().objects()[object_].name; }
+  bool at(const ArmConfiguration& q) const {
+    const ArmConfiguration now = arm_configuration(w_);
+    for (size_t k = 0; k < q.size(); ++k) {
+      if (std::abs(now[k] - q[k]) > 0.05) return false;
+    }
+    return true;
+  }
+  bool fail(PrimitiveStatus s, const std::string& why) { return motion_.fail(s, why); }
+
+  // The hand's pre-pose for this primitive, solved from where the base stands.
+  bool reach_pre_pose(ArmConfiguration& q) {
+    const Clock::time_point t = Clock::now();
+    ArmCollisionChecker checker(w_);
+    const auto solution = reach(motion_.ik(), checker, w_, approach_for(w_, type_, object_), w_.base_pose(),
+                                descends(type_));
+    result_.planning_seconds += since(t);
+    if (!solution) return fail(PrimitiveStatus::motion_planning_failure, "'" + name() + "' is out of reach from here");
+    q = *solution;
+    return true;
+  }
+
+  // Untuck, then a collision-free path to the pre-pose.
+  bool go_to_pre_pose() {
+    ArmConfiguration q;
+    if (!reach_pre_pose(q)) return false;
+    // Untucked first, as the seed's primitives start, unless furniture is in the way.
+    if (w_.grasped_object() < 0 && !arm_in_collision(w_, kUntuckedConfiguration) &&
+        !motion_.arm_to(kUntuckedConfiguration)) {
+      return false;
+    }
+    return motion_.arm_to(q);
+  }
+
+  bool navigate() {
+    if (!at(w_.grasped_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !motion_.tuck()) {
+      return false;
+    }
+    const Clock::time_point t = Clock::now();
+    const Scene& scene = w_.scene();
+    const PrimitiveType purpose = type_for_navigation();
+    const Approach a = approach_for(w_, purpose, object_);
+    const Room* room = scene.room_at(a.point.x(), a.point.y());
+    ArmCollisionChecker checker(w_);
+    if (reach(motion_.ik(), checker, w_, a, w_.base_pose(), descends(purpose)) &&
+        scene.room_at(w_.base_pose().x, w_.base_pose().y) == room) {
+      result_.planning_seconds += since(t);
+      return fail(PrimitiveStatus::precondition_failure, "already within reach of '" + name() + "'");
+    }
+    // OmniGibson's base-pose sampler: candidate poses near the object, kept
+    // when in the same room, collision-free and within reach (IK).
+    const Footprint footprint(w_);
+    std::mt19937_64 rng(motion_.next_seed());
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Aabb box = object_aabb(w_, object_);
+    const auto articulated = purpose == PrimitiveType::push ? articulation(w_, object_) : std::nullopt;
+    int path_failures = 0;
+    for (int i = 0; i < options_.base_pose_samples; ++i) {
+      Pose2 p;
+      if (articulated) {
+        // In front of the drawer, facing it, far enough to pull it open.
+        const Eigen::Vector3d side = kUp.cross(articulated->axis);
+        const Eigen::Vector3d at = a.point + articulated->axis * (0.55 + 0.3 * unit(rng)) +
+                                   side * (0.3 * unit(rng) - 0.15);
+        p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.4 * unit(rng) - 0.2};
+      } else {
+        // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
+        const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
+        // Leave the object's box along (c, s) from the target point, then stand off.
+        double exit = 1e9;
+        for (const auto& [d, from, lo, hi] : {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()},
+                                              std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
+          if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
+        }
+        const double distance = exit + 0.3 + 0.4 * unit(rng);
+        p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
+        p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
+      }
+      if (!footprint.free(p) || scene.room_at(p.x, p.y) != room) continue;
+      if (!reach(motion_.ik(), checker, w_, a, p, descends(purpose))) continue;
+      // Reachable with the arm; now the base must get there.
+      result_.planning_seconds += since(t);
+      if (motion_.base_to(p, footprint)) return true;
+      if (result_.diverged || ++path_failures == 3) return false;
+      result_.status = PrimitiveStatus::success;  // try the next candidate
+    }
+    result_.planning_seconds += since(t);
+    return fail(PrimitiveStatus::motion_planning_failure,
+                "no collision-free base pose within reach of '" + name() + "' in its room");
+  }
+
+  // Navigation aims at what will be done there: an articulated object's handle
+  // (to push it) while the hand is empty, dirt to wipe while holding a tool.
+  PrimitiveType type_for_navigation() const {
+    const ObjectAbilities* ab = w_.states().abilities(object_);
+    if (w_.grasped_object() < 0 && articulation(w_, object_) && !is_open(w_, object_)) return PrimitiveType::push;
+    if (w_.grasped_object() >= 0 && ab && ab->covered) return PrimitiveType::wipe;
+    return w_.grasped_object() >= 0 ? PrimitiveType::place : PrimitiveType::pick;
+  }
+
+  bool pick() {
+    if (w_.grasped_object() >= 0) return fail(PrimitiveStatus::precondition_failure, "the hand is not empty");
+    if (!primitive_applies(w_, PrimitiveType::pick, object_)) {
+      return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' cannot be picked up");
+    }
+    if (!go_to_pre_pose()) return false;
+    const double depth = kClearance + (object_aabb(w_, object_).hi.z() - object_aabb(w_, object_).lo.z()) + 0.02;
+    if (!motion_.line(kDown * depth, true, 0.15)) return false;
+    motion_.gripper(false);
+    if (!motion_.physical()) {
+      // The assistive grasp's condition, kinematically: the object between the fingers.
+      const Aabb box = object_aabb(w_, object_);
+      const Eigen::Vector3d hand = motion_.hand_position();
+      const Eigen::Vector3d nearest = hand.cwiseMax(box.lo).cwiseMin(box.hi);
+      if ((nearest - hand).norm() < 0.05 && !w_.hold(object_)) result_.grasp_refused = true;
+    }
+    if (w_.grasped_object() != object_) {
+      motion_.gripper(true);
+      motion_.line(kUp * kLift, false, 0.2, 0.0);
+      return fail(PrimitiveStatus::grasp_failure, result_.grasp_refused
+                                                      ? "'" + name() + "' is too heavy to hold"
+                                                      : "the hand closed on nothing");
+    }
+    motion_.line(kUp * kLift, false, 0.2, 0.0);  // lift as far as the arm goes; tuck plans the rest
+    if (!motion_.tuck()) return false;
+    if (w_.grasped_object() != object_) return fail(PrimitiveStatus::grasp_failure, "'" + name() + "' slipped out");
+    return true;
+  }
+
+  bool place() {
+    if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
+    const int held = w_.grasped_object();
+    if (held == object_) return fail(PrimitiveStatus::precondition_failure, "cannot place an object on itself");
+    if (!go_to_pre_pose()) return false;
+    motion_.gripper(true);
+    if (!motion_.physical()) settle_kinematically(held);
+    motion_.wait(0.3);
+    motion_.line(kUp * kLift, false, 0.2, 0.0);
+    if (!motion_.tuck()) return false;
+    if (!inside(w_, held, object_) && !ontop(w_, held, object_)) {
+      return fail(PrimitiveStatus::place_failure,
+                  "'" + w_.scene().objects()[held].name + "' is neither on nor in '" + name() + "'");
+    }
+    return true;
+  }
+
+  // Symbolic release: the object drops straight down onto what is below it.
+  void settle_kinematically(int held) {
+    const Clock::time_point t = Clock::now();
+    const SceneObject& o = w_.scene().objects()[held];
+    const Aabb box = object_aabb(w_, held);
+    std::vector<int> others;
+    const mjModel* m = w_.model();
+    for (int g = 0; g < m->ngeom; ++g) {
+      const int root = m->body_rootid[m->geom_bodyid[g]];
+      if ((m->geom_contype[g] || m->geom_conaffinity[g]) && root != o.body &&
+          root != m->body_rootid[w_.robot()->gripper_body]) {
+        others.push_back(g);
+      }
+    }
+    double drop = 1e9;
+    const Eigen::Vector3d c = box.center();
+    const double hx = (box.hi.x() - box.lo.x()) / 2 * 0.8, hy = (box.hi.y() - box.lo.y()) / 2 * 0.8;
+    for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {hx, hy}, {-hx, hy}, {hx, -hy}, {-hx, -hy}}) {
+      const double hit = ray_to_geoms(w_, others, Eigen::Vector3d(c.x() + dx, c.y() + dy, box.lo.z()), kDown, 5.0);
+      if (hit >= 0) drop = std::min(drop, hit);
+    }
+    if (drop < 1e9) {
+      const int adr = m->jnt_qposadr[m->body_jntadr[o.body]];
+      w_.data()->qpos[adr + 2] -= std::max(0.0, drop - 0.001);
+      mj_forward(m, w_.data());
+    }
+    result_.execution_seconds += since(t);
+  }
+
+  bool push() {
+    if (w_.grasped_object() >= 0) return fail(PrimitiveStatus::precondition_failure, "the hand is not empty");
+    const auto a = articulation(w_, object_);
+    if (!a) return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' has no drawer to open");
+    if (open_fraction(*a) > 0.9) return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' is already open");
+    if (!go_to_pre_pose()) return false;
+    // To the handle until the fingertips touch the front, close on the handle, pull.
+    if (!motion_.line(-a->axis * (kClearance + 0.06), true, 0.15)) return false;
+    if (!motion_.touched()) return fail(PrimitiveStatus::motion_planning_failure, "the hand did not reach the handle");
+    motion_.gripper(false);
+    if (motion_.physical() && w_.grasped_body() != a->link) {
+      motion_.gripper(true);
+      return fail(PrimitiveStatus::grasp_failure, "the hand missed the handle of '" + name() + "'");
+    }
+    // Pull three quarters of the way open by backing the base away, the arm held.
+    const double pull = (a->high - a->low) * 0.75 - (a->value - a->low);
+    const Eigen::Vector3d before = motion_.hand_position();
+    if (!motion_.base_line(a->axis * pull)) return false;
+    if (!motion_.physical()) {
+      // The drawer follows the hand kinematically.
+      const double moved = a->axis.dot(motion_.hand_position() - before);
+      w_.data()->qpos[w_.model()->jnt_qposadr[a->joint]] = std::clamp(a->value + moved, a->low, a->high);
+      mj_forward(w_.model(), w_.data());
+    }
+    motion_.gripper(true);
+    motion_.line(a->axis * 0.08, false, 0.2, 0.0);  // back off as far as the arm goes
+    if (!motion_.tuck()) return false;
+    if (!is_open(w_, object_)) return fail(PrimitiveStatus::grasp_failure, "the handle slipped: '" + name() + "' stays closed");
+    return true;
+  }
+
+  bool dip() {
+    if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
+    if (!primitive_applies(w_, PrimitiveType::dip, object_)) {
+      return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' holds no liquid");
+    }
+    if (!go_to_pre_pose()) return false;
+    const Aabb box = object_aabb(w_, object_);
+    const double held_bottom = motion_.hand_position().z() - load_below_hand(w_);
+    const Eigen::Vector3d down = kDown * (held_bottom - (box.lo.z() + 0.03));
+    if (!motion_.line(down, true, 0.15)) return false;
+    motion_.wait(0.6);  // long enough to soak through (ObjectStates: 0.5 s)
+    motion_.line(-down, false, 0.2, 0.0);
+    if (!motion_.tuck()) return false;
+    const int held = w_.grasped_object();
+    if (held < 0) return fail(PrimitiveStatus::grasp_failure, "dropped what it held");
+    const ObjectAbilities* ab = w_.states().abilities(held);
+    if (ab && ab->soakable) {
+      const auto& soaked = w_.states().state(held).soaked;
+      const std::string& liquid = w_.states().state(object_).liquid;
+      if (!soaked.count(liquid) || soaked.at(liquid) < ObjectStates::kSoakedLevel) {
+        return fail(PrimitiveStatus::motion_planning_failure, "the held object did not reach the liquid");
+      }
+    }
+    return true;
+  }
+
+  bool wipe() {
+    if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
+    if (!primitive_applies(w_, PrimitiveType::wipe, object_)) {
+      return fail(PrimitiveStatus::precondition_failure, "nothing can lie on '" + name() + "' to wipe");
+    }
+    if (!go_to_pre_pose()) return false;
+    if (!motion_.line(kDown * (kClearance + 0.06), true, 0.15)) return false;
+    if (!motion_.touched()) return fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
+    // Strokes left-right, row by row towards the robot, pressing 1 cm in.
+    const double yaw = w_.base_pose().yaw;
+    const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
+    constexpr double kHalfWidth = 0.22, kRow = 0.08;
+    constexpr int kRows = 4;
+    // Strokes go as far as the arm reaches (at least half of each).
+    if (!motion_.line(forward * kRow * 1.5 - left * kHalfWidth + kDown * 0.01, false, 0.25, 0.5)) return false;
+    for (int row = 0; row < kRows; ++row) {
+      const double side = row % 2 == 0 ? 1.0 : -1.0;
+      if (!motion_.line(left * (2 * kHalfWidth * side), false, 0.3, 0.5)) return false;
+      if (row + 1 < kRows && !motion_.line(-forward * kRow, false, 0.25, 0.5)) return false;
+    }
+    motion_.line(kUp * kLift, false, 0.2, 0.0);
+    if (!motion_.tuck()) return false;
+    if (w_.grasped_object() < 0) return fail(PrimitiveStatus::grasp_failure, "dropped the tool");
+    return true;
+  }
+
+  World& w_;
+  PrimitiveType type_;
+  int object_;
+  PrimitiveOptions options_;
+  PrimitiveResult result_;
+  Motion motion_;
+};
+
+template <size_t N>
+int parse_name(const char* const (&names)[N], const std::string& name, const char* what) {
+  for (size_t i = 0; i < N; ++i) {
+    if (name == names[i]) return static_cast<int>(i);
+  }
+  std::string known;
+  for (size_t i = 0; i < N; ++i) known += (i ? ", " : "") + std::string(names[i]);
+  throw Error(std::string("unknown ") + what + " '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+const char* to_string(PrimitiveType type) { return kTypeNames[static_cast<int>(type)]; }
+const char* to_string(ExecutionMode mode) { return kModeNames[static_cast<int>(mode)]; }
+const char* to_string(PrimitiveStatus status) { return kStatusNames[static_cast<int>(status)]; }
+
+PrimitiveType parse_primitive_type(const std::string& name) {
+  return static_cast<PrimitiveType>(parse_name(kTypeNames, name, "primitive"));
+}
+
+ExecutionMode parse_execution_mode(const std::string& name) {
+  return static_cast<ExecutionMode>(parse_name(kModeNames, name, "execution mode"));
+}
+
+bool primitive_applies(const World& w, PrimitiveType type, int object) {
+  const SceneObject& o = w.scene().objects().at(object);
+  const ObjectAbilities* ab = w.states().abilities(object);
+  switch (type) {
+    case PrimitiveType::pick:
+      return !o.fixed && o.grasp_weld >= 0 && w.model()->body_subtreemass[o.body] <= World::kGraspMassLimit;
+    case PrimitiveType::push: return articulation(w, object).has_value();
+    case PrimitiveType::dip: return ab && ab->holds_liquid;
+    case PrimitiveType::wipe: return ab && ab->covered;
+    case PrimitiveType::navigate:
+    case PrimitiveType::place: return true;
+  }
+  return false;
+}
+
+PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, uint64_t seed,
+                                  const PrimitiveOptions& options) {
+  if (!world.robot()) throw Error("primitives: the scene has no robot");
+  if (object < 0 || object >= static_cast<int>(world.scene().objects().size())) {
+    throw Error("primitives: no object " + std::to_string(object) + " in scene '" + world.scene().name() + "'");
+  }
+  return Executor(world, type, object, seed, options).run();
+}
+
+}  // namespace chore

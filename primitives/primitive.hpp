@@ -1,0 +1,78 @@
+// The action primitives of BEHAVIOR-1K (appendix F.4): navigate, pick, place,
+// push, dip and wipe, each applied to one object of the scene.
+//
+//   PrimitiveResult r = execute_primitive(world, PrimitiveType::pick, cup, seed);
+//   if (!r.ok()) std::cout << to_string(r.status) << ": " << r.reason;
+//
+// They are composed of collision-free base paths (OMPL, occupancy map),
+// collision-free arm paths (OMPL RRTConnect, MuJoCo collision checks),
+// Cartesian straight lines of the hand (IK), gripper open/close and tuck
+// motions. In physical mode the smoothed, time-parameterised trajectories are
+// tracked by the robot's controllers in physics (contacts, slips and drops
+// happen); in symbolic mode the same plans are checked for feasibility and
+// their end state is applied kinematically. Ordinary failures are results,
+// never exceptions.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "env/world/world.hpp"
+
+namespace chore {
+
+enum class PrimitiveType { navigate, pick, place, push, dip, wipe };
+inline constexpr int kPrimitiveTypes = 6;
+
+enum class ExecutionMode { physical, symbolic };
+
+// The seed's failure taxonomy (appendix G), less object detection (we know
+// where objects are).
+enum class PrimitiveStatus {
+  success,
+  motion_planning_failure,  // no base pose, IK solution or collision-free path; object out of reach
+  grasp_failure,            // the hand closed but holds nothing, or dropped it
+  place_failure,            // the released object did not end up on or in the target
+  precondition_failure,     // e.g. pick while holding, place with an empty hand
+};
+inline constexpr int kPrimitiveStatuses = 5;
+
+const char* to_string(PrimitiveType type);
+const char* to_string(ExecutionMode mode);
+const char* to_string(PrimitiveStatus status);
+// chore::Error naming the accepted values.
+PrimitiveType parse_primitive_type(const std::string& name);
+ExecutionMode parse_execution_mode(const std::string& name);
+
+struct PrimitiveResult {
+  PrimitiveStatus status = PrimitiveStatus::success;
+  std::string reason;  // why it failed, briefly
+  ExecutionMode mode = ExecutionMode::physical;
+  double planning_seconds = 0;   // wall time in samplers, IK and planners
+  double execution_seconds = 0;  // wall time in physics (or kinematic updates)
+  int64_t physics_steps = 0;     // steps of 1/120 s simulated
+  bool diverged = false;         // physics became unstable during execution
+  bool grasp_refused = false;    // the hand closed on an object over the mass limit
+  bool ok() const { return status == PrimitiveStatus::success; }
+};
+
+struct PrimitiveOptions {
+  ExecutionMode mode = ExecutionMode::physical;
+  int base_pose_samples = 100;       // candidate base poses navigate tries
+  unsigned base_iterations = 50000;  // RRTConnect iterations for a base path (grid checks are cheap)
+  unsigned arm_iterations = 1500;    // ... and for an arm path
+};
+
+// Executes one primitive on scene object `object` (an index into
+// world.scene().objects()). The seed fixes every random choice (base pose
+// samples, planner samples): the same world state and seed give the same result.
+PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, uint64_t seed,
+                                  const PrimitiveOptions& options = {});
+
+// Whether a primitive can apply to an object at all (its kind, not the state):
+// pick for free objects the gripper can lift, push for articulated ones, dip
+// for liquid containers, wipe for objects dirt can lie on; navigate and place
+// for any (which objects are placement targets is the activity's to say).
+bool primitive_applies(const World& world, PrimitiveType type, int object);
+
+}  // namespace chore
