@@ -79,12 +79,24 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     fields.push_back({"is_grasping", Space::box({1}, DType::float32, 0, 1)});
   }
   observation_space_ = Space::dict(std::move(fields));
-  action_space_ = Space::box({config_.robot ? kLowLevelActionSize : 0}, DType::float32, -1, 1);
   obs_ = ArrayDict(observation_space_, 1);
   world_ = std::make_unique<World>(scene_);
   world_->set_lighting(config_.lighting);
   world_->set_state_updates(config_.object_states);
   if (activity_) activity_->configure(*world_);
+  if (config_.action_space == "low_level") {
+    action_space_ = Space::box({config_.robot ? kLowLevelActionSize : 0}, DType::float32, -1, 1);
+  } else if (config_.action_space == "primitives") {
+    if (!activity_ || !config_.robot) {
+      throw Error("env config: the primitive action space needs an activity and the robot");
+    }
+    if (config_.policy_failure_repeats < 1) throw Error("env config: policy_failure_repeats must be >= 1");
+    primitive_actions_ = chore::primitive_actions(*activity_, *world_);
+    action_space_ = Space::discrete(static_cast<int64_t>(primitive_actions_.size()));
+  } else {
+    throw Error("env config: unknown action space '" + config_.action_space +
+                "' (known: low_level, primitives)");
+  }
 }
 
 Env::~Env() = default;
@@ -105,6 +117,8 @@ Info Env::make_info(const Score* score) const {
   info.elapsed_steps = elapsed_;
   info.diverged = diverged_;
   info.is_grasping = world_->grasped_object() >= 0;
+  info.primitive_status = last_primitive_status_;
+  info.primitive_counts = primitive_counts_;
   if (score) {
     info.success = score->success;
     info.q = score->q;
@@ -125,6 +139,9 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   elapsed_ = 0;
   episode_over_ = false;
   diverged_ = false;
+  primitive_counts_ = {};
+  last_primitive_status_ = last_invalid_action_ = -1;
+  invalid_repeats_ = 0;
   if (!activity_) return make_info();
   activity_->instantiate(*world_, rng_);
   const Activity::Evaluation goal = activity_->evaluate(*world_);
@@ -135,15 +152,45 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
 Env::Outcome Env::advance(std::span<const float> action) {
   check_open();
   if (episode_over_) throw Error("env: step() after the episode ended; call reset() first");
-  if (action.size() != static_cast<size_t>(action_space_.shape[0])) {
+  const size_t expected = action_space_.element_count();
+  if (action.size() != expected) {
     throw Error("env: action has " + std::to_string(action.size()) + " values, expected " +
-                std::to_string(action_space_.shape[0]));
+                std::to_string(expected));
   }
   for (size_t i = 0; i < action.size(); ++i) {
     if (!std::isfinite(action[i])) {
       throw Error("env: action[" + std::to_string(i) + "] is " + std::to_string(action[i]));
     }
   }
+  World::StepReport report;
+  const int64_t physics_steps =
+      primitive_actions_.empty() ? act_low_level(action, report) : act_primitive(action, report);
+  ++elapsed_;
+  diverged_ = report.diverged;
+  Outcome out;
+  std::optional<Score> score;
+  if (activity_ && !report.diverged) {
+    // BEHAVIOR's potential reward: positive when a literal of the goal's first
+    // option becomes true, negative when one is undone; success terminates.
+    const Activity::Evaluation goal = activity_->evaluate(*world_);
+    score = goal.score;
+    out.reward = goal.potential - potential_;
+    potential_ = goal.potential;
+    out.terminated = score->success;
+  }
+  // The seed's policy failure: the same invalid action repeated ends the episode.
+  const bool policy_failure = invalid_repeats_ >= config_.policy_failure_repeats;
+  out.terminated = out.terminated || policy_failure;
+  out.truncated = !out.terminated && (report.diverged || elapsed_ >= config_.max_episode_steps);
+  out.info = make_info(score ? &*score : nullptr);
+  out.info.grasp_refused = report.grasp_refused;
+  out.info.policy_failure = policy_failure;
+  out.info.physics_steps = physics_steps;
+  episode_over_ = out.terminated || out.truncated;
+  return out;
+}
+
+int64_t Env::act_low_level(std::span<const float> action, World::StepReport& report) {
   if (const Robot* r = world_->robot()) {
     auto a = [&](int i) { return std::clamp(static_cast<double>(action[i]), -1.0, 1.0); };
     World& w = *world_;
@@ -161,25 +208,34 @@ Env::Outcome Env::advance(std::span<const float> action) {
     integrate(r->head_pan, a(12) * kJointSpeed);
     integrate(r->head_tilt, a(13) * kJointSpeed);
   }
-  const World::StepReport report = world_->step(kPhysicsSubsteps);
-  ++elapsed_;
-  diverged_ = report.diverged;
-  Outcome out;
-  std::optional<Score> score;
-  if (activity_ && !report.diverged) {
-    // BEHAVIOR's potential reward: positive when a literal of the goal's first
-    // option becomes true, negative when one is undone; success terminates.
-    const Activity::Evaluation goal = activity_->evaluate(*world_);
-    score = goal.score;
-    out.reward = goal.potential - potential_;
-    potential_ = goal.potential;
-    out.terminated = score->success;
+  report = world_->step(kPhysicsSubsteps);
+  return kPhysicsSubsteps;
+}
+
+int64_t Env::act_primitive(std::span<const float> action, World::StepReport& report) {
+  const float value = action[0];
+  if (value != std::floor(value) || value < 0 || value >= static_cast<float>(primitive_actions_.size())) {
+    throw Error("env: primitive action " + std::to_string(value) + " is not an integer in [0, " +
+                std::to_string(primitive_actions_.size()) + ")");
   }
-  out.truncated = !out.terminated && (report.diverged || elapsed_ >= config_.max_episode_steps);
-  out.info = make_info(score ? &*score : nullptr);
-  out.info.grasp_refused = report.grasp_refused;
-  episode_over_ = out.terminated || out.truncated;
-  return out;
+  const int index = static_cast<int>(value);
+  const PrimitiveAction& a = primitive_actions_[index];
+  PrimitiveOptions options;
+  options.mode = config_.primitive_mode;
+  last_primitive_ = execute_primitive(*world_, a.type, a.object, rng_(), options);
+  const PrimitiveResult& result = last_primitive_;
+  report.diverged = result.diverged;
+  report.grasp_refused = result.grasp_refused;
+  last_primitive_status_ = static_cast<int>(result.status);
+  ++primitive_counts_[last_primitive_status_];
+  if (result.status == PrimitiveStatus::precondition_failure) {
+    invalid_repeats_ = index == last_invalid_action_ ? invalid_repeats_ + 1 : 1;
+    last_invalid_action_ = index;
+  } else {
+    invalid_repeats_ = 0;
+    last_invalid_action_ = -1;
+  }
+  return result.physics_steps;
 }
 
 std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {

@@ -8,6 +8,7 @@
 // env and overwritten by the next reset/step (as EnvPool's are).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "env/primitive_actions.hpp"
 #include "env/spaces.hpp"
 #include "env/world/random.hpp"
 #include "env/world/renderer.hpp"
@@ -40,6 +42,14 @@ struct EnvConfig {
   // Reset places the robot at the scene's start pose plus a seeded offset up to
   // this far (m) in x and y and 10x this (rad) in heading.
   double start_jitter = 0.1;
+  // "low_level": the 14-d RL-VMC action below. "primitives": one action
+  // primitive per step, Discrete over the activity's (primitive, object) pairs
+  // (env/primitive_actions.hpp), executed in `primitive_mode`.
+  std::string action_space = "low_level";
+  ExecutionMode primitive_mode = ExecutionMode::physical;
+  // The seed's policy failure: this many identical actions in a row that fail
+  // their precondition end the episode (terminated, info.policy_failure).
+  int policy_failure_repeats = 3;
 };
 
 struct Info {
@@ -53,6 +63,11 @@ struct Info {
   double q = 0.0;       // success score Q: best fraction of satisfied goal literals
   int satisfied = 0;    // literals of the best option that hold ...
   int total = 0;        // ... out of its literals
+  // Primitive action space only.
+  int primitive_status = -1;  // PrimitiveStatus of this step's primitive (-1: none ran)
+  std::array<int, kPrimitiveStatuses> primitive_counts{};  // this episode's primitives by status
+  bool policy_failure = false;  // ended by repeated invalid actions
+  int64_t physics_steps = 0;    // physics steps this env step ran (a primitive runs many)
 };
 
 // The low-level (RL-VMC) action: 14 numbers in [-1, 1] (values outside are
@@ -83,6 +98,8 @@ class Env {
 
   const Space& observation_space() const { return observation_space_; }
   const Space& action_space() const { return action_space_; }
+  // The primitive action space's actions, in action order (empty for low_level).
+  const std::vector<PrimitiveAction>& primitive_actions() const { return primitive_actions_; }
   const EnvConfig& config() const { return config_; }
 
   struct ResetResult {
@@ -116,12 +133,19 @@ class Env {
   std::vector<CameraView> camera_views(ArrayDict& obs, int index);
   void write_state(ArrayDict& obs, int index) const;
 
+  // The last primitive's full result (reason, timings), primitive action space only.
+  const PrimitiveResult& last_primitive() const { return last_primitive_; }
+  // The activity (nullptr without one).
+  const Activity* activity() const { return activity_.get(); }
   World& world() { return *world_; }
   const World& world() const { return *world_; }
 
  private:
   void check_open() const;
   Info make_info(const Score* score = nullptr) const;
+  // Applies one action to the world; returns physics steps run.
+  int64_t act_low_level(std::span<const float> action, World::StepReport& report);
+  int64_t act_primitive(std::span<const float> action, World::StepReport& report);
   void observe();  // renders and writes into obs_ with this env's own renderer
 
   EnvConfig config_;
@@ -133,6 +157,10 @@ class Env {
   Space observation_space_, action_space_;
   ArrayDict obs_;
   Rng rng_;
+  std::vector<PrimitiveAction> primitive_actions_;
+  PrimitiveResult last_primitive_;
+  std::array<int, kPrimitiveStatuses> primitive_counts_{};
+  int last_primitive_status_ = -1, last_invalid_action_ = -1, invalid_repeats_ = 0;
   int64_t elapsed_ = 0;
   bool episode_over_ = true, closed_ = false, diverged_ = false;
 };

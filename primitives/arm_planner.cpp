@@ -14,7 +14,7 @@ ArmCollisionChecker::ArmCollisionChecker(const World& world)
     : world_(world), model_(world.model()), data_(mj_makeData(model_)),
       robot_(model_->body_rootid[world.robot()->gripper_body]) {
   mj_copyData(data_, model_, world.data());
-  const int held = world.grasped_object();
+  const int held = world.carried_object();
   if (held >= 0) held_ = world.scene().objects()[held].body;
 }
 

@@ -24,7 +24,7 @@ double wrap(double yaw) {
 
 }  // namespace
 
-OccupancyMap::OccupancyMap(const World& world, double inflation) {
+OccupancyMap::OccupancyMap(const World& world, double inflation, double above) {
   const mjModel* m = world.model();
   const Scene& scene = world.scene();
   Aabb bounds;
@@ -42,20 +42,44 @@ OccupancyMap::OccupancyMap(const World& world, double inflation) {
   height_ = static_cast<int>(std::ceil((bounds.hi.y() - y0_) / kResolution));
   occupied_.assign(static_cast<size_t>(width_) * height_, 0);
   const int robot = world.robot() ? m->body_rootid[world.robot()->gripper_body] : -1;
-  const int held = world.grasped_object() >= 0 ? world.scene().objects()[world.grasped_object()].body : -1;
-  const int grow = static_cast<int>(std::ceil(inflation / kResolution));
+  const int held = world.carried_object() >= 0 ? world.scene().objects()[world.carried_object()].body : -1;
+  // The geoms' cells first, then grown by a disk of `inflation` (a robot is
+  // round: a square would block diagonal approaches for no reason). Only cells
+  // on an obstacle's rim need stamping.
+  std::vector<unsigned char> raw(occupied_.size(), 0);
   for (int g = 0; g < m->ngeom; ++g) {
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
     const int root = m->body_rootid[m->geom_bodyid[g]];
     if (root == robot || root == held) continue;  // the robot and what it carries move along
     const Aabb box = geom_aabb(world, g);
-    if (box.hi.z() < kFloorClearance || box.lo.z() > kRobotHeight) continue;
-    const int i0 = std::max(0, static_cast<int>(std::floor((box.lo.x() - x0_) / kResolution)) - grow);
-    const int i1 = std::min(width_ - 1, static_cast<int>(std::floor((box.hi.x() - x0_) / kResolution)) + grow);
-    const int j0 = std::max(0, static_cast<int>(std::floor((box.lo.y() - y0_) / kResolution)) - grow);
-    const int j1 = std::min(height_ - 1, static_cast<int>(std::floor((box.hi.y() - y0_) / kResolution)) + grow);
+    if (box.hi.z() < std::max(kFloorClearance, above) || box.lo.z() > kRobotHeight) continue;
+    const int i0 = std::max(0, static_cast<int>(std::floor((box.lo.x() - x0_) / kResolution)));
+    const int i1 = std::min(width_ - 1, static_cast<int>(std::floor((box.hi.x() - x0_) / kResolution)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((box.lo.y() - y0_) / kResolution)));
+    const int j1 = std::min(height_ - 1, static_cast<int>(std::floor((box.hi.y() - y0_) / kResolution)));
     for (int j = j0; j <= j1; ++j) {
-      for (int i = i0; i <= i1; ++i) occupied_[static_cast<size_t>(j) * width_ + i] = 1;
+      for (int i = i0; i <= i1; ++i) raw[static_cast<size_t>(j) * width_ + i] = 1;
+    }
+  }
+  const int grow = static_cast<int>(std::ceil(inflation / kResolution));
+  std::vector<std::pair<int, int>> disk;
+  for (int dj = -grow; dj <= grow; ++dj) {
+    for (int di = -grow; di <= grow; ++di) {
+      if (std::hypot(di, dj) * kResolution <= inflation + kResolution / 2) disk.push_back({di, dj});
+    }
+  }
+  const auto at = [&](int i, int j) { return raw[static_cast<size_t>(j) * width_ + i]; };
+  for (int j = 0; j < height_; ++j) {
+    for (int i = 0; i < width_; ++i) {
+      if (!at(i, j)) continue;
+      occupied_[static_cast<size_t>(j) * width_ + i] = 1;
+      const bool rim = i == 0 || j == 0 || i == width_ - 1 || j == height_ - 1 || !at(i - 1, j) ||
+                       !at(i + 1, j) || !at(i, j - 1) || !at(i, j + 1);
+      if (!rim) continue;
+      for (const auto& [di, dj] : disk) {
+        const int x = i + di, y = j + dj;
+        if (x >= 0 && y >= 0 && x < width_ && y < height_) occupied_[static_cast<size_t>(y) * width_ + x] = 1;
+      }
     }
   }
 }
@@ -69,16 +93,37 @@ bool OccupancyMap::free(double x, double y) const {
 
 namespace {
 
-// Robot-frame horizontal box of a geom.
+// Robot-frame horizontal box of a geom: its box's corners, or its axis's ends
+// widened by its radius (a world-aligned box would grow as the robot turns).
 void grow_robot_frame(const World& world, int g, const Pose2& base, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
-  const Aabb box = geom_aabb(world, g);
+  const mjModel* m = world.model();
+  const mjData* d = world.data();
+  const Eigen::Vector3d centre(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->geom_xmat + 9 * g);
+  const double* size = m->geom_size + 3 * g;
+  std::vector<Eigen::Vector3d> points;
+  double pad = 0;
+  switch (m->geom_type[g]) {
+    case mjGEOM_BOX:
+      for (int k = 0; k < 8; ++k) {
+        points.push_back(centre + r * Eigen::Vector3d((k & 1 ? 1 : -1) * size[0], (k & 2 ? 1 : -1) * size[1],
+                                                      (k & 4 ? 1 : -1) * size[2]));
+      }
+      break;
+    case mjGEOM_CAPSULE:
+    case mjGEOM_CYLINDER:
+      points = {centre + r.col(2) * size[1], centre - r.col(2) * size[1]};
+      pad = size[0];
+      break;
+    default:
+      points = {centre};
+      pad = m->geom_rbound[g];
+  }
   const double c = std::cos(base.yaw), s = std::sin(base.yaw);
-  for (double x : {box.lo.x(), box.hi.x()}) {
-    for (double y : {box.lo.y(), box.hi.y()}) {
-      const Eigen::Vector2d p(c * (x - base.x) + s * (y - base.y), -s * (x - base.x) + c * (y - base.y));
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
+  for (const Eigen::Vector3d& w : points) {
+    const Eigen::Vector2d p(c * (w.x() - base.x) + s * (w.y() - base.y), -s * (w.x() - base.x) + c * (w.y() - base.y));
+    lo = lo.cwiseMin(p - Eigen::Vector2d::Constant(pad));
+    hi = hi.cwiseMax(p + Eigen::Vector2d::Constant(pad));
   }
 }
 
@@ -125,17 +170,21 @@ Footprint::Footprint(const World& world)
   // The hand and its load: the rest of the arm stays over the base in the
   // tucked and carry poses (and the body disk covers it).
   const int hand = r.gripper_body;
-  const int held = world.grasped_object() >= 0 ? world.scene().objects()[world.grasped_object()].body : -2;
+  const int held = world.carried_object() >= 0 ? world.scene().objects()[world.carried_object()].body : -2;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
+  double bottom = 1e9;
   for (int g = 0; g < m->ngeom; ++g) {
     const int b = m->geom_bodyid[g];
     if (!descends_from(m, b, hand) && m->body_rootid[b] != held) continue;
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
     grow_robot_frame(world, g, base, lo, hi);
+    bottom = std::min(bottom, geom_aabb(world, g).lo.z());
   }
   arm_centre_ = (lo + hi) / 2;
   const double arm_radius = (hi - lo).norm() / 2;
-  if (arm_centre_.norm() + arm_radius > body_radius_) arm_.emplace(world, arm_radius + kMargin);
+  if (arm_centre_.norm() + arm_radius > body_radius_) {
+    arm_.emplace(world, arm_radius + kMargin, bottom - kMargin);
+  }
 }
 
 bool Footprint::free(const Pose2& p) const {

@@ -18,10 +18,11 @@ namespace chore {
 class OccupancyMap {
  public:
   static constexpr double kResolution = 0.05;  // m per cell
-  // Cells covered by a collision geom of the scene between the floor and the
-  // robot's height, grown by `inflation` (the base radius plus a margin).
-  // Free objects count as obstacles where they are now; the robot and what it holds do not.
-  OccupancyMap(const World& world, double inflation);
+  // Cells covered by a collision geom of the scene reaching above `above`
+  // (the floor by default) and below the robot's height, grown by `inflation`
+  // (a radius plus a margin). Free objects count as obstacles where they are
+  // now; the robot and what it carries do not.
+  OccupancyMap(const World& world, double inflation, double above = 0.0);
 
   bool free(double x, double y) const;
   double min_x() const { return x0_; }
@@ -37,9 +38,10 @@ class OccupancyMap {
 
 // The robot as the base planner sees it, measured in its current
 // configuration: a disk around the base centre (base, torso, head) and, when
-// the arm or what it holds reaches beyond that disk, a second disk around
-// them, ahead of the base. Each is checked on the occupancy grid inflated by
-// its radius, so the load may pass beside furniture the base could not.
+// the hand or what it carries reaches beyond that disk, a second disk around
+// them. Each is checked on the occupancy grid inflated by its radius, the
+// hand's only against obstacles that reach up to its height: the hand may
+// pass over a pumpkin on the floor, or beside furniture the base could not.
 class Footprint {
  public:
   static constexpr double kMargin = 0.03;  // m added to both radii

@@ -334,7 +334,7 @@ void Motion::wait(double seconds) {
 }
 
 bool Motion::tuck() {
-  return arm_to(world_.grasped_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration);
+  return arm_to(world_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration);
 }
 
 }  // namespace chore

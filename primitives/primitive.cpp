@@ -78,8 +78,12 @@ struct Approach {
   std::optional<Eigen::Vector3d> closing;
 };
 
-// The top of what a place or dip aims at: an open drawer's exposed part, else the object's box.
+// Where a place or dip aims: over an open drawer's exposed part, else over
+// the object's box, at the spot farthest from the free objects already there
+// (the second pumpkin goes beside the first), on top.
 Eigen::Vector3d top_centre(const World& w, int object) {
+  Eigen::Vector3d centre, along, across;  // the region: centre +- along +- across
+  double top = 0;
   if (const auto a = articulation(w, object); a && open_fraction(*a) > 0.3) {
     Aabb link;
     for (int g = 0; g < w.model()->ngeom; ++g) {
@@ -88,12 +92,47 @@ Eigen::Vector3d top_centre(const World& w, int object) {
     // The part outside the cabinet: from the drawer's front back by how far it is open.
     const double front = std::max(a->axis.dot(link.lo), a->axis.dot(link.hi));
     const double open = a->value - a->low;
-    Eigen::Vector3d p = link.center() + a->axis * (front - open / 2 - a->axis.dot(link.center()));
-    p.z() = link.hi.z();
-    return p;
+    centre = link.center() + a->axis * (front - open / 2 - a->axis.dot(link.center()));
+    along = a->axis * (open / 2);
+    const Eigen::Vector3d side = kUp.cross(a->axis);
+    across = side * std::abs(side.dot(link.hi - link.lo)) / 2;
+    top = link.hi.z();
+  } else {
+    const Aabb box = object_aabb(w, object);
+    centre = box.center();
+    along = Eigen::Vector3d((box.hi.x() - box.lo.x()) / 2, 0, 0);
+    across = Eigen::Vector3d(0, (box.hi.y() - box.lo.y()) / 2, 0);
+    top = box.hi.z();
   }
-  const Aabb box = object_aabb(w, object);
-  return {box.center().x(), box.center().y(), box.hi.z()};
+  // Keep the carried object's half width inside the region.
+  double margin = 0.03;
+  if (const int held = w.carried_object(); held >= 0) {
+    const Aabb h = object_aabb(w, held);
+    margin += std::max(h.hi.x() - h.lo.x(), h.hi.y() - h.lo.y()) / 2;
+  }
+  const double fa = std::max(0.0, 1 - margin / std::max(along.norm(), 1e-9));
+  const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));
+  const auto& objects = w.scene().objects();
+  Eigen::Vector3d best = centre;
+  double best_clearance = -1;
+  for (int i = -2; i <= 2; ++i) {
+    for (int j = -2; j <= 2; ++j) {
+      const Eigen::Vector3d p = centre + along * (fa * i / 2.0) + across * (fc * j / 2.0);
+      double clearance = 1e9;
+      for (size_t o = 0; o < objects.size(); ++o) {
+        if (objects[o].fixed || static_cast<int>(o) == w.carried_object()) continue;
+        const Eigen::Vector3d c = object_aabb(w, static_cast<int>(o)).center();
+        if (c.z() < top - 0.4 || c.z() > top + 0.4) continue;
+        clearance = std::min(clearance, (c - p).head<2>().norm());
+      }
+      // Ties (nothing near): a spot at one side, centred along, so the next
+      // object fits beside this one.
+      clearance = std::min(clearance, 1.0) + 1e-3 * (std::abs(j) - std::abs(i));
+      if (clearance > best_clearance + 1e-9) best = p, best_clearance = clearance;
+    }
+  }
+  best.z() = top;
+  return best;
 }
 
 // The densest patch of dirt (most particles within 0.25 m), or the top centre when clean.
@@ -133,8 +172,8 @@ Approach approach_for(const World& w, PrimitiveType type, int object) {
 
 // How far a held object hangs below the hand's centre (0 with an empty hand).
 double load_below_hand(const World& w) {
-  const int held = w.grasped_object();
-  if (held < 0 || w.grasped_body() != w.scene().objects()[held].body) return 0;
+  const int held = w.carried_object();
+  if (held < 0) return 0;
   const double hand = w.data()->site_xpos[3 * w.robot()->gripper_site + 2];
   return std::max(0.0, hand - object_aabb(w, held).lo.z());
 }
@@ -145,10 +184,7 @@ IkTarget pre_pose(const World& w, const Approach& a) {
   return {a.point - a.direction * standoff, a.direction, a.closing};
 }
 
-bool holding_free_object(const World& w) {
-  const int held = w.grasped_object();
-  return held >= 0 && w.grasped_body() == w.scene().objects()[held].body;
-}
+bool holding_free_object(const World& w) { return w.carried_object() >= 0; }
 
 // A collision-free IK solution for the pre-pose of `a` with the base at
 // `base` (from the untucked arm), from which the hand can also reach the
@@ -172,6 +208,23 @@ std::optional<ArmConfiguration> reach(IkSolver& ik, ArmCollisionChecker& checker
 }
 
 bool descends(PrimitiveType type) { return type != PrimitiveType::place && type != PrimitiveType::navigate; }
+
+// Navigation aims at what will be done there: an articulated object's handle
+// (to push it) while the hand is empty, dirt to wipe while holding a tool.
+PrimitiveType purpose_of_navigation(const World& w, int object) {
+  const ObjectAbilities* ab = w.states().abilities(object);
+  if (w.grasped_object() < 0 && articulation(w, object) && !is_open(w, object)) return PrimitiveType::push;
+  if (w.grasped_object() >= 0 && ab && ab->covered) return PrimitiveType::wipe;
+  return w.grasped_object() >= 0 ? PrimitiveType::place : PrimitiveType::pick;
+}
+
+bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object) {
+  const PrimitiveType purpose = purpose_of_navigation(w, object);
+  const Approach a = approach_for(w, purpose, object);
+  const Scene& scene = w.scene();
+  return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a.point.x(), a.point.y()) &&
+         reach(ik, checker, w, a, w.base_pose(), descends(purpose));
+}
 
 class Executor {
  public:
@@ -240,17 +293,16 @@ class Executor {
   }
 
   bool navigate() {
-    if (!at(w_.grasped_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !motion_.tuck()) {
+    if (!at(w_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !motion_.tuck()) {
       return false;
     }
     const Clock::time_point t = Clock::now();
     const Scene& scene = w_.scene();
-    const PrimitiveType purpose = type_for_navigation();
+    const PrimitiveType purpose = purpose_of_navigation(w_, object_);
     const Approach a = approach_for(w_, purpose, object_);
     const Room* room = scene.room_at(a.point.x(), a.point.y());
     ArmCollisionChecker checker(w_);
-    if (reach(motion_.ik(), checker, w_, a, w_.base_pose(), descends(purpose)) &&
-        scene.room_at(w_.base_pose().x, w_.base_pose().y) == room) {
+    if (reachable_here(w_, motion_.ik(), checker, object_)) {
       result_.planning_seconds += since(t);
       return fail(PrimitiveStatus::precondition_failure, "already within reach of '" + name() + "'");
     }
@@ -261,15 +313,15 @@ class Executor {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const Aabb box = object_aabb(w_, object_);
     const auto articulated = purpose == PrimitiveType::push ? articulation(w_, object_) : std::nullopt;
-    int path_failures = 0;
+    int path_failures = 0, blocked = 0, elsewhere = 0, unreachable = 0;
     for (int i = 0; i < options_.base_pose_samples; ++i) {
       Pose2 p;
       if (articulated) {
         // In front of the drawer, facing it, far enough to pull it open.
         const Eigen::Vector3d side = kUp.cross(articulated->axis);
-        const Eigen::Vector3d at = a.point + articulated->axis * (0.55 + 0.3 * unit(rng)) +
-                                   side * (0.3 * unit(rng) - 0.15);
-        p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.4 * unit(rng) - 0.2};
+        const Eigen::Vector3d at = a.point + articulated->axis * (0.5 + 0.4 * unit(rng)) +
+                                   side * (0.7 * unit(rng) - 0.35);
+        p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.8 * unit(rng) - 0.4};
       } else {
         // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
         const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
@@ -279,30 +331,32 @@ class Executor {
                                               std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
           if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
         }
-        const double distance = exit + 0.3 + 0.4 * unit(rng);
+        // Close: the body's radius is about 0.3 m, the arm reaches the floor 0.6 m out.
+        const double distance = exit + 0.3 + 0.25 * unit(rng);
         p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
         p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
       }
-      if (!footprint.free(p) || scene.room_at(p.x, p.y) != room) continue;
-      if (!reach(motion_.ik(), checker, w_, a, p, descends(purpose))) continue;
-      // Reachable with the arm; now the base must get there.
-      result_.planning_seconds += since(t);
-      if (motion_.base_to(p, footprint)) return true;
-      if (result_.diverged || ++path_failures == 3) return false;
-      result_.status = PrimitiveStatus::success;  // try the next candidate
+      if (!footprint.free(p)) {
+        ++blocked;
+      } else if (scene.room_at(p.x, p.y) != room) {
+        ++elsewhere;
+      } else if (!reach(motion_.ik(), checker, w_, a, p, descends(purpose))) {
+        ++unreachable;
+      } else {
+        // Reachable with the arm; now the base must get there.
+        result_.planning_seconds += since(t);
+        if (motion_.base_to(p, footprint)) return true;
+        if (result_.diverged || ++path_failures == 3) return false;
+        result_.status = PrimitiveStatus::success;  // try the next candidate
+      }
     }
     result_.planning_seconds += since(t);
     return fail(PrimitiveStatus::motion_planning_failure,
-                "no collision-free base pose within reach of '" + name() + "' in its room");
-  }
-
-  // Navigation aims at what will be done there: an articulated object's handle
-  // (to push it) while the hand is empty, dirt to wipe while holding a tool.
-  PrimitiveType type_for_navigation() const {
-    const ObjectAbilities* ab = w_.states().abilities(object_);
-    if (w_.grasped_object() < 0 && articulation(w_, object_) && !is_open(w_, object_)) return PrimitiveType::push;
-    if (w_.grasped_object() >= 0 && ab && ab->covered) return PrimitiveType::wipe;
-    return w_.grasped_object() >= 0 ? PrimitiveType::place : PrimitiveType::pick;
+                "no collision-free base pose within reach of '" + name() + "' in its room (of " +
+                    std::to_string(options_.base_pose_samples) + " samples: " + std::to_string(blocked) +
+                    " in collision, " + std::to_string(elsewhere) + " in another room, " +
+                    std::to_string(unreachable) + " out of the arm's reach, " + std::to_string(path_failures) +
+                    " without a path)");
   }
 
   bool pick() {
@@ -338,7 +392,12 @@ class Executor {
     if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
     const int held = w_.grasped_object();
     if (held == object_) return fail(PrimitiveStatus::precondition_failure, "cannot place an object on itself");
+    const Eigen::Vector3d spot = approach_for(w_, type_, object_).point;
     if (!go_to_pre_pose()) return false;
+    // The load hangs off-centre from the hand: bring its centre over the spot.
+    Eigen::Vector3d shift = spot - object_aabb(w_, held).center();
+    shift.z() = 0;
+    motion_.line(shift, false, 0.2, 0.0);
     motion_.gripper(true);
     if (!motion_.physical()) settle_kinematically(held);
     motion_.wait(0.3);
@@ -394,8 +453,8 @@ class Executor {
       motion_.gripper(true);
       return fail(PrimitiveStatus::grasp_failure, "the hand missed the handle of '" + name() + "'");
     }
-    // Pull three quarters of the way open by backing the base away, the arm held.
-    const double pull = (a->high - a->low) * 0.75 - (a->value - a->low);
+    // Pull nine tenths of the way open by backing the base away, the arm held.
+    const double pull = (a->high - a->low) * 0.9 - (a->value - a->low);
     const Eigen::Vector3d before = motion_.hand_position();
     if (!motion_.base_line(a->axis * pull)) return false;
     if (!motion_.physical()) {
@@ -493,6 +552,12 @@ PrimitiveType parse_primitive_type(const std::string& name) {
 
 ExecutionMode parse_execution_mode(const std::string& name) {
   return static_cast<ExecutionMode>(parse_name(kModeNames, name, "execution mode"));
+}
+
+bool within_reach(const World& world, int object) {
+  IkSolver ik(world);
+  ArmCollisionChecker checker(world);
+  return reachable_here(world, ik, checker, object);
 }
 
 bool primitive_applies(const World& w, PrimitiveType type, int object) {

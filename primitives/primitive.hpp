@@ -69,6 +69,12 @@ struct PrimitiveOptions {
 PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, uint64_t seed,
                                   const PrimitiveOptions& options = {});
 
+// Whether navigate(object) has nothing to do: from where the base stands the
+// hand already reaches what the next primitive on it would need (the handle
+// of a closed drawer, a place to put what it holds, dirt to wipe, the object
+// to pick), in the object's room. navigate fails its precondition then.
+bool within_reach(const World& world, int object);
+
 // Whether a primitive can apply to an object at all (its kind, not the state):
 // pick for free objects the gripper can lift, push for articulated ones, dip
 // for liquid containers, wipe for objects dirt can lie on; navigate and place

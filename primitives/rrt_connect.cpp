@@ -1,5 +1,6 @@
 #include "primitives/rrt_connect.hpp"
 
+#include <ompl/base/goals/GoalState.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
 #include <ompl/geometric/PathSimplifier.h>
@@ -45,6 +46,17 @@ void seed_samplers(ob::StateSpace* space, std::shared_ptr<std::mt19937> seeds) {
 
 bool solve_and_simplify(og::SimpleSetup& setup, uint64_t seed, unsigned iterations) {
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  // The straight line first: often free, and then no search is needed.
+  setup.setup();
+  const ob::SpaceInformationPtr& info = setup.getSpaceInformation();
+  const ob::State* from = setup.getProblemDefinition()->getStartState(0);
+  const ob::State* to = setup.getProblemDefinition()->getGoal()->as<ob::GoalState>()->getState();
+  if (info->checkMotion(from, to)) {
+    og::PathGeometric direct(info, from, to);
+    setup.getProblemDefinition()->clearSolutionPaths();
+    setup.getProblemDefinition()->addSolutionPath(std::make_shared<og::PathGeometric>(direct));
+    return true;
+  }
   std::seed_seq sequence{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32)};
   auto seeds = std::make_shared<std::mt19937>(sequence);
   seed_samplers(setup.getStateSpace().get(), seeds);

@@ -1,4 +1,4 @@
-// The `chore` command line: bench, activity check/sample; train, eval and
+// The `chore` command line: bench, activity check/sample, expert; train, eval and
 // video join as their layers land. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
@@ -9,6 +9,7 @@
 #include "env/world/error.hpp"
 #include "training/activity_commands.hpp"
 #include "training/bench.hpp"
+#include "training/expert_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
@@ -40,6 +41,19 @@ int main(int argc, char** argv) {
   auto* out_option = sample_cmd->add_option("--out", sample_out, "PNG to write");
   sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")
       ->excludes(out_option);
+
+  chore::ExpertOptions expert;
+  std::string expert_mode = "physical";
+  bool expert_json = false;
+  CLI::App* expert_cmd = app.add_subcommand("expert", "Run the scripted expert on an activity (primitive actions)");
+  expert_cmd->add_option("--activity", expert.activity, "Activity name or .bddl path")->required();
+  expert_cmd->add_option("--episodes", expert.episodes, "Episodes")->check(CLI::PositiveNumber)->capture_default_str();
+  expert_cmd->add_option("--seed", expert.seed, "Seed of the first episode (episode i: seed + i)")->capture_default_str();
+  expert_cmd->add_option("--mode", expert_mode, "Primitive execution: physical or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  expert_cmd->add_option("--max-steps", expert.max_steps, "Primitive steps per episode")->check(CLI::PositiveNumber)->capture_default_str();
+  expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
@@ -81,6 +95,11 @@ int main(int argc, char** argv) {
     } else if (*sample_cmd) {
       if (sample_out.empty()) throw chore::Error("activity sample: give --out FILE.png or --seeds A-B");
       chore::sample_activity(sample_name, sample_scene, sample_seed, sample_out, std::cout);
+    }
+    if (*expert_cmd) {
+      expert.mode = chore::parse_execution_mode(expert_mode);
+      const nlohmann::json results = chore::run_expert(expert, std::cerr);
+      std::cout << (expert_json ? results.dump(2) + "\n" : chore::format_expert(results));
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);

@@ -152,6 +152,10 @@ void World::update_grasp(StepReport& report) {
   }
 }
 
+int World::carried_object() const {
+  return grasped_ >= 0 && grasped_body() == scene_->objects()[grasped_].body ? grasped_ : -1;
+}
+
 int World::grasped_body() const {
   return grasped_weld_ < 0 ? -1 : model_->eq_obj2id[grasped_weld_];
 }

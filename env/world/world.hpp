@@ -66,6 +66,8 @@ class World {
   int grasped_object() const { return grasped_; }
   // The body the gripper holds (an object's root or an articulated link), or -1.
   int grasped_body() const;
+  // The free object the hand carries (held by its root, not a drawer's handle), or -1.
+  int carried_object() const;
 
   // Kinematic move (symbolic primitives): the base, torso and arm jump to the
   // given joint values, their controllers hold them there, velocities are zero,

@@ -1,0 +1,36 @@
+// The primitive action space of an activity (BEHAVIOR-1K appendix F.4):
+// Discrete over (primitive, object) pairs, derived from the activity's BDDL
+// and the bound objects' kinds, never written per task:
+//   navigate  every object the activity declares (its relevant locations)
+//   pick      those the gripper can lift (free, under the mass limit)
+//   place     the supports and containers: second arguments of ontop/inside
+//             in :init or :goal (a quantified variable: every object of its type)
+//   push      articulated ones (drawers)
+//   dip       liquid containers and sources
+//   wipe      those dirt can lie on
+// Objects in :objects order, primitives in that order for each.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "env/world/world.hpp"
+#include "primitives/primitive.hpp"
+#include "tasks/activity.hpp"
+
+namespace chore {
+
+struct PrimitiveAction {
+  PrimitiveType type;
+  int object;            // index into the scene's objects
+  std::string instance;  // the BDDL instance, e.g. pumpkin.n.02_1
+};
+
+// "pick(pumpkin.n.02_1)"
+std::string to_string(const PrimitiveAction& action);
+
+// `world` must be configured by the activity (its extended states say which
+// objects hold liquid or can be dirty).
+std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const World& world);
+
+}  // namespace chore

@@ -1,0 +1,80 @@
+#include "policies/expert.hpp"
+
+#include "env/world/error.hpp"
+#include "env/world/predicates.hpp"
+
+namespace chore {
+
+ScriptedExpert::ScriptedExpert(const Env& env) : actions_(&env.primitive_actions()) {
+  if (env.config().action_space != "primitives") {
+    throw Error("scripted expert: the env must use the primitive action space");
+  }
+}
+
+std::optional<int> ScriptedExpert::action(PrimitiveType type, int object) const {
+  for (size_t i = 0; i < actions_->size(); ++i) {
+    if ((*actions_)[i].type == type && (*actions_)[i].object == object) return static_cast<int>(i);
+  }
+  return std::nullopt;
+}
+
+// Navigate first unless the hand already reaches the object from here.
+std::optional<int> ScriptedExpert::go_and(const Env& env, PrimitiveType type, int object) const {
+  if (!within_reach(env.world(), object)) return action(PrimitiveType::navigate, object);
+  return action(type, object);
+}
+
+std::optional<int> ScriptedExpert::put(const Env& env, int item, int target) const {
+  const World& w = env.world();
+  const int held = w.grasped_object();
+  if (held == item) return go_and(env, PrimitiveType::place, target);
+  if (held >= 0) return go_and(env, PrimitiveType::place, target);  // put down what is in the way
+  if (primitive_applies(w, PrimitiveType::push, target) && !is_open(w, target)) {
+    return go_and(env, PrimitiveType::push, target);
+  }
+  return go_and(env, PrimitiveType::pick, item);
+}
+
+std::optional<int> ScriptedExpert::clean(const Env& env, int surface, bool needs_soaked_tool) const {
+  const World& w = env.world();
+  const ObjectStates& states = w.states();
+  // The tool: a cleaning tool of the action space, the one in hand first.
+  int tool = -1, container = -1;
+  for (const PrimitiveAction& a : *actions_) {
+    const ObjectAbilities* ab = states.abilities(a.object);
+    if (a.type == PrimitiveType::pick && ab && ab->cleaning_tool && (tool < 0 || a.object == w.grasped_object())) {
+      tool = a.object;
+    }
+    if (a.type == PrimitiveType::dip && container < 0) container = a.object;
+  }
+  if (tool < 0) return std::nullopt;
+  if (w.grasped_object() != tool) return go_and(env, PrimitiveType::pick, tool);
+  if (needs_soaked_tool && container >= 0) {
+    const auto& soaked = states.state(tool).soaked;
+    const std::string& liquid = states.state(container).liquid;
+    if (!soaked.count(liquid) || soaked.at(liquid) < ObjectStates::kSoakedLevel) {
+      return go_and(env, PrimitiveType::dip, container);
+    }
+  }
+  return go_and(env, PrimitiveType::wipe, surface);
+}
+
+std::optional<int> ScriptedExpert::act(const Env& env) const {
+  const Activity* activity = env.activity();
+  const World& w = env.world();
+  const GroundGoal& goal = activity->goal();
+  if (goal.options.empty()) return std::nullopt;
+  for (LiteralId id : goal.options.front()) {
+    const GroundLiteral& l = goal.literals[id];
+    if (activity->holds(w, l)) continue;
+    const auto object = [&](size_t k) { return activity->object(l.args.at(k)); };
+    if ((l.predicate == "inside" || l.predicate == "ontop") && !l.negated) return put(env, object(0), object(1));
+    if ((l.predicate == "stained" || l.predicate == "dusty") && l.negated) {
+      return clean(env, object(0), l.predicate == "stained");
+    }
+    return std::nullopt;  // a literal this script does not know
+  }
+  return std::nullopt;
+}
+
+}  // namespace chore
