@@ -11,14 +11,15 @@
 namespace chore {
 
 ArmCollisionChecker::ArmCollisionChecker(const World& world)
-    : world_(world), model_(world.model()), data_(mj_makeData(model_)),
+    : world_(world), model_(world.model()), data_(world.scratch(1)),
       robot_(model_->body_rootid[world.robot()->gripper_body]) {
-  mj_copyData(data_, model_, world.data());
+  // Kinematics and collision read positions only.
+  mju_copy(data_->qpos, world.data()->qpos, model_->nq);
+  mju_copy(data_->mocap_pos, world.data()->mocap_pos, 3 * model_->nmocap);
+  mju_copy(data_->mocap_quat, world.data()->mocap_quat, 4 * model_->nmocap);
   const int held = world.carried_object();
   if (held >= 0) held_ = world.scene().objects()[held].body;
 }
-
-ArmCollisionChecker::~ArmCollisionChecker() { mj_deleteData(data_); }
 
 bool ArmCollisionChecker::collides(const double* q, const Pose2* base) {
   mjData* d = data_;

@@ -20,12 +20,11 @@ struct ArmPath {
   std::string reason;
 };
 
-// Collision queries on a scratch copy of the world's state (taken at
-// construction), so the world itself is never touched.
+// Collision queries on the world's scratch data (slot 1) holding the world's
+// positions at construction, so the world itself is never touched.
 class ArmCollisionChecker {
  public:
   explicit ArmCollisionChecker(const World& world);
-  ~ArmCollisionChecker();
   ArmCollisionChecker(const ArmCollisionChecker&) = delete;
   ArmCollisionChecker& operator=(const ArmCollisionChecker&) = delete;
   // Whether the robot (or what it holds) with torso and arm at q touches

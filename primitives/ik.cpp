@@ -20,11 +20,8 @@ ArmConfiguration arm_configuration(const World& world) {
 
 IkSolver::IkSolver(const World& world) : world_(world), data_(nullptr) {
   if (!world.robot()) throw Error("ik: the scene has no robot");
-  data_ = mj_makeData(world.model());
-  if (!data_) throw Error("ik: out of memory");
+  data_ = world.scratch(0);
 }
-
-IkSolver::~IkSolver() { mj_deleteData(data_); }
 
 IkResult solve_ik(const World& world, const IkTarget& target, const IkOptions& options) {
   return IkSolver(world).solve(target, options);

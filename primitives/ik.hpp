@@ -43,12 +43,11 @@ struct IkResult {
   std::string reason;          // why it failed
 };
 
-// Solves on a scratch copy of the world's state taken at construction, reused
-// across calls (primitives solve many small problems along a line).
+// Solves on the world's scratch data (slot 0), from the world's joint
+// positions at each call: the world itself is untouched.
 class IkSolver {
  public:
   explicit IkSolver(const World& world);
-  ~IkSolver();
   IkSolver(const IkSolver&) = delete;
   IkSolver& operator=(const IkSolver&) = delete;
   // Starts from the world's configuration (or options.start); joint limits are respected.

@@ -221,12 +221,14 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   options.iterations = 100;
   std::vector<ArmConfiguration> path = {*options.start};
   bool cut_short = false;
+  int reached = n;
   for (int i = 1; i <= n; ++i) {
     target.position = from + delta * (static_cast<double>(i) / n);
     const IkResult r = ik_.solve(target, options);
     if (!r.success) {
       // As far as the arm reaches; with until_contact, contact decides below.
       cut_short = true;
+      reached = i - 1;
       if (until_contact || i > min_fraction * n) break;
       result_.planning_seconds += since(start);
       return fail(PrimitiveStatus::motion_planning_failure,
@@ -251,7 +253,9 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
     }
     result_.execution_seconds += since(t);
     return touched_ || !cut_short || !until_contact ||
-           fail(PrimitiveStatus::motion_planning_failure, "the hand cannot reach down to the contact");
+           fail(PrimitiveStatus::motion_planning_failure,
+                "the hand cannot reach the contact: IK stops after " + std::to_string(reached) + " of " +
+                    std::to_string(n) + " cm");
   }
   // Each waypoint is kLineSpacing apart: reached in kLineSpacing / speed seconds.
   const double waypoint_time = kLineSpacing / speed;
@@ -277,7 +281,9 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
     step_physics(3);  // let the controllers catch up with the last waypoint
   }
   return touched_ || !cut_short || !until_contact ||
-         fail(PrimitiveStatus::motion_planning_failure, "the hand cannot reach down to the contact");
+         fail(PrimitiveStatus::motion_planning_failure,
+                "the hand cannot reach the contact: IK stops after " + std::to_string(reached) + " of " +
+                    std::to_string(n) + " cm");
 }
 
 bool Motion::base_line(const Eigen::Vector3d& delta, double speed) {

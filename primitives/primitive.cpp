@@ -25,6 +25,7 @@ constexpr double kFingerReach = 0.04;   // m from the hand's centre to the finge
 constexpr double kClearance = 0.10;     // m above a target before descending
 constexpr double kLift = 0.15;          // m raised after grasping or releasing
 constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
+constexpr double kSlim = 0.08;          // m: objects this narrow fit between the open fingers
 
 const char* const kTypeNames[] = {"navigate", "pick", "place", "push", "dip", "wipe"};
 const char* const kModeNames[] = {"physical", "symbolic"};
@@ -113,6 +114,7 @@ Eigen::Vector3d top_centre(const World& w, int object) {
   const double fa = std::max(0.0, 1 - margin / std::max(along.norm(), 1e-9));
   const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));
   const auto& objects = w.scene().objects();
+  if (w.carried_object() < 0) return {centre.x(), centre.y(), top};  // nothing to set down
   Eigen::Vector3d best = centre;
   double best_clearance = -1;
   for (int i = -2; i <= 2; ++i) {
@@ -120,7 +122,7 @@ Eigen::Vector3d top_centre(const World& w, int object) {
       const Eigen::Vector3d p = centre + along * (fa * i / 2.0) + across * (fc * j / 2.0);
       double clearance = 1e9;
       for (size_t o = 0; o < objects.size(); ++o) {
-        if (objects[o].fixed || static_cast<int>(o) == w.carried_object()) continue;
+        if (objects[o].fixed || static_cast<int>(o) == w.carried_object() || static_cast<int>(o) == object) continue;
         const Eigen::Vector3d c = object_aabb(w, static_cast<int>(o)).center();
         if (c.z() < top - 0.4 || c.z() > top + 0.4) continue;
         clearance = std::min(clearance, (c - p).head<2>().norm());
@@ -162,12 +164,26 @@ Eigen::Vector3d dirt_centre(const World& w, int object) {
   return centre / n;
 }
 
-Approach approach_for(const World& w, PrimitiveType type, int object) {
+// Where the hand may act, in order of preference. Picks come from above, or
+// for slim upright objects (a bottle on a high counter, out of reach from
+// above) from the side, the fingers closing horizontally.
+std::vector<Approach> approaches(const World& w, PrimitiveType type, int object, const Pose2& base) {
   if (type == PrimitiveType::push) {
-    if (const auto a = articulation(w, object)) return {a->handle, -a->axis, kUp};
+    if (const auto a = articulation(w, object)) return {{a->handle, -a->axis, kUp}};
   }
-  if (type == PrimitiveType::wipe) return {dirt_centre(w, object), kDown, std::nullopt};
-  return {top_centre(w, object), kDown, std::nullopt};
+  if (type == PrimitiveType::wipe) return {{dirt_centre(w, object), kDown, std::nullopt}};
+  std::vector<Approach> out = {{top_centre(w, object), kDown, std::nullopt}};
+  if (type == PrimitiveType::pick) {
+    const Aabb box = object_aabb(w, object);
+    const Eigen::Vector3d size = box.hi - box.lo;
+    Eigen::Vector3d towards(box.center().x() - base.x, box.center().y() - base.y, 0);
+    if (std::max(size.x(), size.y()) <= kSlim && size.z() >= kSlim && towards.norm() > 1e-6) {
+      towards.normalize();
+      const Eigen::Vector3d point(box.center().x(), box.center().y(), box.lo.z() + 0.6 * size.z());
+      out.push_back({point - towards * std::max(size.x(), size.y()) / 2, towards, kUp.cross(towards)});
+    }
+  }
+  return out;
 }
 
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -186,25 +202,32 @@ IkTarget pre_pose(const World& w, const Approach& a) {
 
 bool holding_free_object(const World& w) { return w.carried_object() >= 0; }
 
-// A collision-free IK solution for the pre-pose of `a` with the base at
-// `base` (from the untucked arm), from which the hand can also reach the
-// approach point itself when the primitive descends to it.
-std::optional<ArmConfiguration> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w,
-                                      const Approach& a, const Pose2& base, bool descends) {
-  IkOptions options;
-  options.base = base;
-  options.start = kUntuckedConfiguration;
-  options.iterations = 100;
-  const IkTarget pre = pre_pose(w, a);
-  const IkResult r = ik.solve(pre, options);
-  if (!r.success || checker.collides(r.joints.data(), &base)) return std::nullopt;
-  if (descends) {
-    options.start = r.joints;
-    IkTarget contact = pre;
-    contact.position = a.point + a.direction * (kContactDepth - kFingerReach);
-    if (!ik.solve(contact, options).success) return std::nullopt;
+// A collision-free IK solution for the pre-pose of the first approach that
+// works with the base at `base` (from the untucked arm), from which the hand
+// can also reach the approach point itself when the primitive descends to it.
+struct Reach {
+  ArmConfiguration joints;
+  Approach approach;
+};
+std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w,
+                           const std::vector<Approach>& candidates, const Pose2& base, bool descends) {
+  for (const Approach& a : candidates) {
+    IkOptions options;
+    options.base = base;
+    options.start = kUntuckedConfiguration;
+    options.iterations = 100;
+    const IkTarget pre = pre_pose(w, a);
+    const IkResult r = ik.solve(pre, options);
+    if (!r.success || checker.collides(r.joints.data(), &base)) continue;
+    if (descends) {
+      options.start = r.joints;
+      IkTarget contact = pre;
+      contact.position = a.point + a.direction * (kContactDepth - kFingerReach);
+      if (!ik.solve(contact, options).success) continue;
+    }
+    return Reach{r.joints, a};
   }
-  return r.joints;
+  return std::nullopt;
 }
 
 bool descends(PrimitiveType type) { return type != PrimitiveType::place && type != PrimitiveType::navigate; }
@@ -220,10 +243,10 @@ PrimitiveType purpose_of_navigation(const World& w, int object) {
 
 bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object) {
   const PrimitiveType purpose = purpose_of_navigation(w, object);
-  const Approach a = approach_for(w, purpose, object);
+  const std::vector<Approach> a = approaches(w, purpose, object, w.base_pose());
   const Scene& scene = w.scene();
-  return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a.point.x(), a.point.y()) &&
-         reach(ik, checker, w, a, w.base_pose(), descends(purpose));
+  return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a[0].point.x(), a[0].point.y()) &&
+         reach(ik, checker, w, a, w.base_pose(), descends(purpose)).has_value();
 }
 
 class Executor {
@@ -272,11 +295,12 @@ class Executor {
   bool reach_pre_pose(ArmConfiguration& q) {
     const Clock::time_point t = Clock::now();
     ArmCollisionChecker checker(w_);
-    const auto solution = reach(motion_.ik(), checker, w_, approach_for(w_, type_, object_), w_.base_pose(),
-                                descends(type_));
+    const auto solution = reach(motion_.ik(), checker, w_, approaches(w_, type_, object_, w_.base_pose()),
+                                w_.base_pose(), descends(type_));
     result_.planning_seconds += since(t);
     if (!solution) return fail(PrimitiveStatus::motion_planning_failure, "'" + name() + "' is out of reach from here");
-    q = *solution;
+    q = solution->joints;
+    approach_ = solution->approach;
     return true;
   }
 
@@ -292,6 +316,17 @@ class Executor {
     return motion_.arm_to(q);
   }
 
+  // The pre-pose, then the load (which hangs off-centre from the hand) moved
+  // over the spot it is aimed at.
+  bool go_to_pre_pose_with_load() {
+    if (!go_to_pre_pose()) return false;
+    const Eigen::Vector3d spot = approach_.point;
+    Eigen::Vector3d shift = spot - object_aabb(w_, w_.carried_object()).center();
+    shift.z() = 0;
+    motion_.line(shift, false, 0.2, 0.0);
+    return true;
+  }
+
   bool navigate() {
     if (!at(w_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !motion_.tuck()) {
       return false;
@@ -299,7 +334,8 @@ class Executor {
     const Clock::time_point t = Clock::now();
     const Scene& scene = w_.scene();
     const PrimitiveType purpose = purpose_of_navigation(w_, object_);
-    const Approach a = approach_for(w_, purpose, object_);
+    const std::vector<Approach> here = approaches(w_, purpose, object_, w_.base_pose());
+    const Approach& a = here[0];
     const Room* room = scene.room_at(a.point.x(), a.point.y());
     ArmCollisionChecker checker(w_);
     if (reachable_here(w_, motion_.ik(), checker, object_)) {
@@ -331,8 +367,10 @@ class Executor {
                                               std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
           if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
         }
-        // Close: the body's radius is about 0.3 m, the arm reaches the floor 0.6 m out.
-        const double distance = exit + 0.3 + 0.25 * unit(rng);
+        // Within the arm's reach of the point (0.6 m at the floor, 0.85 m at
+        // table height) and clear of the object's box by the body's radius.
+        const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 0.85);
+        const double distance = near + (far - near) * unit(rng);
         p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
         p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
       }
@@ -340,7 +378,7 @@ class Executor {
         ++blocked;
       } else if (scene.room_at(p.x, p.y) != room) {
         ++elsewhere;
-      } else if (!reach(motion_.ik(), checker, w_, a, p, descends(purpose))) {
+      } else if (!reach(motion_.ik(), checker, w_, approaches(w_, purpose, object_, p), p, descends(purpose))) {
         ++unreachable;
       } else {
         // Reachable with the arm; now the base must get there.
@@ -365,12 +403,13 @@ class Executor {
       return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' cannot be picked up");
     }
     if (!go_to_pre_pose()) return false;
-    const double depth = kClearance + (object_aabb(w_, object_).hi.z() - object_aabb(w_, object_).lo.z()) + 0.02;
-    if (!motion_.line(kDown * depth, true, 0.15)) return false;
+    // Towards the object until contact: through its height from above, its width from the side.
+    const Aabb box = object_aabb(w_, object_);
+    const double extent = std::abs(approach_.direction.dot(box.hi - box.lo));
+    if (!motion_.line(approach_.direction * (kClearance + extent + 0.02), true, 0.15)) return false;
     motion_.gripper(false);
     if (!motion_.physical()) {
       // The assistive grasp's condition, kinematically: the object between the fingers.
-      const Aabb box = object_aabb(w_, object_);
       const Eigen::Vector3d hand = motion_.hand_position();
       const Eigen::Vector3d nearest = hand.cwiseMax(box.lo).cwiseMin(box.hi);
       if ((nearest - hand).norm() < 0.05 && !w_.hold(object_)) result_.grasp_refused = true;
@@ -392,12 +431,7 @@ class Executor {
     if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
     const int held = w_.grasped_object();
     if (held == object_) return fail(PrimitiveStatus::precondition_failure, "cannot place an object on itself");
-    const Eigen::Vector3d spot = approach_for(w_, type_, object_).point;
-    if (!go_to_pre_pose()) return false;
-    // The load hangs off-centre from the hand: bring its centre over the spot.
-    Eigen::Vector3d shift = spot - object_aabb(w_, held).center();
-    shift.z() = 0;
-    motion_.line(shift, false, 0.2, 0.0);
+    if (!go_to_pre_pose_with_load()) return false;
     motion_.gripper(true);
     if (!motion_.physical()) settle_kinematically(held);
     motion_.wait(0.3);
@@ -475,7 +509,7 @@ class Executor {
     if (!primitive_applies(w_, PrimitiveType::dip, object_)) {
       return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' holds no liquid");
     }
-    if (!go_to_pre_pose()) return false;
+    if (!go_to_pre_pose_with_load()) return false;
     const Aabb box = object_aabb(w_, object_);
     const double held_bottom = motion_.hand_position().z() - load_below_hand(w_);
     const Eigen::Vector3d down = kDown * (held_bottom - (box.lo.z() + 0.03));
@@ -528,6 +562,7 @@ class Executor {
   PrimitiveOptions options_;
   PrimitiveResult result_;
   Motion motion_;
+  Approach approach_;  // the approach reach_pre_pose chose
 };
 
 template <size_t N>

@@ -4,6 +4,7 @@
 // physics step, as OmniGibson's does.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -55,6 +56,12 @@ class World {
   // Runs `substeps` physics steps of 1/120 s.
   StepReport step(int substeps);
 
+  // A scratch mjData for what-if queries (IK, collision checks), one per
+  // slot, made on first use and kept: mj_makeData of a large scene costs
+  // milliseconds. Its contents are whatever the last user left.
+  static constexpr int kScratchSlots = 2;
+  mjData_* scratch(int slot) const;
+
   // Extended object states (temperature, soaked, dirt, toggles, ...).
   ObjectStates& states() { return states_; }
   const ObjectStates& states() const { return states_; }
@@ -98,6 +105,7 @@ class World {
   int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
+  mutable std::array<mjData_*, kScratchSlots> scratch_{};
 };
 
 }  // namespace chore
