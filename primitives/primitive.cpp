@@ -510,9 +510,11 @@ class Executor {
       return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' holds no liquid");
     }
     if (!go_to_pre_pose_with_load()) return false;
+    // Down until the held object's bottom is 4 cm under the liquid's surface.
     const Aabb box = object_aabb(w_, object_);
+    const double surface = box.lo.z() + w_.states().state(object_).liquid_level * (box.hi.z() - box.lo.z());
     const double held_bottom = motion_.hand_position().z() - load_below_hand(w_);
-    const Eigen::Vector3d down = kDown * (held_bottom - (box.lo.z() + 0.03));
+    const Eigen::Vector3d down = kDown * std::max(0.0, held_bottom - (surface - 0.04));
     if (!motion_.line(down, true, 0.15)) return false;
     motion_.wait(0.6);  // long enough to soak through (ObjectStates: 0.5 s)
     motion_.line(-down, false, 0.2, 0.0);
@@ -543,12 +545,12 @@ class Executor {
     const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
     constexpr double kHalfWidth = 0.22, kRow = 0.08;
     constexpr int kRows = 4;
-    // Strokes go as far as the arm reaches (at least half of each).
-    if (!motion_.line(forward * kRow * 1.5 - left * kHalfWidth + kDown * 0.01, false, 0.25, 0.5)) return false;
+    // Each stroke goes as far as the arm reaches along it.
+    motion_.line(forward * kRow * 1.5 - left * kHalfWidth + kDown * 0.01, false, 0.25, 0.0);
     for (int row = 0; row < kRows; ++row) {
       const double side = row % 2 == 0 ? 1.0 : -1.0;
-      if (!motion_.line(left * (2 * kHalfWidth * side), false, 0.3, 0.5)) return false;
-      if (row + 1 < kRows && !motion_.line(-forward * kRow, false, 0.25, 0.5)) return false;
+      motion_.line(left * (2 * kHalfWidth * side), false, 0.3, 0.0);
+      if (row + 1 < kRows) motion_.line(-forward * kRow, false, 0.25, 0.0);
     }
     motion_.line(kUp * kLift, false, 0.2, 0.0);
     if (!motion_.tuck()) return false;

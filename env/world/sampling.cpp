@@ -234,7 +234,7 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
   } else if (predicate == "filled") {
     require(ab && ab->holds_liquid, "a liquid level");
     s->liquid = liquid;
-    s->liquid_level = value ? 0.5 : 0.0;
+    s->liquid_level = value ? 0.8 : 0.0;  // filled: four fifths up
   } else if (predicate == "toggled_on") {
     require(ab && ab->toggleable, "ToggledState");
     s->toggled = value;
