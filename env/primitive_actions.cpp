@@ -6,22 +6,36 @@
 namespace chore {
 namespace {
 
-// Instances (or variable types, as "?type") that something is put on or in.
-void placement_targets(const Formula& f, std::set<std::string>& names,
-                       std::vector<const Variable*>& scope) {
+// Instances (or variable types, as "?type") that are argument `arg` of a
+// literal with one of `predicates`, anywhere in the formula.
+void arguments_of(const Formula& f, const std::set<std::string>& predicates, size_t arg,
+                  std::set<std::string>& names, std::vector<const Variable*>& scope) {
   if (f.op == Op::literal) {
     const Literal& l = f.literal;
-    if ((l.predicate == "ontop" || l.predicate == "inside") && l.args.size() == 2 && !l.negated) {
-      const std::string& target = l.args[1];
+    if (predicates.count(l.predicate) && l.args.size() > arg) {
+      const std::string& name = l.args[arg];
       const auto var = std::find_if(scope.rbegin(), scope.rend(),
-                                    [&](const Variable* v) { return v->name == target; });
-      names.insert(var != scope.rend() ? "?" + (*var)->type : target);
+                                    [&](const Variable* v) { return v->name == name; });
+      names.insert(var != scope.rend() ? "?" + (*var)->type : name);
     }
     return;
   }
   for (const Variable& v : f.variables) scope.push_back(&v);
-  for (const Formula& child : f.children) placement_targets(child, names, scope);
+  for (const Formula& child : f.children) arguments_of(child, predicates, arg, names, scope);
   scope.resize(scope.size() - f.variables.size());
+}
+
+// The same over :init and :goal.
+std::set<std::string> arguments_of(const Problem& problem, const std::set<std::string>& predicates, size_t arg) {
+  std::set<std::string> names;
+  std::vector<const Variable*> scope;
+  for (const Literal& l : problem.init) {
+    Formula f;
+    f.literal = l;
+    arguments_of(f, predicates, arg, names, scope);
+  }
+  arguments_of(problem.goal, predicates, arg, names, scope);
+  return names;
 }
 
 }  // namespace
@@ -32,24 +46,21 @@ std::string to_string(const PrimitiveAction& action) {
 
 std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const World& world) {
   const Problem& problem = activity.problem();
-  std::set<std::string> targets;
-  for (const Literal& l : problem.init) {
-    Formula f;
-    f.literal = l;
-    std::vector<const Variable*> scope;
-    placement_targets(f, targets, scope);
-  }
-  std::vector<const Variable*> scope;
-  placement_targets(problem.goal, targets, scope);
+  const std::set<std::string> supports = arguments_of(problem, {"ontop", "inside"}, 1);
+  const std::set<std::string> dirty = arguments_of(problem, {"stained", "dusty", "covered"}, 0);
 
   std::vector<PrimitiveAction> actions;
   for (const ObjectDecl& decl : problem.objects) {
     const Binding& b = activity.binding(decl.name);
     if (b.kind != Binding::Kind::object) continue;
-    const bool target = targets.count(decl.name) || targets.count("?" + decl.type);
+    const auto named = [&](const std::set<std::string>& names) {
+      return names.count(decl.name) || names.count("?" + decl.type);
+    };
     for (int t = 0; t < kPrimitiveTypes; ++t) {
       const auto type = static_cast<PrimitiveType>(t);
-      const bool applies = type == PrimitiveType::place ? target : primitive_applies(world, type, b.index);
+      bool applies = primitive_applies(world, type, b.index);
+      if (type == PrimitiveType::place) applies = named(supports);
+      if (type == PrimitiveType::wipe) applies = applies && named(dirty);
       if (applies) actions.push_back({type, b.index, decl.name});
     }
   }

@@ -7,7 +7,7 @@
 //             in :init or :goal (a quantified variable: every object of its type)
 //   push      articulated ones (drawers)
 //   dip       liquid containers and sources
-//   wipe      those dirt can lie on
+//   wipe      those a stained/dusty/covered literal names (and dirt can lie on)
 // Objects in :objects order, primitives in that order for each.
 #pragma once
 

@@ -75,6 +75,9 @@ class VectorEnv {
   void send(std::span<const float> actions, std::span<const int> env_ids);
   // Waits for the first batch_size results.
   Batch recv();
+  // Env i, read-only, for policies that read the state (the scripted expert).
+  // Not while it is in flight.
+  const Env& env(int i) const;
   // Stops the workers; idempotent.
   void close();
 

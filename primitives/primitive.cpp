@@ -399,7 +399,8 @@ class Executor {
 
   bool pick() {
     if (w_.grasped_object() >= 0) return fail(PrimitiveStatus::precondition_failure, "the hand is not empty");
-    if (!primitive_applies(w_, PrimitiveType::pick, object_)) {
+    // Fixed objects cannot be picked; a heavy one is refused by the grasp itself.
+    if (w_.scene().objects()[object_].fixed) {
       return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' cannot be picked up");
     }
     if (!go_to_pre_pose()) return false;

@@ -46,5 +46,12 @@ out_png="$(mktemp -d)/sample.png"
 expect 0 "picture: $out_png" -- "$chore" activity sample store_decoration --seed 1 --out "$out_png"
 if [[ ! -s "$out_png" ]]; then echo "FAIL: $out_png was not written"; failures=$((failures + 1)); fi
 
+# The scripted expert: bad options exit 2; two symbolic episodes run and report.
+expect 2 "mode" -- "$chore" expert --activity store_decoration --mode teleport
+expect 2 "episodes" -- "$chore" expert --activity store_decoration --episodes 0
+expect 2 "unknown activity 'nope'" -- "$chore" expert --activity nope --episodes 1
+expect 0 '"success_rate"' -- "$chore" expert --activity store_decoration --episodes 2 --seed 1 --mode symbolic --json
+expect 0 "success rate" -- "$chore" expert --activity store_decoration --episodes 1 --seed 1 --mode symbolic
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]
