@@ -9,6 +9,7 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
+#include "policies/expert.hpp"
 
 namespace chore {
 namespace {
@@ -113,6 +114,54 @@ VectorRates vector_rates(const EnvConfig& env, int envs, const BenchOptions& o) 
 
 }  // namespace
 
+// The scripted expert's primitive steps, timed one by one: wall time of the
+// env step (no rendering: the state observation only), and the primitive's own
+// planning and execution time, per primitive type and overall.
+nlohmann::json primitive_rates(const std::string& activity, ExecutionMode mode, int episodes) {
+  EnvConfig config;
+  config.activity = activity;
+  config.observations = {"is_grasping"};
+  config.action_space = "primitives";
+  config.primitive_mode = mode;
+  config.max_episode_steps = 30;
+  Env env(config);
+  const ScriptedExpert expert(env);
+  struct Sum {
+    int n = 0;
+    double wall = 0, planning = 0, execution = 0;
+  };
+  std::vector<Sum> sums(kPrimitiveTypes + 1);  // the last: all primitives
+  for (int e = 0; e < episodes; ++e) {
+    env.reset(static_cast<uint64_t>(e));
+    for (bool done = false; !done;) {
+      const std::optional<int> a = expert.act(env);
+      if (!a) break;
+      const float value = static_cast<float>(*a);
+      const auto start = Clock::now();
+      const Env::StepResult r = env.step({&value, 1});
+      const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+      for (Sum* sum : {&sums[static_cast<int>(env.primitive_actions()[*a].type)], &sums.back()}) {
+        ++sum->n;
+        sum->wall += wall;
+        sum->planning += env.last_primitive().planning_seconds;
+        sum->execution += env.last_primitive().execution_seconds;
+      }
+      done = r.terminated || r.truncated;
+    }
+  }
+  nlohmann::json out;
+  for (int t = 0; t <= kPrimitiveTypes; ++t) {
+    const Sum& s = sums[t];
+    if (!s.n) continue;
+    out[t == kPrimitiveTypes ? "all" : to_string(static_cast<PrimitiveType>(t))] = {
+        {"n", s.n},
+        {"steps_per_second", s.n / s.wall},
+        {"planning_ms", 1e3 * s.planning / s.n},
+        {"execution_ms", 1e3 * s.execution / s.n}};
+  }
+  return out;
+}
+
 nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
   nlohmann::json out;
   out["protocol"] = "idle: zero action, physics 4 x 1/120 s per step, one egocentric render";
@@ -150,6 +199,15 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
                                 {"2_async", v.two_async},
                                 {"speedup", v.speedup},
                                 {"speedup_async", v.speedup_async}};
+  }
+  out["primitive_episodes"] = o.primitive_episodes;
+  for (const std::string& scene : o.scenes) {
+    const std::string activity = scene_activity(scene);
+    if (activity.empty() || o.primitive_episodes <= 0) continue;
+    for (ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+      log << "bench: " << activity << " / primitives, " << to_string(mode) << " ..." << std::endl;
+      out["primitives"][activity][to_string(mode)] = primitive_rates(activity, mode, o.primitive_episodes);
+    }
   }
   return out;
 }
@@ -195,6 +253,37 @@ std::string format_bench(const nlohmann::json& r) {
                   v["1"].get<double>(), v["2"].get<double>(), v["speedup"].get<double>(),
                   v["2_async"].get<double>(), v["speedup_async"].get<double>());
     text += buf;
+  }
+  if (!r.contains("primitives")) return text;
+  std::snprintf(buf, sizeof buf,
+                "\nPrimitive action space: the scripted expert, %d episodes per activity and mode, one thread;\n"
+                "primitive steps per second (state observation, no rendering), planning / execution ms per primitive\n",
+                r["primitive_episodes"].get<int>());
+  text += buf;
+  std::snprintf(buf, sizeof buf, "%-18s%-10s", "activity", "mode");
+  text += buf;
+  const char* columns[] = {"all", "navigate", "pick", "place", "push", "dip", "wipe"};
+  for (const char* c : columns) {
+    std::snprintf(buf, sizeof buf, "%20s", c);
+    text += buf;
+  }
+  text += "\n";
+  for (const auto& [activity, modes] : r["primitives"].items()) {
+    for (const auto& [mode, rows] : modes.items()) {
+      std::snprintf(buf, sizeof buf, "%-18s%-10s", activity.c_str(), mode.c_str());
+      text += buf;
+      for (const char* c : columns) {
+        if (!rows.contains(c)) {
+          std::snprintf(buf, sizeof buf, "%20s", "-");
+        } else {
+          const auto& x = rows[c];
+          std::snprintf(buf, sizeof buf, "%7.1f/s %5.0f/%-5.0f", x["steps_per_second"].get<double>(),
+                        x["planning_ms"].get<double>(), x["execution_ms"].get<double>());
+        }
+        text += buf;
+      }
+      text += "\n";
+    }
   }
   return text;
 }

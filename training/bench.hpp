@@ -1,7 +1,9 @@
 // `chore bench`: the idle benchmark of the seed's Table A.10. The robot stands
 // still with a zero action; each step runs physics (4 x 1/120 s), the
 // extended-state update (when the scene's activity has one) and renders the
-// egocentric camera. Reports env steps per second.
+// egocentric camera. Reports env steps per second. Then the primitive action
+// space: primitive steps per second for each primitive and activity in both
+// modes, with planning and execution time per primitive.
 #pragma once
 
 #include <ostream>
@@ -18,6 +20,9 @@ struct BenchOptions {
   int repeats = 3;     // the median is reported
   int width = 128, height = 128;
   int vector_envs = 16; // vector-env rows: several envs per thread shorten the idle tail of a round
+  // Primitive rows: the scripted expert's episodes (seeds 0 ..) on each scene's
+  // activity, in both execution modes; 0 skips them.
+  int primitive_episodes = 3;
 };
 
 // Runs the benchmark and returns its results; `log` gets progress lines.

@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--width", bench.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
   bench_cmd->add_option("--height", bench.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
   bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")->check(CLI::Range(2, 256))->capture_default_str();
+  bench_cmd->add_option("--primitive-episodes", bench.primitive_episodes,
+                        "Expert episodes per activity and mode for the primitive rows (0: none)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
   bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
 
   CLI::App* activity_cmd = app.add_subcommand("activity", "BDDL activities");
