@@ -25,7 +25,8 @@ constexpr double kFingerReach = 0.04;   // m from the hand's centre to the finge
 constexpr double kClearance = 0.10;     // m above a target before descending
 constexpr double kLift = 0.15;          // m raised after grasping or releasing
 constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
-constexpr double kSlim = 0.08;          // m: objects this narrow fit between the open fingers
+constexpr double kSlim = 0.08;
+constexpr double kPullFraction = 0.9;    // of a drawer's range, push opens it this far          // m: objects this narrow fit between the open fingers
 
 const char* const kTypeNames[] = {"navigate", "pick", "place", "push", "dip", "wipe"};
 const char* const kModeNames[] = {"physical", "symbolic"};
@@ -316,6 +317,16 @@ class Executor {
     return motion_.arm_to(q);
   }
 
+  // Whether the base standing at p can back away along the drawer's axis as
+  // far as push will pull it.
+  static bool room_to_pull(const Footprint& footprint, const Pose2& p, const Articulation& a) {
+    const double pull = (a.high - a.low) * kPullFraction - (a.value - a.low);
+    for (double d = 0; d <= pull; d += OccupancyMap::kResolution) {
+      if (!footprint.body_map().free(p.x + a.axis.x() * d, p.y + a.axis.y() * d)) return false;
+    }
+    return true;
+  }
+
   // The pre-pose, then the load (which hangs off-centre from the hand) moved
   // over the spot it is aimed at.
   bool go_to_pre_pose_with_load() {
@@ -328,8 +339,12 @@ class Executor {
   }
 
   bool navigate() {
+    // Tucked (or carrying) if it can be; where furniture is in the way the
+    // footprint measures the arm as it is.
     if (!at(w_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !motion_.tuck()) {
-      return false;
+      if (result_.diverged) return false;
+      result_.status = PrimitiveStatus::success;
+      result_.reason.clear();
     }
     const Clock::time_point t = Clock::now();
     const Scene& scene = w_.scene();
@@ -374,7 +389,7 @@ class Executor {
         p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
         p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
       }
-      if (!footprint.free(p)) {
+      if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated))) {
         ++blocked;
       } else if (scene.room_at(p.x, p.y) != room) {
         ++elsewhere;
@@ -488,8 +503,8 @@ class Executor {
       motion_.gripper(true);
       return fail(PrimitiveStatus::grasp_failure, "the hand missed the handle of '" + name() + "'");
     }
-    // Pull nine tenths of the way open by backing the base away, the arm held.
-    const double pull = (a->high - a->low) * 0.9 - (a->value - a->low);
+    // Pull most of the way open by backing the base away, the arm held.
+    const double pull = (a->high - a->low) * kPullFraction - (a->value - a->low);
     const Eigen::Vector3d before = motion_.hand_position();
     if (!motion_.base_line(a->axis * pull)) return false;
     if (!motion_.physical()) {

@@ -77,7 +77,7 @@ TEST(BasePlanner, AStartInsideInflatedSpaceIsLeftByAStraightMoveFirst) {
   world.reset({0.2, 2.0, 0.0});
   const Footprint footprint(world);
   ASSERT_FALSE(footprint.free(world.base_pose()));
-  const BasePath path = plan_base_path(world, footprint, {2.0, 2.5, 0.0}, 3);
+  const BasePath path = plan_base_path(world, footprint, {3.0, 1.7, 0.0}, 3);
   ASSERT_TRUE(path.success) << path.reason;
   EXPECT_EQ(path.waypoints[0].x, 0.2);
   EXPECT_TRUE(footprint.free(path.waypoints[1]));
