@@ -520,18 +520,24 @@ class Executor {
     return true;
   }
 
-  bool dip() {
+  // dip and wipe: a tool in hand, and a target of the right kind.
+  bool holding_and_applicable(const std::string& otherwise) {
     if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
-    if (!primitive_applies(w_, PrimitiveType::dip, object_)) {
-      return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' holds no liquid");
+    if (!primitive_applies(w_, type_, object_)) {
+      return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' " + otherwise);
     }
-    if (!go_to_pre_pose_with_load()) return false;
+    return true;
+  }
+
+  bool dip() {
+    if (!holding_and_applicable("holds no liquid") || !go_to_pre_pose_with_load()) return false;
     // Down until the held object's bottom is 4 cm under the liquid's surface.
     const Aabb box = object_aabb(w_, object_);
     const double surface = box.lo.z() + w_.states().state(object_).liquid_level * (box.hi.z() - box.lo.z());
     const double held_bottom = motion_.hand_position().z() - load_below_hand(w_);
     const Eigen::Vector3d down = kDown * std::max(0.0, held_bottom - (surface - 0.04));
-    if (!motion_.line(down, true, 0.15)) return false;
+    // Not stopping at contact: a rag's corners brush the rim on the way in.
+    if (!motion_.line(down, false, 0.15)) return false;
     motion_.wait(0.6);  // long enough to soak through (ObjectStates: 0.5 s)
     motion_.line(-down, false, 0.2, 0.0);
     if (!motion_.tuck()) return false;
@@ -549,11 +555,7 @@ class Executor {
   }
 
   bool wipe() {
-    if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
-    if (!primitive_applies(w_, PrimitiveType::wipe, object_)) {
-      return fail(PrimitiveStatus::precondition_failure, "nothing can lie on '" + name() + "' to wipe");
-    }
-    if (!go_to_pre_pose()) return false;
+    if (!holding_and_applicable("has nothing to wipe") || !go_to_pre_pose()) return false;
     if (!motion_.line(kDown * (kClearance + 0.06), true, 0.15)) return false;
     if (!motion_.touched()) return fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
     // Strokes left-right, row by row towards the robot, pressing 1 cm in.
