@@ -4,6 +4,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "primitives/rrt_connect.hpp"
@@ -57,7 +58,10 @@ ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t
   namespace og = ompl::geometric;
   const auto joints = world.robot()->torso_and_arm();
   ArmPath out;
-  const ArmConfiguration start = arm_configuration(world);
+  // Tracked joints sit a hair outside their limits at times (the torso sags
+  // below 0 under gravity): OMPL would refuse such a start.
+  ArmConfiguration start = arm_configuration(world);
+  for (size_t k = 0; k < joints.size(); ++k) start[k] = std::clamp(start[k], joints[k]->low, joints[k]->high);
   auto probe = std::make_shared<ArmCollisionChecker>(world);
   if (probe->collides(start.data())) {
     out.reason = "the arm's start configuration is in collision";

@@ -60,7 +60,7 @@ struct PrimitiveOptions {
   ExecutionMode mode = ExecutionMode::physical;
   int base_pose_samples = 100;       // candidate base poses navigate tries
   unsigned base_iterations = 50000;  // RRTConnect iterations for a base path (grid checks are cheap)
-  unsigned arm_iterations = 1500;    // ... and for an arm path
+  unsigned arm_iterations = 3000;    // ... and for an arm path
 };
 
 // Executes one primitive on scene object `object` (an index into
