@@ -245,7 +245,7 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
     const double dt = kLineSpacing / speed;
     for (size_t i = 1; i < path.size(); ++i) {
       world_.set_robot_configuration(world_.base_pose(), path[i].data());
-      world_.states().after_physics_step(world_, dt);
+      if (world_.state_updates()) world_.states().after_physics_step(world_, dt);
       if (until_contact && hand_in_contact()) {
         touched_ = true;
         break;
@@ -336,7 +336,7 @@ void Motion::wait(double seconds) {
     step_physics(static_cast<int>(std::ceil(seconds / kControlDt)));
     return;
   }
-  world_.states().after_physics_step(world_, seconds);
+  if (world_.state_updates()) world_.states().after_physics_step(world_, seconds);
 }
 
 bool Motion::tuck() {

@@ -19,6 +19,11 @@ namespace fs = std::filesystem;
 namespace chore {
 namespace {
 
+// The binary predicates between two objects, by BDDL name.
+const std::map<std::string, bool (*)(const World&, int, int), std::less<>> kObjectRelations = {
+    {"ontop", ontop}, {"inside", inside}, {"under", under},
+    {"nextto", nextto}, {"touching", touching}, {"insameroom", insameroom}};
+
 constexpr int kInstantiationAttempts = 10;
 
 // Predicates chore can check, by their BDDL names (both dialects).
@@ -340,18 +345,8 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
       r = scene.room_at(c.x(), c.y());
     }
     value = r && room_matches(*r, l.args.at(1));
-  } else if (p == "ontop") {
-    value = ontop(w, object_arg(0), object_arg(1));
-  } else if (p == "inside") {
-    value = inside(w, object_arg(0), object_arg(1));
-  } else if (p == "under") {
-    value = under(w, object_arg(0), object_arg(1));
-  } else if (p == "nextto") {
-    value = nextto(w, object_arg(0), object_arg(1));
-  } else if (p == "touching") {
-    value = touching(w, object_arg(0), object_arg(1));
-  } else if (p == "insameroom") {
-    value = insameroom(w, object_arg(0), object_arg(1));
+  } else if (const auto relation = kObjectRelations.find(p); relation != kObjectRelations.end()) {
+    value = relation->second(w, object_arg(0), object_arg(1));
   } else if (p == "grasped" || p == "inhand") {
     // B1K: (grasped agent obj); BEHAVIOR-100 style: (inhand obj).
     value = grasped(w, object_arg(l.args.size() - 1));

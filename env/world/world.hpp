@@ -67,6 +67,7 @@ class World {
   const ObjectStates& states() const { return states_; }
   // Off: states stay as they are (Table A.10's "- Object State Update" row).
   void set_state_updates(bool enabled) { state_updates_ = enabled; }
+  bool state_updates() const { return state_updates_; }
 
   // Index into scene().objects() of the object held by the gripper, or -1.
   // A drawer or door held by its handle counts as grasping its object.
