@@ -7,46 +7,79 @@
 #include <algorithm>
 #include <memory>
 
+#include "env/world/object_geometry.hpp"
 #include "primitives/rrt_connect.hpp"
 
 namespace chore {
 
 ArmCollisionChecker::ArmCollisionChecker(const World& world)
-    : world_(world), model_(world.model()), data_(world.scratch(1)),
-      robot_(model_->body_rootid[world.robot()->gripper_body]) {
-  // Kinematics and collision read positions only.
-  mju_copy(data_->qpos, world.data()->qpos, model_->nq);
-  mju_copy(data_->mocap_pos, world.data()->mocap_pos, 3 * model_->nmocap);
-  mju_copy(data_->mocap_quat, world.data()->mocap_quat, 4 * model_->nmocap);
-  const int held = world.carried_object();
-  if (held >= 0) held_ = world.scene().objects()[held].body;
+    : world_(world), kinematics_(world), data_(world.scratch(1)) {
+  const mjModel* m = world.model();
+  const Robot& r = *world.robot();
+  robot_and_load_ = kinematics_.robot_geoms();
+  for (int g : kinematics_.robot_geoms()) {
+    const int b = m->geom_bodyid[g];
+    if (b == r.gripper_body || b == r.left_finger_body || b == r.right_finger_body) hand_and_load_.push_back(g);
+  }
+  for (int g : kinematics_.load_geoms()) {
+    robot_and_load_.push_back(g);
+    hand_and_load_.push_back(g);
+  }
+  const std::vector<int>& mine = robot_and_load_;
+  mju_copy(data_->geom_xpos, world.data()->geom_xpos, 3 * m->ngeom);
+  mju_copy(data_->geom_xmat, world.data()->geom_xmat, 9 * m->ngeom);
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+    if (std::find(mine.begin(), mine.end(), g) != mine.end()) continue;
+    const Aabb box = geom_aabb(world, g);
+    others_.push_back({g, box.lo, box.hi});
+  }
 }
 
 bool ArmCollisionChecker::collides(const double* q, const Pose2* base) {
+  ArmConfiguration joints;
+  std::copy(q, q + joints.size(), joints.begin());
+  kinematics_.set(base ? *base : world_.base_pose(), joints);
+  return touches(robot_and_load_);
+}
+
+bool ArmCollisionChecker::hand_touches(const ArmConfiguration& q, const Pose2* base, int ignored_object) {
+  kinematics_.set(base ? *base : world_.base_pose(), q);
+  return touches(hand_and_load_, ignored_object);
+}
+
+// Broad phase by bounding spheres against world boxes, then MuJoCo's pair functions.
+bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_object) {
+  const mjModel* m = world_.model();
   mjData* d = data_;
-  const Robot& r = *world_.robot();
-  if (base) {
-    d->qpos[r.base_x.qpos] = base->x;
-    d->qpos[r.base_y.qpos] = base->y;
-    d->qpos[r.base_yaw.qpos] = base->yaw;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (int g : mine) {
+    kinematics_.geom_pose(g, d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
+    const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(m->geom_rbound[g]);
+    lo = lo.cwiseMin(c - r);
+    hi = hi.cwiseMax(c + r);
   }
-  const auto joints = r.torso_and_arm();
-  for (size_t k = 0; k < joints.size(); ++k) d->qpos[joints[k]->qpos] = q[k];
-  mj_kinematics(model_, d);
-  if (held_ >= 0) {
-    world_.carry_grasped(d);
-    mj_kinematics(model_, d);
-  }
-  mj_collision(model_, d);
-  for (int c = 0; c < d->ncon; ++c) {
-    const int r1 = model_->body_rootid[model_->geom_bodyid[d->contact[c].geom1]];
-    const int r2 = model_->body_rootid[model_->geom_bodyid[d->contact[c].geom2]];
-    const bool mine1 = r1 == robot_ || r1 == held_, mine2 = r2 == robot_ || r2 == held_;
-    if (mine1 != mine2) return true;  // the robot and its load against anything else
+  mjContact contacts[mjMAXCONPAIR];
+  for (const Box& other : others_) {
+    if ((other.lo.array() > hi.array()).any() || (other.hi.array() < lo.array()).any()) continue;
+    const int o = other.geom;
+    if (ignored_object >= 0 && world_.scene().object_of_body(m->geom_bodyid[o]) == ignored_object) continue;
+    for (int g : mine) {
+      if (!((m->geom_contype[g] & m->geom_conaffinity[o]) || (m->geom_contype[o] & m->geom_conaffinity[g]))) continue;
+      const double r = m->geom_rbound[g];
+      const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+      if ((other.lo.array() > c.array() + r).any() || (other.hi.array() < c.array() - r).any()) continue;
+      // MuJoCo's table takes the lower geom type first.
+      const bool ordered = m->geom_type[g] <= m->geom_type[o];
+      const int g1 = ordered ? g : o, g2 = ordered ? o : g;
+      const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
+      const double margin = std::max(m->geom_margin[g1], m->geom_margin[g2]);
+      if (collide && collide(m, d, contacts, g1, g2, margin) > 0) return true;
+    }
   }
   return false;
 }
-
 
 bool arm_in_collision(const World& world, const ArmConfiguration& q) {
   return ArmCollisionChecker(world).collides(q.data());

@@ -1,6 +1,5 @@
 // Collision-free paths of the torso and arm in joint space: OMPL RRTConnect
-// with MuJoCo's collision detection on a scratch copy of the world as the
-// validity check, shortened by OMPL's simplifier. The manipulation primitives
+// with MuJoCo's narrow-phase collision functions as the validity check, shortened by OMPL's simplifier. The manipulation primitives
 // move between poses along these paths.
 #pragma once
 
@@ -10,7 +9,7 @@
 #include <vector>
 
 #include "env/world/world.hpp"
-#include "primitives/ik.hpp"
+#include "primitives/kinematics.hpp"
 
 namespace chore {
 
@@ -20,8 +19,12 @@ struct ArmPath {
   std::string reason;
 };
 
-// Collision queries on the world's scratch data (slot 1) holding the world's
-// positions at construction, so the world itself is never touched.
+// Collision queries of the robot and its load against the rest of the world,
+// as the world stands at construction: the robot's own kinematics place its
+// geoms (primitives/kinematics.hpp), MuJoCo's narrow-phase functions test them
+// against the geoms whose boxes they reach. The world's scratch data (slot 1)
+// holds the geom poses; the world itself is never touched. Contacts within the
+// robot (and with its load) do not count.
 class ArmCollisionChecker {
  public:
   explicit ArmCollisionChecker(const World& world);
@@ -30,12 +33,23 @@ class ArmCollisionChecker {
   // Whether the robot (or what it holds) with torso and arm at q touches
   // anything else, with the base where it is or at `base`.
   bool collides(const double* q, const Pose2* base = nullptr);
+  // Whether the hand (gripper and fingers) or what it holds touches anything
+  // else (but `ignored_object`), with the base where it is or at `base`.
+  bool hand_touches(const ArmConfiguration& q, const Pose2* base = nullptr, int ignored_object = -1);
 
  private:
+  struct Box {
+    int geom;
+    Eigen::Vector3d lo, hi;
+  };
+  bool touches(const std::vector<int>& mine, int ignored_object = -1);
+
   const World& world_;
-  const mjModel_* model_;
+  RobotKinematics kinematics_;
   mjData_* data_;
-  int robot_, held_ = -1;
+  std::vector<Box> others_;           // what the robot can touch, with world boxes
+  std::vector<int> robot_and_load_;   // colliding geoms moving with the robot
+  std::vector<int> hand_and_load_;
 };
 
 // Whether the robot (or what it holds) in configuration q touches anything else.

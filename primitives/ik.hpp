@@ -1,5 +1,5 @@
-// Inverse kinematics of the arm (and torso): damped least squares on MuJoCo's
-// site Jacobian, on a scratch copy of the world's state, so the world itself
+// Inverse kinematics of the arm (and torso): damped least squares on the
+// gripper site's Jacobian, on the robot's own kinematics, so the world itself
 // is untouched. The building block of the primitives' Cartesian motions.
 #pragma once
 
@@ -11,13 +11,9 @@
 #include <vector>
 
 #include "env/world/world.hpp"
+#include "primitives/kinematics.hpp"
 
 namespace chore {
-
-// torso, arm_1 .. arm_7
-using ArmConfiguration = std::array<double, 1 + Robot::kArmJoints>;
-// The world's current torso and arm joint values.
-ArmConfiguration arm_configuration(const World& world);
 
 struct IkTarget {
   Eigen::Vector3d position;                 // of the gripper_center site, world frame
@@ -43,8 +39,8 @@ struct IkResult {
   std::string reason;          // why it failed
 };
 
-// Solves on the world's scratch data (slot 0), from the world's joint
-// positions at each call: the world itself is untouched.
+// Solves on the robot's own kinematics (primitives/kinematics.hpp), from the
+// world's base and arm at each call: the world itself is untouched.
 class IkSolver {
  public:
   explicit IkSolver(const World& world);
@@ -55,7 +51,7 @@ class IkSolver {
 
  private:
   const World& world_;
-  mjData_* data_;
+  RobotKinematics kinematics_;
 };
 
 // One solve on a fresh scratch copy.

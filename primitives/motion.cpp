@@ -240,19 +240,31 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   }
   result_.planning_seconds += since(start);
   if (!physical()) {
-    // Waypoint by waypoint, the state rules running for the time the motion takes.
+    // Waypoint by waypoint: the hand stops at the first contact. The state
+    // rules run at every waypoint while the hand holds something they act on
+    // (a tool soaking or wiping); otherwise once, over the motion's time.
     const Clock::time_point t = Clock::now();
     const double dt = kLineSpacing / speed;
+    const int held = world_.carried_object();
+    const ObjectAbilities* load = held >= 0 ? world_.states().abilities(held) : nullptr;
+    const bool rules_along = world_.state_updates() && load && (load->soakable || load->cleaning_tool);
+    ArmCollisionChecker checker(world_);
+    size_t last = 0;
     for (size_t i = 1; i < path.size(); ++i) {
-      world_.set_robot_configuration(world_.base_pose(), path[i].data());
-      if (world_.state_updates()) world_.states().after_physics_step(world_, dt);
-      if (until_contact && hand_in_contact()) {
-        touched_ = true;
-        break;
+      last = i;
+      if (until_contact && checker.hand_touches(path[i])) touched_ = true;
+      if (rules_along) {
+        world_.set_robot_configuration(world_.base_pose(), path[i].data());
+        world_.states().after_physics_step(world_, dt);
       }
+      if (touched_) break;
+    }
+    if (!rules_along) {
+      world_.set_robot_configuration(world_.base_pose(), path[last].data());
+      if (world_.state_updates()) world_.states().after_physics_step(world_, dt * static_cast<double>(last));
     }
     result_.execution_seconds += since(t);
-    return touched_ || !cut_short || !until_contact ||
+    return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
            fail(PrimitiveStatus::motion_planning_failure,
                 "the hand cannot reach the contact: IK stops after " + std::to_string(reached) + " of " +
                     std::to_string(n) + " cm");
@@ -280,7 +292,7 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   } else {
     step_physics(3);  // let the controllers catch up with the last waypoint
   }
-  return touched_ || !cut_short || !until_contact ||
+  return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
          fail(PrimitiveStatus::motion_planning_failure,
                 "the hand cannot reach the contact: IK stops after " + std::to_string(reached) + " of " +
                     std::to_string(n) + " cm");

@@ -33,7 +33,8 @@ class Motion {
   // its orientation, at `speed` m/s, as far as IK can follow; less than
   // `min_fraction` of it is a motion-planning failure. With `until_contact` it
   // stops at the first contact of the hand (or what it holds) with anything
-  // else; touched() says whether it did. In symbolic mode the state rules (soaking, cleaning) run
+  // else; touched() says whether it did; then, cut short by IK before any
+  // contact, it fails below `min_fraction`. In symbolic mode the state rules (soaking, cleaning) run
   // at every waypoint for the time the motion would take.
   bool line(const Eigen::Vector3d& delta, bool until_contact, double speed = 0.2,
             double min_fraction = 1.0);

@@ -25,8 +25,11 @@ constexpr double kFingerReach = 0.04;   // m from the hand's centre to the finge
 constexpr double kClearance = 0.10;     // m above a target before descending
 constexpr double kLift = 0.15;          // m raised after grasping or releasing
 constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
-constexpr double kSlim = 0.08;
-constexpr double kPullFraction = 0.9;    // of a drawer's range, push opens it this far          // m: objects this narrow fit between the open fingers
+constexpr double kSlim = 0.08;          // m: objects this narrow fit between the open fingers
+constexpr double kPullFraction = 0.9;   // of a drawer's range, push opens it this far
+constexpr int kDrawsPerSample = 20;     // base-pose draws per free candidate, at most
+constexpr double kCorridorStep = 0.02;  // m between the hand poses checked along an approach
+constexpr double kFlatTolerance = 0.02; // m: a place spot's support heights may differ this much
 
 const char* const kTypeNames[] = {"navigate", "pick", "place", "push", "dip", "wipe"};
 const char* const kModeNames[] = {"physical", "symbolic"};
@@ -116,11 +119,26 @@ Eigen::Vector3d top_centre(const World& w, int object) {
   const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));
   const auto& objects = w.scene().objects();
   if (w.carried_object() < 0) return {centre.x(), centre.y(), top};  // nothing to set down
+  // A spot is flat when rays down through the load's footprint all land on
+  // the target at one height: not half on a bin's rim or off a table's edge.
+  const Aabb load = object_aabb(w, w.carried_object());
+  const double half_x = (load.hi.x() - load.lo.x()) / 2, half_y = (load.hi.y() - load.lo.y()) / 2;
+  const auto flat = [&](const Eigen::Vector3d& p) {
+    double lowest = 1e9, highest = -1e9;
+    for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {half_x, half_y}, {half_x, -half_y}, {-half_x, half_y}, {-half_x, -half_y}}) {
+      const double d = ray_to_object(w, object, Eigen::Vector3d(p.x() + dx, p.y() + dy, top + 0.05), -kUp, 1.0);
+      if (d < 0) return false;
+      lowest = std::min(lowest, d);
+      highest = std::max(highest, d);
+    }
+    return highest - lowest < kFlatTolerance;
+  };
   Eigen::Vector3d best = centre;
   double best_clearance = -1;
   for (int i = -2; i <= 2; ++i) {
     for (int j = -2; j <= 2; ++j) {
       const Eigen::Vector3d p = centre + along * (fa * i / 2.0) + across * (fc * j / 2.0);
+      if (!flat(p)) continue;
       double clearance = 1e9;
       for (size_t o = 0; o < objects.size(); ++o) {
         if (objects[o].fixed || static_cast<int>(o) == w.carried_object() || static_cast<int>(o) == object) continue;
@@ -203,14 +221,22 @@ IkTarget pre_pose(const World& w, const Approach& a) {
 
 bool holding_free_object(const World& w) { return w.carried_object() >= 0; }
 
+// How far past the approach point the fingertips may need to go: kContactDepth,
+// or half way through a thinner object (a rag in a drawer: not into the drawer).
+double contact_depth(const World& w, int object, const Approach& a) {
+  const Aabb box = object_aabb(w, object);
+  return std::min(kContactDepth, std::abs(a.direction.dot(box.hi - box.lo)) / 2);
+}
+
 // A collision-free IK solution for the pre-pose of the first approach that
-// works with the base at `base` (from the untucked arm), from which the hand
-// can also reach the approach point itself when the primitive descends to it.
+// works with the base at `base` (from the untucked arm), from which, when the
+// primitive descends, the hand can follow the approach to the contact point
+// touching nothing but the object itself (a neighbour in the way would stop it).
 struct Reach {
   ArmConfiguration joints;
   Approach approach;
 };
-std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w,
+std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w, int object,
                            const std::vector<Approach>& candidates, const Pose2& base, bool descends) {
   for (const Approach& a : candidates) {
     IkOptions options;
@@ -220,13 +246,20 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
     const IkTarget pre = pre_pose(w, a);
     const IkResult r = ik.solve(pre, options);
     if (!r.success || checker.collides(r.joints.data(), &base)) continue;
+    bool clear = true;
     if (descends) {
       options.start = r.joints;
-      IkTarget contact = pre;
-      contact.position = a.point + a.direction * (kContactDepth - kFingerReach);
-      if (!ik.solve(contact, options).success) continue;
+      IkTarget along = pre;
+      const Eigen::Vector3d contact = a.point + a.direction * (contact_depth(w, object, a) - kFingerReach);
+      const int steps = std::max(1, static_cast<int>(std::ceil((contact - pre.position).norm() / kCorridorStep)));
+      for (int i = 1; i <= steps && clear; ++i) {
+        along.position = pre.position + (contact - pre.position) * (static_cast<double>(i) / steps);
+        const IkResult c = ik.solve(along, options);
+        clear = c.success && !checker.hand_touches(c.joints, &base, object);
+        options.start = c.joints;
+      }
     }
-    return Reach{r.joints, a};
+    if (clear) return Reach{r.joints, a};
   }
   return std::nullopt;
 }
@@ -247,7 +280,7 @@ bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, 
   const std::vector<Approach> a = approaches(w, purpose, object, w.base_pose());
   const Scene& scene = w.scene();
   return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a[0].point.x(), a[0].point.y()) &&
-         reach(ik, checker, w, a, w.base_pose(), descends(purpose)).has_value();
+         reach(ik, checker, w, object, a, w.base_pose(), descends(purpose)).has_value();
 }
 
 class Executor {
@@ -296,7 +329,7 @@ class Executor {
   bool reach_pre_pose(ArmConfiguration& q) {
     const Clock::time_point t = Clock::now();
     ArmCollisionChecker checker(w_);
-    const auto solution = reach(motion_.ik(), checker, w_, approaches(w_, type_, object_, w_.base_pose()),
+    const auto solution = reach(motion_.ik(), checker, w_, object_, approaches(w_, type_, object_, w_.base_pose()),
                                 w_.base_pose(), descends(type_));
     result_.planning_seconds += since(t);
     if (!solution) return fail(PrimitiveStatus::motion_planning_failure, "'" + name() + "' is out of reach from here");
@@ -358,14 +391,18 @@ class Executor {
       return fail(PrimitiveStatus::precondition_failure, "already within reach of '" + name() + "'");
     }
     // OmniGibson's base-pose sampler: candidate poses near the object, kept
-    // when in the same room, collision-free and within reach (IK).
+    // when in the same room, collision-free and within reach (IK). Draws in
+    // collision cost a map lookup, so they do not count against the budget of
+    // `base_pose_samples` free candidates (up to kDrawsPerSample times as many
+    // draws): an object in a pocket between furniture is still found.
     const Footprint footprint(w_);
     std::mt19937_64 rng(motion_.next_seed());
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     const Aabb box = object_aabb(w_, object_);
     const auto articulated = purpose == PrimitiveType::push ? articulation(w_, object_) : std::nullopt;
     int path_failures = 0, blocked = 0, elsewhere = 0, unreachable = 0;
-    for (int i = 0; i < options_.base_pose_samples; ++i) {
+    const int draws = kDrawsPerSample * options_.base_pose_samples;
+    for (int i = 0; i < draws && i - blocked < options_.base_pose_samples; ++i) {
       Pose2 p;
       if (articulated) {
         // In front of the drawer, facing it, far enough to pull it open.
@@ -382,9 +419,9 @@ class Executor {
                                               std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
           if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
         }
-        // Within the arm's reach of the point (0.6 m at the floor, 0.85 m at
+        // Within the arm's reach of the point (0.6 m at the floor, 1 m at
         // table height) and clear of the object's box by the body's radius.
-        const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 0.85);
+        const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
         const double distance = near + (far - near) * unit(rng);
         p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
         p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
@@ -393,7 +430,7 @@ class Executor {
         ++blocked;
       } else if (scene.room_at(p.x, p.y) != room) {
         ++elsewhere;
-      } else if (!reach(motion_.ik(), checker, w_, approaches(w_, purpose, object_, p), p, descends(purpose))) {
+      } else if (!reach(motion_.ik(), checker, w_, object_, approaches(w_, purpose, object_, p), p, descends(purpose))) {
         ++unreachable;
       } else {
         // Reachable with the arm; now the base must get there.
@@ -405,9 +442,10 @@ class Executor {
     }
     result_.planning_seconds += since(t);
     return fail(PrimitiveStatus::motion_planning_failure,
-                "no collision-free base pose within reach of '" + name() + "' in its room (of " +
-                    std::to_string(options_.base_pose_samples) + " samples: " + std::to_string(blocked) +
-                    " in collision, " + std::to_string(elsewhere) + " in another room, " +
+                "no collision-free base pose within reach of '" + name() + "' in its room (" +
+                    std::to_string(blocked) + " samples in collision, then of " +
+                    std::to_string(elsewhere + unreachable + path_failures) + " free ones: " +
+                    std::to_string(elsewhere) + " in another room, " +
                     std::to_string(unreachable) + " out of the arm's reach, " + std::to_string(path_failures) +
                     " without a path)");
   }
@@ -421,8 +459,13 @@ class Executor {
     if (!go_to_pre_pose()) return false;
     // Towards the object until contact: through its height from above, its width from the side.
     const Aabb box = object_aabb(w_, object_);
+    // Within a waypoint (1 cm) of the contact point reach() checked, the line
+    // may end without a touch: a slim object taken from the side sits between
+    // the open fingers.
     const double extent = std::abs(approach_.direction.dot(box.hi - box.lo));
-    if (!motion_.line(approach_.direction * (kClearance + extent + 0.02), true, 0.15)) return false;
+    const double length = kClearance + extent + 0.02;
+    const double needed = kClearance + contact_depth(w_, object_, approach_) - 0.01;
+    if (!motion_.line(approach_.direction * length, true, 0.15, needed / length)) return false;
     motion_.gripper(false);
     if (!motion_.physical()) {
       // The assistive grasp's condition, kinematically: the object between the fingers.

@@ -76,6 +76,8 @@ class World {
   int grasped_body() const;
   // The free object the hand carries (held by its root, not a drawer's handle), or -1.
   int carried_object() const;
+  // The equality constraint of the current grasp (its eq_data holds the grip), or -1.
+  int grasp_weld() const { return grasped_weld_; }
 
   // Kinematic move (symbolic primitives): the base, torso and arm jump to the
   // given joint values, their controllers hold them there, velocities are zero,
