@@ -4,12 +4,34 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <regex>
 #include <string>
+#include <tuple>
 
 #include "env/world/error.hpp"
 #include "training/activity_commands.hpp"
 #include "training/bench.hpp"
+#include "training/evaluate.hpp"
 #include "training/expert_command.hpp"
+
+namespace {
+
+// "A-B" (or "A") as a seed range.
+std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::string& option) {
+  std::smatch m;
+  uint64_t first = 0, last = 0;
+  try {
+    if (!std::regex_match(text, m, std::regex(R"((\d+)(?:-(\d+))?)"))) throw std::invalid_argument(text);
+    first = std::stoull(m[1]);
+    last = m[2].matched ? std::stoull(m[2]) : first;
+  } catch (const std::exception&) {
+    throw chore::Error(option + " '" + text + "': expected a seed or a range A-B");
+  }
+  if (last < first) throw chore::Error(option + " '" + text + "': B is below A");
+  return {first, last};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
@@ -58,6 +80,34 @@ int main(int argc, char** argv) {
   expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
+  chore::EvalOptions eval;
+  std::string eval_seeds = "0-0", eval_activity, eval_plugin, eval_plugin_options, eval_action_space = "primitives",
+              eval_mode = "physical";
+  std::vector<std::string> eval_observations;
+  int eval_max_steps = 0;
+  bool eval_expert = false, eval_json = false;
+  CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");
+  auto* plugin_option = eval_cmd->add_option("--policy-plugin", eval_plugin,
+                                             "Shared library defining a policy (CHORE_POLICY_PLUGIN)");
+  auto* expert_option = eval_cmd->add_flag("--expert", eval_expert, "The scripted expert (primitive action space)");
+  plugin_option->excludes(expert_option);
+  eval_cmd->add_option("--policy-options", eval_plugin_options, "Text handed to the plugin's factory")->needs(plugin_option);
+  eval_cmd->add_option("--activity", eval_activity, "Activity name or .bddl path")->required();
+  eval_cmd->add_option("--action-space", eval_action_space, "primitives or low_level (plugins)")
+      ->check(CLI::IsMember({"primitives", "low_level"}))->needs(plugin_option)->capture_default_str();
+  eval_cmd->add_option("--observations", eval_observations,
+                       "Observations a plugin sees (default: rgb, depth, proprio, is_grasping, and action_mask "
+                       "for primitives)")->delimiter(',')->needs(plugin_option);
+  eval_cmd->add_option("--mode", eval_mode, "Primitive execution: physical or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  eval_cmd->add_option("--max-steps", eval_max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
+      ->check(CLI::PositiveNumber);
+  eval_cmd->add_option("--seeds", eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
+      ->capture_default_str();
+  eval_cmd->add_option("--episodes", eval.episodes, "Episodes per seed")->check(CLI::PositiveNumber)->capture_default_str();
+  eval_cmd->add_option("--threads", eval.threads, "Envs run in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  eval_cmd->add_flag("--json", eval_json, "Print the results as JSON (per seed and episode too)");
+
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -84,16 +134,7 @@ int main(int argc, char** argv) {
   try {
     if (*check_cmd) chore::check_activities(check_files, std::cout);
     if (*sample_cmd && !sample_seeds.empty()) {
-      const auto dash = sample_seeds.find('-');
-      uint64_t first = 0, last = 0;
-      try {
-        if (dash == std::string::npos) throw std::invalid_argument(sample_seeds);
-        first = std::stoull(sample_seeds.substr(0, dash));
-        last = std::stoull(sample_seeds.substr(dash + 1));
-      } catch (const std::exception&) {
-        throw chore::Error("--seeds '" + sample_seeds + "': expected a range A-B");
-      }
-      if (last < first) throw chore::Error("--seeds '" + sample_seeds + "': B is below A");
+      const auto [first, last] = seed_range(sample_seeds, "--seeds");
       chore::sample_activity_seeds(sample_name, sample_scene, first, last, std::cout);
     } else if (*sample_cmd) {
       if (sample_out.empty()) throw chore::Error("activity sample: give --out FILE.png or --seeds A-B");
@@ -103,6 +144,36 @@ int main(int argc, char** argv) {
       expert.mode = chore::parse_execution_mode(expert_mode);
       const nlohmann::json results = chore::run_expert(expert, std::cerr);
       std::cout << (expert_json ? results.dump(2) + "\n" : chore::format_expert(results));
+    }
+    if (*eval_cmd) {
+      std::tie(eval.first_seed, eval.last_seed) = seed_range(eval_seeds, "--seeds");
+      const chore::ExecutionMode mode = chore::parse_execution_mode(eval_mode);
+      const bool primitives = eval_expert || eval_action_space == "primitives";
+      const int max_steps = eval_max_steps > 0 ? eval_max_steps : primitives ? 60 : 500;
+      std::vector<chore::PolicySource> sources;
+      if (eval_expert) {
+        sources.push_back(chore::expert_source(eval_activity, mode, max_steps));
+      } else if (!eval_plugin.empty()) {
+        chore::EnvConfig env;
+        env.activity = eval_activity;
+        env.action_space = eval_action_space;
+        env.primitive_mode = mode;
+        env.max_episode_steps = max_steps;
+        if (!eval_observations.empty()) {
+          env.observations = eval_observations;
+        } else if (primitives) {
+          env.observations.push_back("action_mask");
+        }
+        sources.push_back(chore::plugin_source(eval_plugin, eval_plugin_options, env));
+      } else {
+        throw chore::Error("eval: give the policy: --policy-plugin LIB.so or --expert");
+      }
+      nlohmann::json results = nlohmann::json::array();
+      for (const chore::PolicySource& source : sources) {
+        results.push_back(chore::evaluate(source, eval, std::cerr));
+        if (!eval_json) std::cout << chore::format_evaluation(results.back());
+      }
+      if (eval_json) std::cout << results.dump(2) << std::endl;
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
