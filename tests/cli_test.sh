@@ -53,5 +53,20 @@ expect 2 "unknown activity 'nope'" -- "$chore" expert --activity nope --episodes
 expect 0 '"success_rate"' -- "$chore" expert --activity store_decoration --episodes 2 --seed 1 --mode symbolic --json
 expect 0 "success rate" -- "$chore" expert --activity store_decoration --episodes 1 --seed 1 --mode symbolic
 
+# Evaluation: bad arguments exit 2 naming the problem; the expert evaluates.
+expect 2 "give the policy" -- "$chore" eval --activity store_decoration
+expect 2 "excludes" -- "$chore" eval --expert --policy-plugin x.so --activity store_decoration
+expect 2 "activity is required" -- "$chore" eval --expert
+expect 2 "--seeds '3-1': B is below A" -- "$chore" eval --expert --activity store_decoration --seeds 3-1
+expect 2 "--seeds 'x': expected a seed or a range A-B" -- "$chore" eval --expert --activity store_decoration --seeds x
+expect 2 "episodes" -- "$chore" eval --expert --activity store_decoration --episodes 0
+expect 2 "policy-options requires --policy-plugin" -- "$chore" eval --expert --activity store_decoration --policy-options a
+expect 2 "policy plugin 'no_such.so': no such file" -- "$chore" eval --policy-plugin no_such.so --activity store_decoration
+expect 2 "unknown activity 'nope'" -- "$chore" eval --expert --activity nope
+expect 2 "unknown observation 'sonar'" -- "$chore" eval --policy-plugin "$chore" --observations sonar --activity store_decoration
+expect 2 "cannot load it" -- "$chore" eval --policy-plugin "$data/bddl/error_unbalanced.bddl" --activity store_decoration
+expect 0 "success rate .* +- " -- "$chore" eval --expert --activity store_decoration --mode symbolic --seeds 0-1 --episodes 1
+expect 0 '"env_seed": 1000000' -- "$chore" eval --expert --activity store_decoration --mode symbolic --seeds 1 --episodes 1 --json
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]
