@@ -68,5 +68,12 @@ expect 2 "cannot load it" -- "$chore" eval --policy-plugin "$data/bddl/error_unb
 expect 0 "success rate .* +- " -- "$chore" eval --expert --activity store_decoration --mode symbolic --seeds 0-1 --episodes 1
 expect 0 '"env_seed": 1000000' -- "$chore" eval --expert --activity store_decoration --mode symbolic --seeds 1 --episodes 1 --json
 
+# Video: bad arguments exit 2; a short symbolic expert episode is written.
+expect 2 "--out is required" -- "$chore" video --expert --activity store_decoration
+expect 2 "give the policy" -- "$chore" video --activity store_decoration --out /tmp/chore_cli_video.mp4
+expect 2 "size" -- "$chore" video --expert --activity store_decoration --size 0 --out /tmp/chore_cli_video.mp4
+video_out="$(mktemp -d)/expert.mp4"
+expect 0 "11 frames of 512x300" -- "$chore" video --expert --activity store_decoration --mode symbolic --seed 1 --out "$video_out"
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

@@ -1,5 +1,5 @@
-// The `chore` command line: bench, activity check/sample, expert; train, eval and
-// video join as their layers land. Bad arguments and bad input files
+// The `chore` command line: bench, activity check/sample, expert, eval, video;
+// train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
 
@@ -13,6 +13,7 @@
 #include "training/bench.hpp"
 #include "training/evaluate.hpp"
 #include "training/expert_command.hpp"
+#include "training/video.hpp"
 
 namespace {
 
@@ -29,6 +30,50 @@ std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::str
   }
   if (last < first) throw chore::Error(option + " '" + text + "': B is below A");
   return {first, last};
+}
+
+// Where eval and video get their policy and its env.
+struct PolicyArgs {
+  std::string activity, plugin, plugin_options, action_space = "primitives", mode = "physical";
+  std::vector<std::string> observations;
+  int max_steps = 0;
+  bool expert = false;
+};
+
+void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
+  auto* plugin = cmd->add_option("--policy-plugin", a.plugin, "Shared library defining a policy (CHORE_POLICY_PLUGIN)");
+  auto* expert = cmd->add_flag("--expert", a.expert, "The scripted expert (primitive action space)");
+  plugin->excludes(expert);
+  cmd->add_option("--policy-options", a.plugin_options, "Text handed to the plugin's factory")->needs(plugin);
+  cmd->add_option("--activity", a.activity, "Activity name or .bddl path")->required();
+  cmd->add_option("--action-space", a.action_space, "primitives or low_level (plugins)")
+      ->check(CLI::IsMember({"primitives", "low_level"}))->needs(plugin)->capture_default_str();
+  cmd->add_option("--observations", a.observations,
+                  "Observations a plugin sees (default: rgb, depth, proprio, is_grasping, and action_mask for "
+                  "primitives)")->delimiter(',')->needs(plugin);
+  cmd->add_option("--mode", a.mode, "Primitive execution: physical or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  cmd->add_option("--max-steps", a.max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
+      ->check(CLI::PositiveNumber);
+}
+
+std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::string& command) {
+  const chore::ExecutionMode mode = chore::parse_execution_mode(a.mode);
+  const bool primitives = a.expert || a.action_space == "primitives";
+  const int max_steps = a.max_steps > 0 ? a.max_steps : primitives ? 60 : 500;
+  if (a.expert) return {chore::expert_source(a.activity, mode, max_steps)};
+  if (a.plugin.empty()) throw chore::Error(command + ": give the policy: --policy-plugin LIB.so or --expert");
+  chore::EnvConfig env;
+  env.activity = a.activity;
+  env.action_space = a.action_space;
+  env.primitive_mode = mode;
+  env.max_episode_steps = max_steps;
+  if (!a.observations.empty()) {
+    env.observations = a.observations;
+  } else if (primitives) {
+    env.observations.push_back("action_mask");
+  }
+  return {chore::plugin_source(a.plugin, a.plugin_options, env)};
 }
 
 }  // namespace
@@ -81,32 +126,26 @@ int main(int argc, char** argv) {
   expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
   chore::EvalOptions eval;
-  std::string eval_seeds = "0-0", eval_activity, eval_plugin, eval_plugin_options, eval_action_space = "primitives",
-              eval_mode = "physical";
-  std::vector<std::string> eval_observations;
-  int eval_max_steps = 0;
-  bool eval_expert = false, eval_json = false;
+  PolicyArgs eval_policy;
+  std::string eval_seeds = "0-0";
+  bool eval_json = false;
   CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");
-  auto* plugin_option = eval_cmd->add_option("--policy-plugin", eval_plugin,
-                                             "Shared library defining a policy (CHORE_POLICY_PLUGIN)");
-  auto* expert_option = eval_cmd->add_flag("--expert", eval_expert, "The scripted expert (primitive action space)");
-  plugin_option->excludes(expert_option);
-  eval_cmd->add_option("--policy-options", eval_plugin_options, "Text handed to the plugin's factory")->needs(plugin_option);
-  eval_cmd->add_option("--activity", eval_activity, "Activity name or .bddl path")->required();
-  eval_cmd->add_option("--action-space", eval_action_space, "primitives or low_level (plugins)")
-      ->check(CLI::IsMember({"primitives", "low_level"}))->needs(plugin_option)->capture_default_str();
-  eval_cmd->add_option("--observations", eval_observations,
-                       "Observations a plugin sees (default: rgb, depth, proprio, is_grasping, and action_mask "
-                       "for primitives)")->delimiter(',')->needs(plugin_option);
-  eval_cmd->add_option("--mode", eval_mode, "Primitive execution: physical or symbolic")
-      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
-  eval_cmd->add_option("--max-steps", eval_max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
-      ->check(CLI::PositiveNumber);
+  add_policy_options(eval_cmd, eval_policy);
   eval_cmd->add_option("--seeds", eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
       ->capture_default_str();
   eval_cmd->add_option("--episodes", eval.episodes, "Episodes per seed")->check(CLI::PositiveNumber)->capture_default_str();
   eval_cmd->add_option("--threads", eval.threads, "Envs run in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   eval_cmd->add_flag("--json", eval_json, "Print the results as JSON (per seed and episode too)");
+
+  chore::VideoOptions video;
+  PolicyArgs video_policy;
+  CLI::App* video_cmd = app.add_subcommand("video", "Record an episode: robot camera and top-down view, to MP4");
+  add_policy_options(video_cmd, video_policy);
+  video_cmd->add_option("--seed", video.seed, "The episode's env seed")->capture_default_str();
+  video_cmd->add_option("--out", video.out, "MP4 file to write")->required();
+  video_cmd->add_option("--size", video.size, "Pixels of each view")->check(CLI::Range(16, 2048))->capture_default_str();
+  video_cmd->add_option("--fps", video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
+      ->check(CLI::PositiveNumber);
 
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
@@ -147,33 +186,19 @@ int main(int argc, char** argv) {
     }
     if (*eval_cmd) {
       std::tie(eval.first_seed, eval.last_seed) = seed_range(eval_seeds, "--seeds");
-      const chore::ExecutionMode mode = chore::parse_execution_mode(eval_mode);
-      const bool primitives = eval_expert || eval_action_space == "primitives";
-      const int max_steps = eval_max_steps > 0 ? eval_max_steps : primitives ? 60 : 500;
-      std::vector<chore::PolicySource> sources;
-      if (eval_expert) {
-        sources.push_back(chore::expert_source(eval_activity, mode, max_steps));
-      } else if (!eval_plugin.empty()) {
-        chore::EnvConfig env;
-        env.activity = eval_activity;
-        env.action_space = eval_action_space;
-        env.primitive_mode = mode;
-        env.max_episode_steps = max_steps;
-        if (!eval_observations.empty()) {
-          env.observations = eval_observations;
-        } else if (primitives) {
-          env.observations.push_back("action_mask");
-        }
-        sources.push_back(chore::plugin_source(eval_plugin, eval_plugin_options, env));
-      } else {
-        throw chore::Error("eval: give the policy: --policy-plugin LIB.so or --expert");
-      }
       nlohmann::json results = nlohmann::json::array();
-      for (const chore::PolicySource& source : sources) {
+      for (const chore::PolicySource& source : policy_sources(eval_policy, "eval")) {
         results.push_back(chore::evaluate(source, eval, std::cerr));
         if (!eval_json) std::cout << chore::format_evaluation(results.back());
       }
       if (eval_json) std::cout << results.dump(2) << std::endl;
+    }
+    if (*video_cmd) {
+      const std::vector<chore::PolicySource> sources = policy_sources(video_policy, "video");
+      const nlohmann::json r = chore::record_video(sources.front(), video, std::cerr);
+      std::cout << "video: " << r["out"].get<std::string>() << ", " << r["frames"] << " frames of " << r["width"]
+                << "x" << r["height"] << " at " << r["fps"] << " fps (" << r["codec"].get<std::string>() << "); " << r["steps"] << " steps, "
+                << (r["success"].get<bool>() ? "success" : "no success") << ", Q " << r["q"] << "\n";
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
