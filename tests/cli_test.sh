@@ -75,5 +75,15 @@ expect 2 "size" -- "$chore" video --expert --activity store_decoration --size 0 
 video_out="$(mktemp -d)/expert.mp4"
 expect 0 "11 frames of 512x300" -- "$chore" video --expert --activity store_decoration --mode symbolic --seed 1 --out "$video_out"
 
+# Plot: bad arguments and files exit 2; a constructed run is drawn.
+plot_dir="$(mktemp -d)"
+mkdir -p "$plot_dir/ppo_seed0"
+printf 'env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length\n0,0,0,0,0,0,0\n100,1,4,0.5,0.6,0.5,9\n' > "$plot_dir/ppo_seed0/metrics.csv"
+expect 2 "--out is required" -- "$chore" plot "$plot_dir/ppo_seed0/metrics.csv"
+expect 2 "cannot read '$plot_dir/none.csv'" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/none.csv"
+expect 2 "has no column 'kl'" -- "$chore" plot --out "$plot_dir/c.png" --y kl "$plot_dir/ppo_seed0/metrics.csv"
+expect 0 "ppo (1 runs)" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/ppo_seed0/metrics.csv"
+if [[ ! -s "$plot_dir/c.png" ]]; then echo "FAIL: $plot_dir/c.png was not written"; failures=$((failures + 1)); fi
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

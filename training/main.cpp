@@ -1,4 +1,4 @@
-// The `chore` command line: bench, activity check/sample, expert, eval, video;
+// The `chore` command line: bench, activity check/sample, expert, eval, video, plot;
 // train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
@@ -13,6 +13,7 @@
 #include "training/bench.hpp"
 #include "training/evaluate.hpp"
 #include "training/expert_command.hpp"
+#include "training/plot.hpp"
 #include "training/video.hpp"
 
 namespace {
@@ -147,6 +148,17 @@ int main(int argc, char** argv) {
   video_cmd->add_option("--fps", video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
       ->check(CLI::PositiveNumber);
 
+  chore::PlotOptions plot;
+  CLI::App* plot_cmd = app.add_subcommand("plot", "Learning curves from metrics.csv files to PNG");
+  plot_cmd->add_option("runs", plot.runs, "metrics.csv files, each optionally LABEL=path (default label: "
+                                          "the run directory less a _seedN suffix)")->required();
+  plot_cmd->add_option("--out", plot.out, "PNG to write")->required();
+  plot_cmd->add_option("--x", plot.x, "Column for the x axis")->capture_default_str();
+  plot_cmd->add_option("--y", plot.y, "Column for the y axis (success_rate, mean_q, mean_return, ...)")->capture_default_str();
+  plot_cmd->add_option("--title", plot.title, "Title (default: Y over X)");
+  plot_cmd->add_option("--width", plot.width, "Picture width")->check(CLI::Range(320, 4096))->capture_default_str();
+  plot_cmd->add_option("--height", plot.height, "Picture height")->check(CLI::Range(240, 4096))->capture_default_str();
+
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -199,6 +211,12 @@ int main(int argc, char** argv) {
       std::cout << "video: " << r["out"].get<std::string>() << ", " << r["frames"] << " frames of " << r["width"]
                 << "x" << r["height"] << " at " << r["fps"] << " fps (" << r["codec"].get<std::string>() << "); " << r["steps"] << " steps, "
                 << (r["success"].get<bool>() ? "success" : "no success") << ", Q " << r["q"] << "\n";
+    }
+    if (*plot_cmd) {
+      const nlohmann::json r = chore::plot_curves(plot);
+      std::cout << "plot: " << plot.out << ":";
+      for (const auto& g : r["groups"]) std::cout << " " << g["label"].get<std::string>() << " (" << g["runs"] << " runs)";
+      std::cout << "\n";
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
