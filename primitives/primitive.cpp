@@ -25,6 +25,9 @@ constexpr double kFingerReach = 0.04;   // m from the hand's centre to the finge
 constexpr double kClearance = 0.10;     // m above a target before descending
 constexpr double kLift = 0.15;          // m raised after grasping or releasing
 constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
+// No hand pose is this far (horizontally) from the base's axis: shoulder 0.09 m
+// ahead of it, arm and gripper ~1 m long. Farther targets skip the IK solve.
+constexpr double kArmReachBound = 1.5;
 constexpr double kSlim = 0.08;
 constexpr double kPullFraction = 0.9;    // of a drawer's range, push opens it this far          // m: objects this narrow fit between the open fingers
 
@@ -213,6 +216,7 @@ struct Reach {
 std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w,
                            const std::vector<Approach>& candidates, const Pose2& base, bool descends) {
   for (const Approach& a : candidates) {
+    if (std::hypot(a.point.x() - base.x, a.point.y() - base.y) > kArmReachBound) continue;
     IkOptions options;
     options.base = base;
     options.start = kUntuckedConfiguration;

@@ -82,7 +82,7 @@ printf 'env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length\n0
 expect 2 "--out is required" -- "$chore" plot "$plot_dir/ppo_seed0/metrics.csv"
 expect 2 "cannot read '$plot_dir/none.csv'" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/none.csv"
 expect 2 "has no column 'kl'" -- "$chore" plot --out "$plot_dir/c.png" --y kl "$plot_dir/ppo_seed0/metrics.csv"
-expect 0 "ppo (1 runs)" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/ppo_seed0/metrics.csv"
+expect 0 "ppo (1 run)" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/ppo_seed0/metrics.csv"
 if [[ ! -s "$plot_dir/c.png" ]]; then echo "FAIL: $plot_dir/c.png was not written"; failures=$((failures + 1)); fi
 
 echo "$((checks - failures)) passed, $failures failed"

@@ -215,7 +215,9 @@ int main(int argc, char** argv) {
     if (*plot_cmd) {
       const nlohmann::json r = chore::plot_curves(plot);
       std::cout << "plot: " << plot.out << ":";
-      for (const auto& g : r["groups"]) std::cout << " " << g["label"].get<std::string>() << " (" << g["runs"] << " runs)";
+      for (const auto& g : r["groups"]) {
+        std::cout << " " << g["label"].get<std::string>() << " (" << g["runs"] << (g["runs"] == 1 ? " run)" : " runs)");
+      }
       std::cout << "\n";
     }
     if (*bench_cmd) {
