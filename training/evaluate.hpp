@@ -33,7 +33,8 @@ inline constexpr uint64_t kEpisodeSeedStride = 1000000;
 // reads its envs' state).
 using PolicyFactory = std::function<std::unique_ptr<Policy>(const VectorEnv&)>;
 
-// A policy and the env it acts in, named for reports.
+// A policy and the env it acts in, named for reports. A checkpoint makes one
+// from load_policy(path): {path, loaded.env, a factory handing over loaded.policy}.
 struct PolicySource {
   std::string label;
   EnvConfig env;
