@@ -60,6 +60,30 @@ TEST(Evaluate, ResultsDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one["failed_primitives"], two["failed_primitives"]);
 }
 
+// Low-level control: 14 values per row; an idle policy never succeeds and
+// every episode runs to the time limit.
+class Idle : public Policy {
+  void act(const Batch& batch, std::span<float> actions) override {
+    EXPECT_EQ(actions.size(), batch.size() * static_cast<size_t>(kLowLevelActionSize));
+    std::fill(actions.begin(), actions.end(), 0.f);
+  }
+};
+
+TEST(Evaluate, LowLevelEpisodesRunToTheTimeLimit) {
+  EnvConfig env;
+  env.activity = "collect_trash";
+  env.observations = {"proprio"};
+  env.max_episode_steps = 5;
+  std::ostringstream log;
+  const nlohmann::json r = evaluate({"idle", env, [](const VectorEnv&) { return std::make_unique<Idle>(); }},
+                                    seeds(0, 1, 3, 2), log);
+  EXPECT_EQ(r["env_steps"].get<int>(), 2 * 3 * 5);
+  EXPECT_EQ(r["episodes_ended_by"]["time_limit"].get<int>(), 6);
+  EXPECT_EQ(r["success_rate"]["mean"].get<double>(), 0.0);
+  EXPECT_EQ(r["episode_length"]["mean"].get<double>(), 5.0);
+  EXPECT_EQ(r["mode"], "");
+}
+
 TEST(Evaluate, BadOptionsAreErrors) {
   std::ostringstream log;
   const PolicySource expert = expert_source("store_decoration", ExecutionMode::symbolic, 60);
