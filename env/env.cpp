@@ -15,7 +15,7 @@ constexpr double kActionDt = Env::kPhysicsSubsteps / 120.0;
 constexpr double kBaseSpeed = 0.5, kTurnSpeed = 1.0;  // m/s, rad/s at |action| = 1
 constexpr double kTorsoSpeed = 0.1, kJointSpeed = 1.0;
 constexpr int kProprioSize = 30;
-const std::vector<std::string> kKnownObservations = {"rgb", "depth", "proprio", "is_grasping"};
+const std::vector<std::string> kKnownObservations = {"rgb", "depth", "proprio", "is_grasping", "action_mask"};
 
 bool wants(const EnvConfig& c, const char* name) {
   return std::find(c.observations.begin(), c.observations.end(), name) != c.observations.end();
@@ -58,28 +58,16 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     if (std::find(kKnownObservations.begin(), kKnownObservations.end(), name) ==
         kKnownObservations.end()) {
       throw Error("env config: unknown observation '" + name +
-                  "' (known: rgb, depth, proprio, is_grasping)");
+                  "' (known: rgb, depth, proprio, is_grasping, action_mask)");
     }
     if (!config_.robot && (name == "proprio" || name == "is_grasping")) {
       throw Error("env config: observation '" + name + "' needs the robot");
     }
+    if (name == "action_mask" && config_.action_space != "primitives") {
+      throw Error("env config: observation 'action_mask' needs the primitive action space (action_space is '" +
+                  config_.action_space + "')");
+    }
   }
-  // A fixed order, whatever the config's: the layout of batched buffers.
-  const double inf = std::numeric_limits<double>::infinity();
-  if (wants(config_, "rgb")) {
-    fields.push_back({"rgb", Space::box({config_.height, config_.width, 3}, DType::uint8, 0, 255)});
-  }
-  if (wants(config_, "depth")) {
-    fields.push_back({"depth", Space::box({config_.height, config_.width}, DType::float32, 0, inf)});
-  }
-  if (wants(config_, "proprio")) {
-    fields.push_back({"proprio", Space::box({kProprioSize}, DType::float32, -inf, inf)});
-  }
-  if (wants(config_, "is_grasping")) {
-    fields.push_back({"is_grasping", Space::box({1}, DType::float32, 0, 1)});
-  }
-  observation_space_ = Space::dict(std::move(fields));
-  obs_ = ArrayDict(observation_space_, 1);
   world_ = std::make_unique<World>(scene_);
   world_->set_lighting(config_.lighting);
   world_->set_state_updates(config_.object_states);
@@ -97,6 +85,25 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     throw Error("env config: unknown action space '" + config_.action_space +
                 "' (known: low_level, primitives)");
   }
+  // A fixed order, whatever the config's: the layout of batched buffers.
+  const double inf = std::numeric_limits<double>::infinity();
+  if (wants(config_, "rgb")) {
+    fields.push_back({"rgb", Space::box({config_.height, config_.width, 3}, DType::uint8, 0, 255)});
+  }
+  if (wants(config_, "depth")) {
+    fields.push_back({"depth", Space::box({config_.height, config_.width}, DType::float32, 0, inf)});
+  }
+  if (wants(config_, "proprio")) {
+    fields.push_back({"proprio", Space::box({kProprioSize}, DType::float32, -inf, inf)});
+  }
+  if (wants(config_, "is_grasping")) {
+    fields.push_back({"is_grasping", Space::box({1}, DType::float32, 0, 1)});
+  }
+  if (wants(config_, "action_mask")) {
+    fields.push_back({"action_mask", Space::box({static_cast<int>(primitive_actions_.size())}, DType::uint8, 0, 1)});
+  }
+  observation_space_ = Space::dict(std::move(fields));
+  obs_ = ArrayDict(observation_space_, 1);
 }
 
 Env::~Env() = default;
@@ -277,6 +284,13 @@ void Env::write_state(ArrayDict& obs, int index) const {
   }
   if (obs.contains("is_grasping")) {
     *static_cast<float*>(obs["is_grasping"].item(index)) = grasping ? 1.0f : 0.0f;
+  }
+  if (obs.contains("action_mask")) {
+    auto* mask = static_cast<std::uint8_t*>(obs["action_mask"].item(index));
+    for (size_t i = 0; i < primitive_actions_.size(); ++i) {
+      const PrimitiveAction& a = primitive_actions_[i];
+      mask[i] = unmet_precondition(w, a.type, a.object).empty() ? 1 : 0;
+    }
   }
 }
 

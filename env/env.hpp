@@ -32,7 +32,9 @@ struct EnvConfig {
   // Empty: the activity's scene (tasks/activities/scenes.json), or the apartment.
   std::string scene;
   int width = 128, height = 128;
-  // Any of "rgb", "depth", "proprio", "is_grasping".
+  // Any of "rgb", "depth", "proprio", "is_grasping", and for the primitive
+  // action space "action_mask": (n,) uint8, 1 where action i's precondition
+  // holds now (unmet_precondition in primitives/primitive.hpp is empty).
   std::vector<std::string> observations = {"rgb", "depth", "proprio", "is_grasping"};
   Lighting lighting = Lighting::full;
   int max_episode_steps = 500;  // then the episode is truncated

@@ -77,4 +77,18 @@ std::optional<int> ScriptedExpert::act(const Env& env) const {
   return std::nullopt;
 }
 
+ExpertPolicy::ExpertPolicy(const VectorEnv& envs) : envs_(envs), expert_(envs.env(0)) {}
+
+void ExpertPolicy::act(const Batch& batch, std::span<float> actions) {
+  for (int row = 0; row < batch.size(); ++row) {
+    const Env& env = envs_.env(batch.env_ids[row]);
+    std::optional<int> a = expert_.act(env);
+    for (size_t i = 0; !a && i < env.primitive_actions().size(); ++i) {
+      const PrimitiveAction& p = env.primitive_actions()[i];
+      if (!unmet_precondition(env.world(), p.type, p.object).empty()) a = static_cast<int>(i);
+    }
+    actions[row] = static_cast<float>(a.value_or(0));
+  }
+}
+
 }  // namespace chore

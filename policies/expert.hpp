@@ -14,6 +14,8 @@
 #include <optional>
 
 #include "env/env.hpp"
+#include "env/vector_env.hpp"
+#include "policies/policy.hpp"
 
 namespace chore {
 
@@ -31,6 +33,22 @@ class ScriptedExpert {
   std::optional<int> clean(const Env& env, int surface, bool needs_soaked_tool) const;
 
   const std::vector<PrimitiveAction>* actions_;
+};
+
+// The scripted expert as a Policy over a VectorEnv's envs (it reads their
+// state through VectorEnv::env, not the observations). Where the script has
+// no action (a literal it does not know), it gives up the seed's way: it
+// repeats an action whose precondition fails, which changes nothing and ends
+// the episode as a policy failure.
+class ExpertPolicy : public Policy {
+ public:
+  // `envs` must outlive the policy and use the primitive action space.
+  explicit ExpertPolicy(const VectorEnv& envs);
+  void act(const Batch& batch, std::span<float> actions) override;
+
+ private:
+  const VectorEnv& envs_;
+  ScriptedExpert expert_;
 };
 
 }  // namespace chore

@@ -30,6 +30,9 @@ constexpr double kPullFraction = 0.9;   // of a drawer's range, push opens it th
 constexpr int kDrawsPerSample = 20;     // base-pose draws per free candidate, at most
 constexpr double kCorridorStep = 0.02;  // m between the hand poses checked along an approach
 constexpr double kFlatTolerance = 0.02; // m: a place spot's support heights may differ this much
+// No hand pose is this far (horizontally) from the base's axis: shoulder 0.09 m
+// ahead of it, arm and gripper ~1 m long. Farther targets skip the IK solve.
+constexpr double kArmReachBound = 1.5;
 
 const char* const kTypeNames[] = {"navigate", "pick", "place", "push", "dip", "wipe"};
 const char* const kModeNames[] = {"physical", "symbolic"};
@@ -239,6 +242,7 @@ struct Reach {
 std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w, int object,
                            const std::vector<Approach>& candidates, const Pose2& base, bool descends) {
   for (const Approach& a : candidates) {
+    if (std::hypot(a.point.x() - base.x, a.point.y() - base.y) > kArmReachBound) continue;
     IkOptions options;
     options.base = base;
     options.start = kUntuckedConfiguration;
@@ -291,15 +295,9 @@ class Executor {
   }
 
   PrimitiveResult run() {
-    bool ok = false;
-    switch (type_) {
-      case PrimitiveType::navigate: ok = navigate(); break;
-      case PrimitiveType::pick: ok = pick(); break;
-      case PrimitiveType::place: ok = place(); break;
-      case PrimitiveType::push: ok = push(); break;
-      case PrimitiveType::dip: ok = dip(); break;
-      case PrimitiveType::wipe: ok = wipe(); break;
-    }
+    // navigate checks its precondition itself, after tucking, with its own IK solver.
+    const std::string unmet = type_ == PrimitiveType::navigate ? "" : unmet_precondition(w_, type_, object_);
+    const bool ok = unmet.empty() ? act() : fail(PrimitiveStatus::precondition_failure, unmet);
     // A failed manipulation still ends tucked where it can, so the robot can drive on.
     if (!ok && !result_.diverged && type_ != PrimitiveType::navigate) {
       const PrimitiveResult failed = result_;
@@ -315,6 +313,17 @@ class Executor {
   }
 
  private:
+  bool act() {
+    switch (type_) {
+      case PrimitiveType::navigate: return navigate();
+      case PrimitiveType::pick: return pick();
+      case PrimitiveType::place: return place();
+      case PrimitiveType::push: return push();
+      case PrimitiveType::dip: return dip();
+      case PrimitiveType::wipe: return wipe();
+    }
+    return false;
+  }
   const std::string& name() const { return w_.scene().objects()[object_].name; }
   bool at(const ArmConfiguration& q) const {
     const ArmConfiguration now = arm_configuration(w_);
@@ -451,11 +460,6 @@ class Executor {
   }
 
   bool pick() {
-    if (w_.grasped_object() >= 0) return fail(PrimitiveStatus::precondition_failure, "the hand is not empty");
-    // Fixed objects cannot be picked; a heavy one is refused by the grasp itself.
-    if (w_.scene().objects()[object_].fixed) {
-      return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' cannot be picked up");
-    }
     if (!go_to_pre_pose()) return false;
     // Towards the object until contact: through its height from above, its width from the side.
     const Aabb box = object_aabb(w_, object_);
@@ -487,9 +491,7 @@ class Executor {
   }
 
   bool place() {
-    if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
     const int held = w_.grasped_object();
-    if (held == object_) return fail(PrimitiveStatus::precondition_failure, "cannot place an object on itself");
     if (!go_to_pre_pose_with_load()) return false;
     motion_.gripper(true);
     if (!motion_.physical()) settle_kinematically(held);
@@ -533,10 +535,7 @@ class Executor {
   }
 
   bool push() {
-    if (w_.grasped_object() >= 0) return fail(PrimitiveStatus::precondition_failure, "the hand is not empty");
-    const auto a = articulation(w_, object_);
-    if (!a) return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' has no drawer to open");
-    if (open_fraction(*a) > 0.9) return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' is already open");
+    const auto a = articulation(w_, object_);  // there is one: the precondition held
     if (!go_to_pre_pose()) return false;
     // To the handle until the fingertips touch the front, close on the handle, pull.
     if (!motion_.line(-a->axis * (kClearance + 0.06), true, 0.15)) return false;
@@ -563,17 +562,8 @@ class Executor {
     return true;
   }
 
-  // dip and wipe: a tool in hand, and a target of the right kind.
-  bool holding_and_applicable(const std::string& otherwise) {
-    if (!holding_free_object(w_)) return fail(PrimitiveStatus::precondition_failure, "the hand holds nothing");
-    if (!primitive_applies(w_, type_, object_)) {
-      return fail(PrimitiveStatus::precondition_failure, "'" + name() + "' " + otherwise);
-    }
-    return true;
-  }
-
   bool dip() {
-    if (!holding_and_applicable("holds no liquid") || !go_to_pre_pose_with_load()) return false;
+    if (!go_to_pre_pose_with_load()) return false;
     // Down until the held object's bottom is 4 cm under the liquid's surface.
     const Aabb box = object_aabb(w_, object_);
     const double surface = box.lo.z() + w_.states().state(object_).liquid_level * (box.hi.z() - box.lo.z());
@@ -598,7 +588,7 @@ class Executor {
   }
 
   bool wipe() {
-    if (!holding_and_applicable("has nothing to wipe") || !go_to_pre_pose()) return false;
+    if (!go_to_pre_pose()) return false;
     if (!motion_.line(kDown * (kClearance + 0.06), true, 0.15)) return false;
     if (!motion_.touched()) return fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
     // Strokes left-right, row by row towards the robot, pressing 1 cm in.
@@ -656,6 +646,34 @@ bool within_reach(const World& world, int object) {
   IkSolver ik(world);
   ArmCollisionChecker checker(world);
   return reachable_here(world, ik, checker, object);
+}
+
+std::string unmet_precondition(const World& w, PrimitiveType type, int object) {
+  const std::string name = "'" + w.scene().objects().at(object).name + "'";
+  const bool holding = holding_free_object(w);
+  switch (type) {
+    case PrimitiveType::navigate:
+      return within_reach(w, object) ? "already within reach of " + name : "";
+    case PrimitiveType::pick:
+      if (w.grasped_object() >= 0) return "the hand is not empty";
+      // Fixed objects cannot be picked; a heavy one is refused by the grasp itself.
+      return w.scene().objects()[object].fixed ? name + " cannot be picked up" : "";
+    case PrimitiveType::place:
+      if (!holding) return "the hand holds nothing";
+      return w.grasped_object() == object ? "cannot place an object on itself" : "";
+    case PrimitiveType::push: {
+      if (w.grasped_object() >= 0) return "the hand is not empty";
+      const auto a = articulation(w, object);
+      if (!a) return name + " has no drawer to open";
+      return open_fraction(*a) > 0.9 ? name + " is already open" : "";
+    }
+    case PrimitiveType::dip:
+    case PrimitiveType::wipe:  // a tool in hand, and a target of the right kind
+      if (!holding) return "the hand holds nothing";
+      if (primitive_applies(w, type, object)) return "";
+      return name + (type == PrimitiveType::dip ? " holds no liquid" : " has nothing to wipe");
+  }
+  return "";
 }
 
 bool primitive_applies(const World& w, PrimitiveType type, int object) {

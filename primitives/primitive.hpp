@@ -75,6 +75,13 @@ PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, 
 // to pick), in the object's room. navigate fails its precondition then.
 bool within_reach(const World& world, int object);
 
+// Why executing `type` on `object` now would fail its precondition, or empty
+// when it holds: the state checks each primitive starts with (pick and push
+// need an empty hand, place, dip and wipe a carried object, push a drawer not
+// yet open, navigate an object not already within_reach). The primitive
+// action space's action_mask observation is where this is empty.
+std::string unmet_precondition(const World& world, PrimitiveType type, int object);
+
 // Whether a primitive can apply to an object at all (its kind, not the state):
 // pick for free objects the gripper can lift, push for articulated ones, dip
 // for liquid containers, wipe for objects dirt can lie on; navigate and place

@@ -53,5 +53,37 @@ expect 2 "unknown activity 'nope'" -- "$chore" expert --activity nope --episodes
 expect 0 '"success_rate"' -- "$chore" expert --activity store_decoration --episodes 2 --seed 1 --mode symbolic --json
 expect 0 "success rate" -- "$chore" expert --activity store_decoration --episodes 1 --seed 1 --mode symbolic
 
+# Evaluation: bad arguments exit 2 naming the problem; the expert evaluates.
+expect 2 "give the policy" -- "$chore" eval --activity store_decoration
+expect 2 "excludes" -- "$chore" eval --expert --policy-plugin x.so --activity store_decoration
+expect 2 "activity is required" -- "$chore" eval --expert
+expect 2 "--seeds '3-1': B is below A" -- "$chore" eval --expert --activity store_decoration --seeds 3-1
+expect 2 "--seeds 'x': expected a seed or a range A-B" -- "$chore" eval --expert --activity store_decoration --seeds x
+expect 2 "episodes" -- "$chore" eval --expert --activity store_decoration --episodes 0
+expect 2 "policy-options requires --policy-plugin" -- "$chore" eval --expert --activity store_decoration --policy-options a
+expect 2 "policy plugin 'no_such.so': no such file" -- "$chore" eval --policy-plugin no_such.so --activity store_decoration
+expect 2 "unknown activity 'nope'" -- "$chore" eval --expert --activity nope
+expect 2 "unknown observation 'sonar'" -- "$chore" eval --policy-plugin "$chore" --observations sonar --activity store_decoration
+expect 2 "cannot load it" -- "$chore" eval --policy-plugin "$data/bddl/error_unbalanced.bddl" --activity store_decoration
+expect 0 "success rate .* +- " -- "$chore" eval --expert --activity store_decoration --mode symbolic --seeds 0-1 --episodes 1
+expect 0 '"env_seed": 1000000' -- "$chore" eval --expert --activity store_decoration --mode symbolic --seeds 1 --episodes 1 --json
+
+# Video: bad arguments exit 2; a short symbolic expert episode is written.
+expect 2 "--out is required" -- "$chore" video --expert --activity store_decoration
+expect 2 "give the policy" -- "$chore" video --activity store_decoration --out /tmp/chore_cli_video.mp4
+expect 2 "size" -- "$chore" video --expert --activity store_decoration --size 0 --out /tmp/chore_cli_video.mp4
+video_out="$(mktemp -d)/expert.mp4"
+expect 0 "11 frames of 512x300" -- "$chore" video --expert --activity store_decoration --mode symbolic --seed 1 --out "$video_out"
+
+# Plot: bad arguments and files exit 2; a constructed run is drawn.
+plot_dir="$(mktemp -d)"
+mkdir -p "$plot_dir/ppo_seed0"
+printf 'env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length\n0,0,0,0,0,0,0\n100,1,4,0.5,0.6,0.5,9\n' > "$plot_dir/ppo_seed0/metrics.csv"
+expect 2 "--out is required" -- "$chore" plot "$plot_dir/ppo_seed0/metrics.csv"
+expect 2 "cannot read '$plot_dir/none.csv'" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/none.csv"
+expect 2 "has no column 'kl'" -- "$chore" plot --out "$plot_dir/c.png" --y kl "$plot_dir/ppo_seed0/metrics.csv"
+expect 0 "ppo (1 run)" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/ppo_seed0/metrics.csv"
+if [[ ! -s "$plot_dir/c.png" ]]; then echo "FAIL: $plot_dir/c.png was not written"; failures=$((failures + 1)); fi
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

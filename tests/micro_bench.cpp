@@ -69,6 +69,20 @@ void BM_WriteState(benchmark::State& state) {
 }
 BENCHMARK(BM_WriteState);
 
+// The action_mask of store_decoration's 7 primitive actions at its first
+// state (one IK reach test per navigate action, state checks for the rest).
+void BM_ActionMask(benchmark::State& state) {
+  EnvConfig c;
+  c.activity = "store_decoration";
+  c.action_space = "primitives";
+  c.observations = {"action_mask"};
+  Env env(c);
+  env.reset(1);
+  ArrayDict out(env.observation_space(), 1);
+  for (auto _ : state) env.write_state(out, 0);
+}
+BENCHMARK(BM_ActionMask);
+
 // A whole env step (physics x4 + render + state), as `chore bench` times it.
 void BM_EnvStep(benchmark::State& state) {
   Env env(rgbd(), apartment());

@@ -1,15 +1,83 @@
-// The `chore` command line: bench, activity check/sample, expert; train, eval and
-// video join as their layers land. Bad arguments and bad input files
+// The `chore` command line: bench, activity check/sample, expert, eval, video, plot;
+// train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <regex>
 #include <string>
+#include <tuple>
 
 #include "env/world/error.hpp"
 #include "training/activity_commands.hpp"
 #include "training/bench.hpp"
+#include "training/evaluate.hpp"
 #include "training/expert_command.hpp"
+#include "training/plot.hpp"
+#include "training/video.hpp"
+
+namespace {
+
+// "A-B" (or "A") as a seed range.
+std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::string& option) {
+  std::smatch m;
+  uint64_t first = 0, last = 0;
+  try {
+    if (!std::regex_match(text, m, std::regex(R"((\d+)(?:-(\d+))?)"))) throw std::invalid_argument(text);
+    first = std::stoull(m[1]);
+    last = m[2].matched ? std::stoull(m[2]) : first;
+  } catch (const std::exception&) {
+    throw chore::Error(option + " '" + text + "': expected a seed or a range A-B");
+  }
+  if (last < first) throw chore::Error(option + " '" + text + "': B is below A");
+  return {first, last};
+}
+
+// Where eval and video get their policy and its env.
+struct PolicyArgs {
+  std::string activity, plugin, plugin_options, action_space = "primitives", mode = "physical";
+  std::vector<std::string> observations;
+  int max_steps = 0;
+  bool expert = false;
+};
+
+void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
+  auto* plugin = cmd->add_option("--policy-plugin", a.plugin, "Shared library defining a policy (CHORE_POLICY_PLUGIN)");
+  auto* expert = cmd->add_flag("--expert", a.expert, "The scripted expert (primitive action space)");
+  plugin->excludes(expert);
+  cmd->add_option("--policy-options", a.plugin_options, "Text handed to the plugin's factory")->needs(plugin);
+  cmd->add_option("--activity", a.activity, "Activity name or .bddl path")->required();
+  cmd->add_option("--action-space", a.action_space, "primitives or low_level (plugins)")
+      ->check(CLI::IsMember({"primitives", "low_level"}))->needs(plugin)->capture_default_str();
+  cmd->add_option("--observations", a.observations,
+                  "Observations a plugin sees (default: rgb, depth, proprio, is_grasping, and action_mask for "
+                  "primitives)")->delimiter(',')->needs(plugin);
+  cmd->add_option("--mode", a.mode, "Primitive execution: physical or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  cmd->add_option("--max-steps", a.max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
+      ->check(CLI::PositiveNumber);
+}
+
+std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::string& command) {
+  const chore::ExecutionMode mode = chore::parse_execution_mode(a.mode);
+  const bool primitives = a.expert || a.action_space == "primitives";
+  const int max_steps = a.max_steps > 0 ? a.max_steps : primitives ? 60 : 500;
+  if (a.expert) return {chore::expert_source(a.activity, mode, max_steps)};
+  if (a.plugin.empty()) throw chore::Error(command + ": give the policy: --policy-plugin LIB.so or --expert");
+  chore::EnvConfig env;
+  env.activity = a.activity;
+  env.action_space = a.action_space;
+  env.primitive_mode = mode;
+  env.max_episode_steps = max_steps;
+  if (!a.observations.empty()) {
+    env.observations = a.observations;
+  } else if (primitives) {
+    env.observations.push_back("action_mask");
+  }
+  return {chore::plugin_source(a.plugin, a.plugin_options, env)};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
@@ -58,6 +126,39 @@ int main(int argc, char** argv) {
   expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
+  chore::EvalOptions eval;
+  PolicyArgs eval_policy;
+  std::string eval_seeds = "0-0";
+  bool eval_json = false;
+  CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");
+  add_policy_options(eval_cmd, eval_policy);
+  eval_cmd->add_option("--seeds", eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
+      ->capture_default_str();
+  eval_cmd->add_option("--episodes", eval.episodes, "Episodes per seed")->check(CLI::PositiveNumber)->capture_default_str();
+  eval_cmd->add_option("--threads", eval.threads, "Envs run in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  eval_cmd->add_flag("--json", eval_json, "Print the results as JSON (per seed and episode too)");
+
+  chore::VideoOptions video;
+  PolicyArgs video_policy;
+  CLI::App* video_cmd = app.add_subcommand("video", "Record an episode: robot camera and top-down view, to MP4");
+  add_policy_options(video_cmd, video_policy);
+  video_cmd->add_option("--seed", video.seed, "The episode's env seed")->capture_default_str();
+  video_cmd->add_option("--out", video.out, "MP4 file to write")->required();
+  video_cmd->add_option("--size", video.size, "Pixels of each view")->check(CLI::Range(16, 2048))->capture_default_str();
+  video_cmd->add_option("--fps", video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
+      ->check(CLI::PositiveNumber);
+
+  chore::PlotOptions plot;
+  CLI::App* plot_cmd = app.add_subcommand("plot", "Learning curves from metrics.csv files to PNG");
+  plot_cmd->add_option("runs", plot.runs, "metrics.csv files, each optionally LABEL=path (default label: "
+                                          "the run directory less a _seedN suffix)")->required();
+  plot_cmd->add_option("--out", plot.out, "PNG to write")->required();
+  plot_cmd->add_option("--x", plot.x, "Column for the x axis")->capture_default_str();
+  plot_cmd->add_option("--y", plot.y, "Column for the y axis (success_rate, mean_q, mean_return, ...)")->capture_default_str();
+  plot_cmd->add_option("--title", plot.title, "Title (default: Y over X)");
+  plot_cmd->add_option("--width", plot.width, "Picture width")->check(CLI::Range(320, 4096))->capture_default_str();
+  plot_cmd->add_option("--height", plot.height, "Picture height")->check(CLI::Range(240, 4096))->capture_default_str();
+
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -84,16 +185,7 @@ int main(int argc, char** argv) {
   try {
     if (*check_cmd) chore::check_activities(check_files, std::cout);
     if (*sample_cmd && !sample_seeds.empty()) {
-      const auto dash = sample_seeds.find('-');
-      uint64_t first = 0, last = 0;
-      try {
-        if (dash == std::string::npos) throw std::invalid_argument(sample_seeds);
-        first = std::stoull(sample_seeds.substr(0, dash));
-        last = std::stoull(sample_seeds.substr(dash + 1));
-      } catch (const std::exception&) {
-        throw chore::Error("--seeds '" + sample_seeds + "': expected a range A-B");
-      }
-      if (last < first) throw chore::Error("--seeds '" + sample_seeds + "': B is below A");
+      const auto [first, last] = seed_range(sample_seeds, "--seeds");
       chore::sample_activity_seeds(sample_name, sample_scene, first, last, std::cout);
     } else if (*sample_cmd) {
       if (sample_out.empty()) throw chore::Error("activity sample: give --out FILE.png or --seeds A-B");
@@ -103,6 +195,30 @@ int main(int argc, char** argv) {
       expert.mode = chore::parse_execution_mode(expert_mode);
       const nlohmann::json results = chore::run_expert(expert, std::cerr);
       std::cout << (expert_json ? results.dump(2) + "\n" : chore::format_expert(results));
+    }
+    if (*eval_cmd) {
+      std::tie(eval.first_seed, eval.last_seed) = seed_range(eval_seeds, "--seeds");
+      nlohmann::json results = nlohmann::json::array();
+      for (const chore::PolicySource& source : policy_sources(eval_policy, "eval")) {
+        results.push_back(chore::evaluate(source, eval, std::cerr));
+        if (!eval_json) std::cout << chore::format_evaluation(results.back());
+      }
+      if (eval_json) std::cout << results.dump(2) << std::endl;
+    }
+    if (*video_cmd) {
+      const std::vector<chore::PolicySource> sources = policy_sources(video_policy, "video");
+      const nlohmann::json r = chore::record_video(sources.front(), video, std::cerr);
+      std::cout << "video: " << r["out"].get<std::string>() << ", " << r["frames"] << " frames of " << r["width"]
+                << "x" << r["height"] << " at " << r["fps"] << " fps (" << r["codec"].get<std::string>() << "); " << r["steps"] << " steps, "
+                << (r["success"].get<bool>() ? "success" : "no success") << ", Q " << r["q"] << "\n";
+    }
+    if (*plot_cmd) {
+      const nlohmann::json r = chore::plot_curves(plot);
+      std::cout << "plot: " << plot.out << ":";
+      for (const auto& g : r["groups"]) {
+        std::cout << " " << g["label"].get<std::string>() << " (" << g["runs"] << (g["runs"] == 1 ? " run)" : " runs)");
+      }
+      std::cout << "\n";
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
