@@ -27,6 +27,8 @@ constexpr double kLift = 0.15;          // m raised after grasping or releasing
 constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
 constexpr double kSlim = 0.08;          // m: objects this narrow fit between the open fingers
 constexpr double kPullFraction = 0.9;   // of a drawer's range, push opens it this far
+constexpr double kApproachSpeed = 0.15; // m/s of the hand towards a contact
+constexpr double kRetreatSpeed = 0.2;   // m/s of the hand away from one
 constexpr int kDrawsPerSample = 20;     // base-pose draws per free candidate, at most
 constexpr double kCorridorStep = 0.02;  // m between the hand poses checked along an approach
 constexpr double kFlatTolerance = 0.02; // m: a place spot's support heights may differ this much
@@ -376,7 +378,7 @@ class Executor {
     const Eigen::Vector3d spot = approach_.point;
     Eigen::Vector3d shift = spot - object_aabb(w_, w_.carried_object()).center();
     shift.z() = 0;
-    motion_.line(shift, false, 0.2, 0.0);
+    motion_.line(shift, false, kRetreatSpeed, 0.0);
     return true;
   }
 
@@ -431,7 +433,8 @@ class Executor {
         // Within the arm's reach of the point (0.6 m at the floor, 1 m at
         // table height) and clear of the object's box by the body's radius.
         const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
-        const double distance = near + (far - near) * unit(rng);
+        // Biased towards the object: at arm's length, tracking is fragile.
+        const double u = unit(rng), distance = near + (far - near) * u * u;
         p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
         p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
       }
@@ -469,7 +472,7 @@ class Executor {
     const double extent = std::abs(approach_.direction.dot(box.hi - box.lo));
     const double length = kClearance + extent + 0.02;
     const double needed = kClearance + contact_depth(w_, object_, approach_) - 0.01;
-    if (!motion_.line(approach_.direction * length, true, 0.15, needed / length)) return false;
+    if (!motion_.line(approach_.direction * length, true, kApproachSpeed, needed / length)) return false;
     motion_.gripper(false);
     if (!motion_.physical()) {
       // The assistive grasp's condition, kinematically: the object between the fingers.
@@ -479,12 +482,12 @@ class Executor {
     }
     if (w_.grasped_object() != object_) {
       motion_.gripper(true);
-      motion_.line(kUp * kLift, false, 0.2, 0.0);
+      motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
       return fail(PrimitiveStatus::grasp_failure, result_.grasp_refused
                                                       ? "'" + name() + "' is too heavy to hold"
                                                       : "the hand closed on nothing");
     }
-    motion_.line(kUp * kLift, false, 0.2, 0.0);  // lift as far as the arm goes; tuck plans the rest
+    motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);  // lift as far as the arm goes; tuck plans the rest
     if (!motion_.tuck()) return false;
     if (w_.grasped_object() != object_) return fail(PrimitiveStatus::grasp_failure, "'" + name() + "' slipped out");
     return true;
@@ -496,7 +499,7 @@ class Executor {
     motion_.gripper(true);
     if (!motion_.physical()) settle_kinematically(held);
     motion_.wait(0.3);
-    motion_.line(kUp * kLift, false, 0.2, 0.0);
+    motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
     if (!motion_.tuck()) return false;
     if (!inside(w_, held, object_) && !ontop(w_, held, object_)) {
       return fail(PrimitiveStatus::place_failure,
@@ -538,7 +541,7 @@ class Executor {
     const auto a = articulation(w_, object_);  // there is one: the precondition held
     if (!go_to_pre_pose()) return false;
     // To the handle until the fingertips touch the front, close on the handle, pull.
-    if (!motion_.line(-a->axis * (kClearance + 0.06), true, 0.15)) return false;
+    if (!motion_.line(-a->axis * (kClearance + 0.06), true, kApproachSpeed)) return false;
     if (!motion_.touched()) return fail(PrimitiveStatus::motion_planning_failure, "the hand did not reach the handle");
     motion_.gripper(false);
     if (motion_.physical() && w_.grasped_body() != a->link) {
@@ -556,7 +559,7 @@ class Executor {
       mj_forward(w_.model(), w_.data());
     }
     motion_.gripper(true);
-    motion_.line(a->axis * 0.08, false, 0.2, 0.0);  // back off as far as the arm goes
+    motion_.line(a->axis * 0.08, false, kRetreatSpeed, 0.0);  // back off as far as the arm goes
     if (!motion_.tuck()) return false;
     if (!is_open(w_, object_)) return fail(PrimitiveStatus::grasp_failure, "the handle slipped: '" + name() + "' stays closed");
     return true;
@@ -570,9 +573,9 @@ class Executor {
     const double held_bottom = motion_.hand_position().z() - load_below_hand(w_);
     const Eigen::Vector3d down = kDown * std::max(0.0, held_bottom - (surface - 0.04));
     // Not stopping at contact: a rag's corners brush the rim on the way in.
-    if (!motion_.line(down, false, 0.15)) return false;
+    if (!motion_.line(down, false, kApproachSpeed)) return false;
     motion_.wait(0.6);  // long enough to soak through (ObjectStates: 0.5 s)
-    motion_.line(-down, false, 0.2, 0.0);
+    motion_.line(-down, false, kRetreatSpeed, 0.0);
     if (!motion_.tuck()) return false;
     const int held = w_.grasped_object();
     if (held < 0) return fail(PrimitiveStatus::grasp_failure, "dropped what it held");
@@ -589,7 +592,7 @@ class Executor {
 
   bool wipe() {
     if (!go_to_pre_pose()) return false;
-    if (!motion_.line(kDown * (kClearance + 0.06), true, 0.15)) return false;
+    if (!motion_.line(kDown * (kClearance + 0.06), true, kApproachSpeed)) return false;
     if (!motion_.touched()) return fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
     // Strokes left-right, row by row towards the robot, pressing 1 cm in.
     const double yaw = w_.base_pose().yaw;
@@ -603,7 +606,7 @@ class Executor {
       motion_.line(left * (2 * kHalfWidth * side), false, 0.3, 0.0);
       if (row + 1 < kRows) motion_.line(-forward * kRow, false, 0.25, 0.0);
     }
-    motion_.line(kUp * kLift, false, 0.2, 0.0);
+    motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
     if (!motion_.tuck()) return false;
     if (w_.grasped_object() < 0) return fail(PrimitiveStatus::grasp_failure, "dropped the tool");
     return true;

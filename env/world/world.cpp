@@ -96,6 +96,21 @@ World::StepReport World::step(int substeps) {
       data_->ctrl[robot_->base_x.actuator] = c * base_command_[0] - sn * base_command_[1];
       data_->ctrl[robot_->base_y.actuator] = sn * base_command_[0] + c * base_command_[1];
       data_->ctrl[robot_->base_yaw.actuator] = base_command_[2];
+      // Gravity compensation, as the robot's own controllers do: the position
+      // servos only correct tracking errors instead of also carrying the arm,
+      // so trajectories are followed closely rather than lagging (and arrive
+      // within the primitives' settling time). qfrc_bias is from the last step.
+      for (const RobotJoint* j : robot_->torso_and_arm()) data_->qfrc_applied[j->dof] = data_->qfrc_bias[j->dof];
+      // And the carried load's weight, a known payload, at its centre of mass.
+      if (const int load = carried_object(); load >= 0) {
+        const int body = scene_->objects()[load].body;
+        payload_jacobian_.resize(3 * model_->nv);
+        mj_jac(model_, data_, payload_jacobian_.data(), nullptr, data_->xipos + 3 * body, robot_->gripper_body);
+        const double weight = -model_->opt.gravity[2] * model_->body_subtreemass[body];
+        for (const RobotJoint* j : robot_->torso_and_arm()) {
+          data_->qfrc_applied[j->dof] += payload_jacobian_[2 * model_->nv + j->dof] * weight;
+        }
+      }
     }
     auto bad_state_count = [&] {
       return data_->warning[mjWARN_BADQPOS].number + data_->warning[mjWARN_BADQVEL].number +

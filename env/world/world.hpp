@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "env/world/object_states.hpp"
 #include "env/world/robot.hpp"
@@ -109,6 +110,7 @@ class World {
   ObjectStates states_;
   bool state_updates_ = true;
   mutable std::array<mjData_*, kScratchSlots> scratch_{};
+  std::vector<double> payload_jacobian_;  // 3 x nv, for the load's gravity compensation
 };
 
 }  // namespace chore
