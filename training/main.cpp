@@ -10,6 +10,7 @@
 #include "training/activity_commands.hpp"
 #include "training/bench.hpp"
 #include "training/expert_command.hpp"
+#include "training/train_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
@@ -58,6 +59,27 @@ int main(int argc, char** argv) {
   expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")->check(CLI::Range(1, 64))->capture_default_str();
   expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
+  chore::TrainOptions train;
+  int64_t train_steps = 0;
+  CLI::App* train_cmd = app.add_subcommand("train", "Train a baseline (SAC rl-vmc, PPO rl-prim / rl-prim-hist) on an activity");
+  train_cmd->add_option("--activity", train.activity, "Activity name or .bddl path");
+  train_cmd->add_option("--baseline", train.baseline, "rl-vmc, rl-prim or rl-prim-hist")
+      ->check(CLI::IsMember({"rl-vmc", "rl-prim", "rl-prim-hist"}));
+  train_cmd->add_option("--seed", train.seed, "Seed (env i of the vector env: seed + i)")->capture_default_str();
+  auto* train_steps_option = train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
+      ->check(CLI::PositiveNumber);
+  train_cmd->add_option("--envs", train.envs, "Envs of the vector env")->check(CLI::Range(1, 256))->capture_default_str();
+  train_cmd->add_option("--threads", train.threads, "Env worker and torch threads")->check(CLI::Range(1, 64))->capture_default_str();
+  train_cmd->add_option("--out", train.out, "Run folder: metrics.csv, checkpoint.pt, checkpoint_STEPS.pt");
+  train_cmd->add_option("--resume", train.resume, "Continue the run in this folder from its checkpoint.pt");
+  train_cmd->add_option("--mode", train.mode, "Primitive execution: physical (the paper's) or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  train_cmd->add_option("--observations", train.observations, "Observed fields (default: the baseline's), e.g. rgb is_grasping");
+  train_cmd->add_option("--episode-steps", train.episode_steps, "Steps per episode (default: 60 primitives, 500 low-level)")
+      ->check(CLI::PositiveNumber);
+  train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -103,6 +125,10 @@ int main(int argc, char** argv) {
       expert.mode = chore::parse_execution_mode(expert_mode);
       const nlohmann::json results = chore::run_expert(expert, std::cerr);
       std::cout << (expert_json ? results.dump(2) + "\n" : chore::format_expert(results));
+    }
+    if (*train_cmd) {
+      if (*train_steps_option) train.steps = train_steps;
+      chore::run_train(train, std::cerr);
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);
