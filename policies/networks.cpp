@@ -248,10 +248,10 @@ std::pair<torch::Tensor, torch::Tensor> SacActorImpl::mean_log_std(const torch::
   return {mean_->forward(h), log_std};
 }
 
-SacSample SacActorImpl::sample(const torch::Tensor& feature) {
+SacSample SacActorImpl::sample(const torch::Tensor& feature, at::Generator& generator) {
   const auto [mean, log_std] = mean_log_std(feature);
   const torch::Tensor std = log_std.exp();
-  const torch::Tensor noise = torch::randn_like(mean);
+  const torch::Tensor noise = torch::randn(mean.sizes(), generator);
   const torch::Tensor pre_tanh = mean + std * noise;
   const torch::Tensor action = torch::tanh(pre_tanh);
   // log N(pre_tanh) minus log |d tanh/dx| = log(1 - tanh^2).

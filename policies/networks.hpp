@@ -125,8 +125,9 @@ struct SacSample {
 class SacActorImpl : public torch::nn::Module {
  public:
   explicit SacActorImpl(const NetworkSpec& spec);
-  // Reparameterised sample of tanh(N(mean, std)) with its log-density.
-  SacSample sample(const torch::Tensor& feature);
+  // Reparameterised sample of tanh(N(mean, std)) with its log-density; the
+  // noise comes from `generator` (each trainer owns one, for determinism).
+  SacSample sample(const torch::Tensor& feature, at::Generator& generator);
   torch::Tensor deterministic(const torch::Tensor& feature);  // tanh(mean)
 
  private:

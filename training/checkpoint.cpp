@@ -110,6 +110,7 @@ CheckpointFile read_checkpoint(const std::string& path) {
                 ", this chore reads version " + std::to_string(kCheckpointVersion));
   }
   CheckpointFile checkpoint;
+  checkpoint.path = path;
   const std::string meta = take_block(bytes, offset, path);
   checkpoint.tensors = take_block(bytes, offset, path);
   const size_t body = offset;
@@ -139,18 +140,14 @@ void read_archive(torch::serialize::InputArchive& archive, const std::string& by
   });
 }
 
-void save_rng(torch::serialize::OutputArchive& archive) {
-  at::Generator gen = at::detail::getDefaultCPUGenerator();
-  std::lock_guard<std::mutex> lock(gen.mutex());
-  archive.write("rng", gen.get_state(), /*is_buffer=*/true);
+void save_rng(torch::serialize::OutputArchive& archive, const at::Generator& generator) {
+  archive.write("rng", generator.get_state(), /*is_buffer=*/true);
 }
 
-void load_rng(torch::serialize::InputArchive& archive) {
+void load_rng(torch::serialize::InputArchive& archive, at::Generator& generator) {
   torch::Tensor state;
   archive.read("rng", state, /*is_buffer=*/true);
-  at::Generator gen = at::detail::getDefaultCPUGenerator();
-  std::lock_guard<std::mutex> lock(gen.mutex());
-  gen.set_state(state);
+  generator.set_state(state);
 }
 
 void load_or_throw(const std::string& what, const std::function<void()>& load) {
@@ -158,6 +155,26 @@ void load_or_throw(const std::string& what, const std::function<void()>& load) {
     load();
   } catch (const c10::Error& e) {
     throw Error(what + ": " + e.what_without_backtrace());
+  }
+}
+
+void load_module(torch::nn::Module& module, torch::serialize::InputArchive& archive, const std::string& key,
+                 const std::string& what) {
+  std::vector<std::pair<std::string, std::vector<int64_t>>> expected;
+  for (const auto& p : module.named_parameters()) expected.push_back({p.key(), p.value().sizes().vec()});
+  for (const auto& b : module.named_buffers()) expected.push_back({b.key(), b.value().sizes().vec()});
+  load_or_throw(what, [&] {
+    torch::serialize::InputArchive sub;
+    archive.read(key, sub);
+    module.load(sub);
+  });
+  std::vector<torch::Tensor> loaded = module.parameters();
+  for (const torch::Tensor& b : module.buffers()) loaded.push_back(b);
+  for (size_t i = 0; i < expected.size(); ++i) {
+    if (loaded[i].sizes().vec() != expected[i].second) {
+      throw Error(what + ": tensor '" + key + "." + expected[i].first + "' has shape " +
+                  c10::str(loaded[i].sizes()) + ", the network expects " + c10::str(c10::IntArrayRef(expected[i].second)));
+    }
   }
 }
 
@@ -179,24 +196,17 @@ LoadedPolicy load_policy(const std::string& checkpoint_path) {
   }
   torch::serialize::InputArchive archive;
   read_archive(archive, file.tensors, what);
-  load_or_throw(what, [&] {
-    if (uses_sac(loaded.baseline)) {
-      SacCritic critic(spec);
-      SacActor actor(spec);
-      torch::serialize::InputArchive critic_archive, actor_archive;
-      archive.read("critic", critic_archive);
-      archive.read("actor", actor_archive);
-      critic->load(critic_archive);
-      actor->load(actor_archive);
-      loaded.policy = make_sac_policy(critic, actor, spec);
-    } else {
-      ActorCritic net(spec);
-      torch::serialize::InputArchive net_archive;
-      archive.read("net", net_archive);
-      net->load(net_archive);
-      loaded.policy = make_ppo_policy(net, spec);
-    }
-  });
+  if (uses_sac(loaded.baseline)) {
+    SacCritic critic(spec);
+    SacActor actor(spec);
+    load_module(*critic, archive, "critic", what);
+    load_module(*actor, archive, "actor", what);
+    loaded.policy = make_sac_policy(critic, actor, spec);
+  } else {
+    ActorCritic net(spec);
+    load_module(*net, archive, "net", what);
+    loaded.policy = make_ppo_policy(net, spec);
+  }
   return loaded;
 }
 

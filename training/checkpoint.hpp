@@ -30,6 +30,7 @@ constexpr uint32_t kCheckpointVersion = 1;
 struct CheckpointFile {
   nlohmann::json meta;
   std::string tensors;  // a serialised torch archive
+  std::string path;     // where it was read from (for messages)
 };
 
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint);

@@ -54,7 +54,10 @@ class PpoTrainer : public Trainer {
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
     torch::set_num_threads(config_.threads);
+    // Initial weights from the global generator, seeded here; everything
+    // after from the trainer's own.
     torch::manual_seed(config_.seed);
+    generator_ = at::detail::createCPUGenerator(config_.seed);
     net_ = ActorCritic(spec_);
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
     if (spec_.history > 0) history_.emplace(spec_.history, spec_.feature_size, spec_.num_actions);
@@ -96,7 +99,7 @@ class PpoTrainer : public Trainer {
     optimizer_->save(optimizer);
     archive.write("net", net);
     archive.write("optimizer", optimizer);
-    save_rng(archive);
+    save_rng(archive, generator_);
     write_checkpoint(path, {{{"config", to_json(config_)},
                              {"network", to_json(spec_)},
                              {"steps", steps_},
@@ -107,14 +110,14 @@ class PpoTrainer : public Trainer {
 
  private:
   void load(const CheckpointFile& file) {
-    torch::serialize::InputArchive archive, net, optimizer;
-    read_archive(archive, file.tensors, "checkpoint");
-    load_or_throw("checkpoint", [&] {
-      archive.read("net", net);
+    torch::serialize::InputArchive archive, optimizer;
+    const std::string what = "checkpoint " + file.path;
+    read_archive(archive, file.tensors, what);
+    load_module(*net_, archive, "net", what);
+    load_or_throw(what, [&] {
       archive.read("optimizer", optimizer);
-      net_->load(net);
       optimizer_->load(optimizer);
-      load_rng(archive);
+      load_rng(archive, generator_);
     });
     steps_ = file.meta.at("steps").get<int64_t>();
     wall_s_ = file.meta.at("wall_s").get<double>();
@@ -137,7 +140,7 @@ class PpoTrainer : public Trainer {
       const torch::Tensor history = history_rows(ids);
       const ActorCriticOutput out = net_->forward(obs_, history);
       const torch::Tensor log_probs = torch::log_softmax(out.logits, 1);
-      const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1).squeeze(1);
+      const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1, false, generator_).squeeze(1);
       rollout_.obs.push_back(obs_);
       rollout_.history.push_back(history);
       rollout_.actions.push_back(actions);
@@ -206,7 +209,7 @@ class PpoTrainer : public Trainer {
     int updates = 0;
     const auto start = Clock::now();
     for (int epoch = 0; epoch < p.epochs; ++epoch) {
-      const torch::Tensor order = torch::randperm(rows, torch::kInt64);
+      const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
       for (int64_t begin = 0; begin < rows; begin += p.batch) {
         const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
         const ActorCriticOutput out =
@@ -258,6 +261,7 @@ class PpoTrainer : public Trainer {
   Rollout rollout_;
   ObsTensors obs_;  // the envs' current observations
   int steps_per_rollout_ = 0;
+  at::Generator generator_;
   int64_t steps_ = 0;
   double wall_s_ = 0;
 };

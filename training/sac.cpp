@@ -115,7 +115,10 @@ class SacTrainer : public Trainer {
     }
     if (s.buffer < s.batch || s.batch < 1) throw Error("sac: the buffer must hold at least one batch");
     torch::set_num_threads(config_.threads);
+    // Initial weights from the global generator, seeded here; everything
+    // after from the trainer's own.
     torch::manual_seed(config_.seed);
+    generator_ = at::detail::createCPUGenerator(config_.seed);
     critic_ = SacCritic(spec_);
     target_ = SacCritic(spec_);
     actor_ = SacActor(spec_);
@@ -188,7 +191,7 @@ class SacTrainer : public Trainer {
     put("alpha_optimizer", *alpha_opt_);
     archive.write("log_alpha", log_alpha_.detach(), true);
     replay_.save(archive);
-    save_rng(archive);
+    save_rng(archive, generator_);
     write_checkpoint(path, {{{"config", to_json(config_)},
                              {"network", to_json(spec_)},
                              {"steps", steps_},
@@ -205,16 +208,17 @@ class SacTrainer : public Trainer {
 
   void load(const CheckpointFile& file) {
     torch::serialize::InputArchive archive;
-    read_archive(archive, file.tensors, "checkpoint");
-    load_or_throw("checkpoint", [&] {
-      auto get = [&](const char* name, auto& loadable) {
+    const std::string what = "checkpoint " + file.path;
+    read_archive(archive, file.tensors, what);
+    load_module(*critic_, archive, "critic", what);
+    load_module(*target_, archive, "critic_target", what);
+    load_module(*actor_, archive, "actor", what);
+    load_or_throw(what, [&] {
+      auto get = [&](const char* name, torch::optim::Optimizer& optimizer) {
         torch::serialize::InputArchive sub;
         archive.read(name, sub);
-        loadable.load(sub);
+        optimizer.load(sub);
       };
-      get("critic", *critic_);
-      get("critic_target", *target_);
-      get("actor", *actor_);
       get("critic_optimizer", *critic_opt_);
       get("actor_optimizer", *actor_opt_);
       get("alpha_optimizer", *alpha_opt_);
@@ -223,7 +227,7 @@ class SacTrainer : public Trainer {
       torch::NoGradGuard no_grad;
       log_alpha_.copy_(log_alpha);
       replay_.load(archive);
-      load_rng(archive);
+      load_rng(archive, generator_);
     });
     steps_ = file.meta.at("steps").get<int64_t>();
     wall_s_ = file.meta.at("wall_s").get<double>();
@@ -237,9 +241,9 @@ class SacTrainer : public Trainer {
     critic_->encoder->update_normalizers(obs_);
     torch::Tensor actions;
     if (steps_ < config_.sac.learning_starts) {
-      actions = torch::rand({n, spec_.action_size}) * 2 - 1;
+      actions = torch::rand({n, spec_.action_size}, generator_) * 2 - 1;
     } else {
-      actions = actor_->sample(critic_->encoder->forward(obs_)).action;
+      actions = actor_->sample(critic_->encoder->forward(obs_), generator_).action;
     }
     actions = actions.contiguous();
     const Batch batch = env_.step({actions.data_ptr<float>(), static_cast<size_t>(actions.numel())});
@@ -265,7 +269,7 @@ class SacTrainer : public Trainer {
   void update(UpdateStats& u) {
     const SacConfig& s = config_.sac;
     const auto start = Clock::now();
-    const torch::Tensor idx = torch::randint(replay_.size, {s.batch}, torch::kInt64);
+    const torch::Tensor idx = torch::randint(replay_.size, {s.batch}, generator_, torch::kInt64);
     const ObsTensors obs = replay_.obs.index(idx), next_obs = replay_.next_obs.index(idx);
     const torch::Tensor actions = replay_.actions.index_select(0, idx);
     const torch::Tensor alpha = log_alpha_.exp().detach();
@@ -274,7 +278,7 @@ class SacTrainer : public Trainer {
     torch::Tensor target;
     {
       torch::NoGradGuard no_grad;
-      const SacSample next = actor_->sample(critic_->encoder->forward(next_obs));
+      const SacSample next = actor_->sample(critic_->encoder->forward(next_obs), generator_);
       const auto [q1, q2] = target_->q(target_->encoder->forward(next_obs), next.action);
       const torch::Tensor soft_value = torch::min(q1, q2) - alpha * next.log_prob;
       target = replay_.rewards.index_select(0, idx) +
@@ -289,7 +293,7 @@ class SacTrainer : public Trainer {
 
     // Actor: on the detached feature; the critic's gradients from this loss are
     // discarded (zero_grad above, before the critic's next step).
-    const SacSample sample = actor_->sample(feature.detach());
+    const SacSample sample = actor_->sample(feature.detach(), generator_);
     const auto [pq1, pq2] = critic_->q(feature.detach(), sample.action);
     const torch::Tensor policy_loss = (alpha * sample.log_prob - torch::min(pq1, pq2)).mean();
     actor_opt_->zero_grad();
@@ -336,6 +340,7 @@ class SacTrainer : public Trainer {
   torch::Tensor log_alpha_;
   std::optional<torch::optim::Adam> critic_opt_, actor_opt_, alpha_opt_;
   ObsTensors obs_;
+  at::Generator generator_;
   int64_t steps_ = 0;
   double wall_s_ = 0;
 };

@@ -14,9 +14,15 @@ std::string archive_bytes(torch::serialize::OutputArchive& archive);
 // Throws chore::Error naming `what` when the bytes are not a torch archive.
 void read_archive(torch::serialize::InputArchive& archive, const std::string& bytes, const std::string& what);
 
-// The global CPU generator's state (sampling, minibatch order, initialisation).
-void save_rng(torch::serialize::OutputArchive& archive);
-void load_rng(torch::serialize::InputArchive& archive);
+// A trainer's own generator (action sampling, minibatch order, replay
+// sampling): two trainers in one process do not disturb each other.
+void save_rng(torch::serialize::OutputArchive& archive, const at::Generator& generator);
+void load_rng(torch::serialize::InputArchive& archive, at::Generator& generator);
+
+// Loads the sub-archive `key` into `module`, checking every tensor's shape
+// (libtorch would silently take another shape); throws chore::Error naming `what`.
+void load_module(torch::nn::Module& module, torch::serialize::InputArchive& archive, const std::string& key,
+                 const std::string& what);
 
 // Runs `load`, turning a torch exception (a missing name, a shape mismatch)
 // into a chore::Error naming `what`.

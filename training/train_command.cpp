@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -37,8 +38,9 @@ void prepare_metrics(const fs::path& path, const std::string& header, int64_t st
     while (std::getline(in, line)) {
       if (keep.empty()) {
         if (line != header) throw Error(path.string() + ": header differs from this trainer's: " + line);
-      } else if (line.empty() || std::stoll(line.substr(0, line.find(','))) > steps) {
-        continue;
+      } else if (std::count(line.begin(), line.end(), ',') != std::count(header.begin(), header.end(), ',') ||
+                 std::stoll(line.substr(0, line.find(','))) > steps) {
+        continue;  // after the checkpoint, or cut short by a kill
       }
       keep.push_back(line);
     }

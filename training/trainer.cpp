@@ -188,7 +188,11 @@ std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint) {
   } catch (const Error& e) {
     throw Error("checkpoint " + checkpoint + ": " + e.what());
   }
-  return uses_sac(config.baseline) ? make_sac_trainer(config, &file) : make_ppo_trainer(config, &file);
+  try {
+    return uses_sac(config.baseline) ? make_sac_trainer(config, &file) : make_ppo_trainer(config, &file);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
+  }
 }
 
 }  // namespace chore
