@@ -12,13 +12,14 @@ namespace {
 
 constexpr int kStateEncoding = 32;  // the state encoder's width
 
-// Conv-ReLU-MaxPool blocks (Figure A.11). The first convolution strides 2 and
-// each block halves again by pooling: 128 -> 32 -> 16 -> 8 with 16/32/32
-// channels, ~12 M multiply-adds per image, so a batch-64 update stays under
-// 100 ms on 2 CPU cores (docs/training.md has the measurements).
+// Conv-ReLU-MaxPool blocks (Figure A.11). The first convolution is
+// Nature-CNN's 8x8 stride 4 and each block halves again by pooling:
+// 128 -> 32 -> 16 -> 8 -> 4 with 16/32/32 channels, ~5 M multiply-adds per
+// image, so a batch-64 update stays under 100 ms on this 2-core CPU
+// (docs/training.md has the measurements).
 nn::Sequential make_trunk() {
   return nn::Sequential(
-      nn::Conv2d(nn::Conv2dOptions(3, 16, 5).stride(2).padding(2)), nn::ReLU(), nn::MaxPool2d(2),
+      nn::Conv2d(nn::Conv2dOptions(3, 16, 8).stride(4).padding(2)), nn::ReLU(), nn::MaxPool2d(2),
       nn::Conv2d(nn::Conv2dOptions(16, 32, 3).padding(1)), nn::ReLU(), nn::MaxPool2d(2),
       nn::Conv2d(nn::Conv2dOptions(32, 32, 3).padding(1)), nn::ReLU(), nn::MaxPool2d(2),
       nn::Flatten());

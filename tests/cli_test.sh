@@ -53,5 +53,25 @@ expect 2 "unknown activity 'nope'" -- "$chore" expert --activity nope --episodes
 expect 0 '"success_rate"' -- "$chore" expert --activity store_decoration --episodes 2 --seed 1 --mode symbolic --json
 expect 0 "success rate" -- "$chore" expert --activity store_decoration --episodes 1 --seed 1 --mode symbolic
 
+# chore train: bad arguments exit 2 naming the problem; a short symbolic run
+# writes metrics and checkpoints; a folder holding a run is not overwritten.
+run_dir="$(mktemp -d)/run"
+expect 2 "baseline" -- "$chore" train --activity collect_trash --baseline rl-magic --out "$run_dir"
+expect 2 "--activity is required" -- "$chore" train --baseline rl-prim --out "$run_dir"
+expect 2 "give --out DIR" -- "$chore" train --activity collect_trash --baseline rl-prim
+expect 2 "steps" -- "$chore" train --activity collect_trash --baseline rl-prim --steps 0 --out "$run_dir"
+expect 2 "envs" -- "$chore" train --activity collect_trash --baseline rl-prim --envs 0 --out "$run_dir"
+expect 2 "mode" -- "$chore" train --activity collect_trash --baseline rl-prim --mode teleport --out "$run_dir"
+expect 2 "unknown activity 'nope'" -- "$chore" train --activity nope --baseline rl-prim --out "$run_dir"
+expect 2 "unknown observation 'smell'" -- "$chore" train --activity collect_trash --baseline rl-prim --observations smell --out "$run_dir"
+expect 2 "no checkpoint.pt there" -- "$chore" train --resume "$run_dir"
+expect 0 "300 steps done" -- "$chore" train --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 300 --out "$run_dir"
+if [[ "$(head -1 "$run_dir/metrics.csv" | cut -d, -f1-7)" != "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length" ]]; then
+  echo "FAIL: $run_dir/metrics.csv header"; failures=$((failures + 1))
+fi
+expect 2 "already holds a run" -- "$chore" train --activity collect_trash --baseline rl-prim --out "$run_dir"
+printf 'garbage' > "$run_dir/checkpoint.pt"
+expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]
