@@ -70,14 +70,7 @@ double random_return(const EnvConfig& config, int episodes, uint64_t seed) {
 
 std::vector<MetricsRow> train(Trainer& trainer, int64_t steps) {
   std::vector<MetricsRow> rows;
-  trainer.train(steps, [&](const MetricsRow& row) {
-    rows.push_back(row);
-    if (getenv("CHORE_TEST_VERBOSE")) {
-      std::cerr << row.env_steps << " ep " << row.episodes << " ret " << row.mean_return << " extras";
-      for (double x : row.extras) std::cerr << " " << x;
-      std::cerr << "\n";
-    }
-  });
+  trainer.train(steps, [&](const MetricsRow& row) { rows.push_back(row); });
   return rows;
 }
 
