@@ -11,7 +11,7 @@
 
 #include "env/world/error.hpp"
 #include "policies/networks.hpp"
-#include "training/torch_archive.hpp"
+#include "training/torch_support.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -138,6 +138,12 @@ void read_archive(torch::serialize::InputArchive& archive, const std::string& by
     std::istringstream in(bytes);
     archive.load_from(in);
   });
+}
+
+at::Generator seed_torch(uint64_t seed, int threads) {
+  torch::set_num_threads(threads);
+  torch::manual_seed(seed);
+  return at::detail::createCPUGenerator(seed);
 }
 
 void save_rng(torch::serialize::OutputArchive& archive, const at::Generator& generator) {

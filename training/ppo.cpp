@@ -12,7 +12,7 @@
 #include "env/world/error.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
-#include "training/torch_archive.hpp"
+#include "training/torch_support.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -40,10 +40,7 @@ class PpoTrainer : public Trainer {
  public:
   PpoTrainer(const TrainConfig& config, const CheckpointFile* resume)
       : config_(config),
-        env_(VectorEnvConfig{.env = config.env,
-                             .num_envs = config.num_envs,
-                             .num_threads = std::min(config.threads, config.num_envs),
-                             .autoreset = AutoReset::same_step}),
+        env_(vector_env_config(config)),
         spec_(network_spec(env_.single_observation_space(), env_.single_action_space(),
                            config.baseline == "rl-prim-hist" ? config.ppo.history : 0)),
         stats_(config.num_envs) {
@@ -53,11 +50,7 @@ class PpoTrainer : public Trainer {
                   env_.single_action_space().to_string());
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
-    torch::set_num_threads(config_.threads);
-    // Initial weights from the global generator, seeded here; everything
-    // after from the trainer's own.
-    torch::manual_seed(config_.seed);
-    generator_ = at::detail::createCPUGenerator(config_.seed);
+    generator_ = seed_torch(config_.seed, config_.threads);
     net_ = ActorCritic(spec_);
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
     if (spec_.history > 0) history_.emplace(spec_.history, spec_.feature_size, spec_.num_actions);
@@ -100,12 +93,7 @@ class PpoTrainer : public Trainer {
     archive.write("net", net);
     archive.write("optimizer", optimizer);
     save_rng(archive, generator_);
-    write_checkpoint(path, {{{"config", to_json(config_)},
-                             {"network", to_json(spec_)},
-                             {"steps", steps_},
-                             {"wall_s", wall_s_},
-                             {"episodes", stats_.to_json()}},
-                            archive_bytes(archive)});
+    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
   }
 
  private:
@@ -119,9 +107,9 @@ class PpoTrainer : public Trainer {
       optimizer_->load(optimizer);
       load_rng(archive, generator_);
     });
-    steps_ = file.meta.at("steps").get<int64_t>();
-    wall_s_ = file.meta.at("wall_s").get<double>();
-    stats_.load(file.meta.at("episodes"));
+    const RunProgress progress = load_run_meta(file.meta, stats_);
+    steps_ = progress.steps;
+    wall_s_ = progress.wall_s;
   }
 
   torch::Tensor history_rows(std::span<const int> env_ids) {

@@ -17,7 +17,7 @@
 #include "env/world/error.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
-#include "training/torch_archive.hpp"
+#include "training/torch_support.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -101,10 +101,7 @@ class SacTrainer : public Trainer {
  public:
   SacTrainer(const TrainConfig& config, const CheckpointFile* resume)
       : config_(config),
-        env_(VectorEnvConfig{.env = config.env,
-                             .num_envs = config.num_envs,
-                             .num_threads = std::min(config.threads, config.num_envs),
-                             .autoreset = AutoReset::same_step}),
+        env_(vector_env_config(config)),
         spec_(with_hidden(network_spec(env_.single_observation_space(), env_.single_action_space(), 0),
                           config.sac.hidden)),
         stats_(config.num_envs),
@@ -114,11 +111,7 @@ class SacTrainer : public Trainer {
       throw Error("sac: needs the low-level (Box) action space, got " + env_.single_action_space().to_string());
     }
     if (s.buffer < s.batch || s.batch < 1) throw Error("sac: the buffer must hold at least one batch");
-    torch::set_num_threads(config_.threads);
-    // Initial weights from the global generator, seeded here; everything
-    // after from the trainer's own.
-    torch::manual_seed(config_.seed);
-    generator_ = at::detail::createCPUGenerator(config_.seed);
+    generator_ = seed_torch(config_.seed, config_.threads);
     critic_ = SacCritic(spec_);
     target_ = SacCritic(spec_);
     actor_ = SacActor(spec_);
@@ -192,12 +185,7 @@ class SacTrainer : public Trainer {
     archive.write("log_alpha", log_alpha_.detach(), true);
     replay_.save(archive);
     save_rng(archive, generator_);
-    write_checkpoint(path, {{{"config", to_json(config_)},
-                             {"network", to_json(spec_)},
-                             {"steps", steps_},
-                             {"wall_s", wall_s_},
-                             {"episodes", stats_.to_json()}},
-                            archive_bytes(archive)});
+    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
   }
 
  private:
@@ -229,9 +217,9 @@ class SacTrainer : public Trainer {
       replay_.load(archive);
       load_rng(archive, generator_);
     });
-    steps_ = file.meta.at("steps").get<int64_t>();
-    wall_s_ = file.meta.at("wall_s").get<double>();
-    stats_.load(file.meta.at("episodes"));
+    const RunProgress progress = load_run_meta(file.meta, stats_);
+    steps_ = progress.steps;
+    wall_s_ = progress.wall_s;
   }
 
   // One vector step: act, store the transitions, move on.

@@ -170,6 +170,27 @@ void EpisodeStats::load(const nlohmann::json& j) {
   }
 }
 
+VectorEnvConfig vector_env_config(const TrainConfig& config) {
+  return {.env = config.env,
+          .num_envs = config.num_envs,
+          .num_threads = std::min(config.threads, config.num_envs),
+          .autoreset = AutoReset::same_step};
+}
+
+nlohmann::json run_meta(const TrainConfig& config, const nlohmann::json& network, const RunProgress& progress,
+                        const EpisodeStats& stats) {
+  return {{"config", to_json(config)},
+          {"network", network},
+          {"steps", progress.steps},
+          {"wall_s", progress.wall_s},
+          {"episodes", stats.to_json()}};
+}
+
+RunProgress load_run_meta(const nlohmann::json& meta, EpisodeStats& stats) {
+  stats.load(meta.at("episodes"));
+  return {meta.at("steps").get<int64_t>(), meta.at("wall_s").get<double>()};
+}
+
 std::unique_ptr<Trainer> make_trainer(const TrainConfig& config) {
   if (config.num_envs < 1) throw Error("train: --envs must be at least 1");
   if (config.threads < 1) throw Error("train: --threads must be at least 1");

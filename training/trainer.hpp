@@ -106,6 +106,19 @@ class EpisodeStats {
   int64_t episodes_ = 0;
 };
 
+// The vector env a trainer steps: same_step autoreset, so an ended episode's
+// last observation is in final_obs.
+VectorEnvConfig vector_env_config(const TrainConfig& config);
+
+// A run's checkpoint metadata (checkpoint.hpp), and its progress read back.
+struct RunProgress {
+  int64_t steps = 0;
+  double wall_s = 0;
+};
+nlohmann::json run_meta(const TrainConfig& config, const nlohmann::json& network, const RunProgress& progress,
+                        const EpisodeStats& stats);
+RunProgress load_run_meta(const nlohmann::json& meta, EpisodeStats& stats);
+
 class Trainer {
  public:
   using Report = std::function<void(const MetricsRow&)>;

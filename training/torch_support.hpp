@@ -1,6 +1,6 @@
-// Torch archives as bytes for checkpoints (training/checkpoint.hpp), shared by
-// the torch translation units of training/. Includes <torch/torch.h>: never
-// include it from torch-free code.
+// Torch helpers shared by the torch translation units of training/ (ppo.cpp,
+// sac.cpp, checkpoint.cpp): archives as checkpoint bytes, generators. Includes
+// <torch/torch.h>: never include it from torch-free code.
 #pragma once
 
 #include <torch/torch.h>
@@ -13,6 +13,10 @@ namespace chore {
 std::string archive_bytes(torch::serialize::OutputArchive& archive);
 // Throws chore::Error naming `what` when the bytes are not a torch archive.
 void read_archive(torch::serialize::InputArchive& archive, const std::string& bytes, const std::string& what);
+
+// Pins torch's intra-op threads, seeds the global generator (the networks'
+// initial weights are drawn from it next) and returns the trainer's own.
+at::Generator seed_torch(uint64_t seed, int threads);
 
 // A trainer's own generator (action sampling, minibatch order, replay
 // sampling): two trainers in one process do not disturb each other.
