@@ -45,7 +45,6 @@ NetworkSpec network_spec(const Space& observation, const Space& action, int hist
 // not observed), state (B, S) float32 (S may be 0).
 struct ObsTensors {
   torch::Tensor rgb, state;
-  int64_t size() const { return state.size(0); }
   ObsTensors index(const torch::Tensor& rows) const;
 };
 ObsTensors obs_tensors(const ArrayDict& obs, const NetworkSpec& spec);

@@ -70,6 +70,7 @@ if [[ "$(head -1 "$run_dir/metrics.csv" | cut -d, -f1-7)" != "env_steps,wall_s,e
   echo "FAIL: $run_dir/metrics.csv header"; failures=$((failures + 1))
 fi
 expect 2 "already holds a run" -- "$chore" train --activity collect_trash --baseline rl-prim --out "$run_dir"
+expect 2 "holds a rl-prim run on collect_trash" -- "$chore" train --resume "$run_dir" --baseline rl-vmc
 printf 'garbage' > "$run_dir/checkpoint.pt"
 expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
 

@@ -141,16 +141,17 @@ class PpoTrainer : public Trainer {
       torch::Tensor rewards = torch::from_blob(const_cast<float*>(batch.rewards.data()), {n}).clone();
       torch::Tensor dones = torch::zeros({n});
       std::vector<int> ended;
+      std::optional<ObsTensors> final_obs;
       for (int i = 0; i < n; ++i) {
         if (!batch.terminated[i] && !batch.truncated[i]) continue;
         dones[i] = 1.0f;
         ended.push_back(batch.env_ids[i]);
         // Cut off by the time limit, not ended by the task: bootstrap.
         if (!batch.terminated[i]) {
-          const torch::Tensor row = torch::tensor({static_cast<int64_t>(i)});
-          const ObsTensors final_obs = obs_tensors(*batch.final_obs, spec_).index(row);
+          if (!final_obs) final_obs = obs_tensors(*batch.final_obs, spec_);
           const int id[] = {batch.env_ids[i]};
-          rewards[i] += config_.ppo.gamma * net_->forward(final_obs, history_rows(id)).value[0];
+          const ObsTensors last = final_obs->index(torch::tensor({static_cast<int64_t>(i)}));
+          rewards[i] += config_.ppo.gamma * net_->forward(last, history_rows(id)).value[0];
         }
       }
       rollout_.rewards.push_back(rewards);

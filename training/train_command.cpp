@@ -69,6 +69,13 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     }
     if (!fs::exists(checkpoint)) throw Error("train: --resume " + o.resume + ": no checkpoint.pt there");
     trainer = resume_trainer(checkpoint.string());
+    // The run's own config holds; only --steps may change (extend) it.
+    const TrainConfig& saved = trainer->config();
+    if ((!o.activity.empty() && o.activity != saved.env.activity) ||
+        (!o.baseline.empty() && o.baseline != saved.baseline)) {
+      throw Error("train: " + o.resume + " holds a " + saved.baseline + " run on " + saved.env.activity +
+                  "; --resume continues it as it was");
+    }
   } else {
     if (o.activity.empty()) throw Error("train: --activity is required");
     if (o.baseline.empty()) throw Error("train: --baseline is required");

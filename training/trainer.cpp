@@ -135,8 +135,6 @@ void EpisodeStats::record(const Batch& batch) {
   }
 }
 
-void EpisodeStats::restart() { std::fill(returns_.begin(), returns_.end(), 0.0); }
-
 MetricsRow EpisodeStats::row(int64_t env_steps, double wall_s) const {
   MetricsRow row;
   row.env_steps = env_steps;

@@ -88,8 +88,6 @@ class EpisodeStats {
   explicit EpisodeStats(int num_envs) : returns_(num_envs, 0.0) {}
   // After a VectorEnv step with same_step autoreset.
   void record(const Batch& batch);
-  // Envs starting over (a reset): their running returns are dropped.
-  void restart();
   int64_t episodes() const { return episodes_; }
   MetricsRow row(int64_t env_steps, double wall_s) const;
   nlohmann::json to_json() const;
