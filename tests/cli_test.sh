@@ -64,6 +64,7 @@ expect 2 "envs" -- "$chore" train --activity collect_trash --baseline rl-prim --
 expect 2 "mode" -- "$chore" train --activity collect_trash --baseline rl-prim --mode teleport --out "$run_dir"
 expect 2 "unknown activity 'nope'" -- "$chore" train --activity nope --baseline rl-prim --out "$run_dir"
 expect 2 "unknown observation 'smell'" -- "$chore" train --activity collect_trash --baseline rl-prim --observations smell --out "$run_dir"
+expect 2 "--history is for rl-prim-hist" -- "$chore" train --activity collect_trash --baseline rl-prim --history 2 --out "$run_dir"
 expect 2 "no checkpoint.pt there" -- "$chore" train --resume "$run_dir"
 expect 0 "300 steps done" -- "$chore" train --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 300 --out "$run_dir"
 if [[ "$(head -1 "$run_dir/metrics.csv" | cut -d, -f1-7)" != "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length" ]]; then

@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
   train_cmd->add_option("--observations", train.observations, "Observed fields (default: the baseline's), e.g. rgb is_grasping");
   train_cmd->add_option("--episode-steps", train.episode_steps, "Steps per episode (default: 60 primitives, 500 low-level)")
       ->check(CLI::PositiveNumber);
+  train_cmd->add_option("--history", train.history, "rl-prim-hist: past steps the policy sees (default 4)")
+      ->check(CLI::Range(1, 64));
   train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
       ->check(CLI::PositiveNumber)->capture_default_str();
 

@@ -93,6 +93,10 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     // Primitive episodes: 60 steps (as the scripted expert's); low-level: the env's 500.
     if (config.env.action_space == "primitives") config.env.max_episode_steps = 60;
     if (o.episode_steps > 0) config.env.max_episode_steps = o.episode_steps;
+    if (o.history > 0) {
+      if (config.baseline != "rl-prim-hist") throw Error("train: --history is for rl-prim-hist");
+      config.ppo.history = o.history;
+    }
     fs::create_directories(dir);
     trainer = make_trainer(config);
   }

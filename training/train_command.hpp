@@ -21,6 +21,7 @@ struct TrainOptions {
   std::string mode = "physical";  // primitive execution (rl-prim, rl-prim-hist)
   std::vector<std::string> observations;  // empty: the baseline's
   int episode_steps = 0;                  // 0: the baseline's
+  int history = 0;                        // rl-prim-hist's K; 0: PpoConfig's default
   int64_t checkpoint_every = 3000;        // env steps
 };
 
