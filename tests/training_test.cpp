@@ -199,6 +199,14 @@ TEST(Checkpoint, ResumesTheRunAndLoadsAGreedyPolicy) {
   }
 }
 
+TEST(Checkpoint, PolicyThreadsArePinned) {
+  set_policy_threads(1);
+  EXPECT_EQ(torch::get_num_threads(), 1);
+  set_policy_threads(2);
+  EXPECT_EQ(torch::get_num_threads(), 2);
+  EXPECT_NE(test::error_of([] { set_policy_threads(0); }).find("at least 1"), std::string::npos);
+}
+
 TEST(Checkpoint, SacPolicyActsWithTanhMean) {
   const fs::path dir = test::scratch_dir("checkpoint_sac");
   const std::string path = (dir / "checkpoint.pt").string();

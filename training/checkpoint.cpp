@@ -184,6 +184,11 @@ void load_module(torch::nn::Module& module, torch::serialize::InputArchive& arch
   }
 }
 
+void set_policy_threads(int threads) {
+  if (threads < 1) throw Error("policy threads must be at least 1, got " + std::to_string(threads));
+  torch::set_num_threads(threads);
+}
+
 LoadedPolicy load_policy(const std::string& checkpoint_path) {
   const CheckpointFile file = read_checkpoint(checkpoint_path);
   const std::string what = "checkpoint " + checkpoint_path;

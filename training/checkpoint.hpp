@@ -45,5 +45,8 @@ struct LoadedPolicy {
   int64_t steps = 0;
 };
 LoadedPolicy load_policy(const std::string& checkpoint_path);  // throws chore::Error
+// Pins torch's intra-op threads (process-wide) for loaded policies: its OpenMP
+// pool competes with the VectorEnv's workers and the renderer for the cores.
+void set_policy_threads(int threads);
 
 }  // namespace chore
