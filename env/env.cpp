@@ -68,6 +68,10 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
                   config_.action_space + "')");
     }
   }
+  if (config_.reward != "activity" && config_.reward != "reach") {
+    throw Error("env config: unknown reward '" + config_.reward + "' (known: activity, reach)");
+  }
+  if (config_.reward == "reach" && !config_.robot) throw Error("env config: the reach reward needs the robot");
   world_ = std::make_unique<World>(scene_);
   world_->set_lighting(config_.lighting);
   world_->set_state_updates(config_.object_states);
@@ -185,6 +189,7 @@ Env::Outcome Env::advance(std::span<const float> action) {
     potential_ = goal.potential;
     out.terminated = score->success;
   }
+  if (config_.reward == "reach" && !report.diverged) out.reward = -reach_distance();
   // The seed's policy failure: the same invalid action repeated ends the episode.
   const bool policy_failure = invalid_repeats_ >= config_.policy_failure_repeats;
   out.terminated = out.terminated || policy_failure;
@@ -243,6 +248,15 @@ int64_t Env::act_primitive(std::span<const float> action, World::StepReport& rep
     last_invalid_action_ = -1;
   }
   return result.physics_steps;
+}
+
+double Env::reach_distance() const {
+  const Pose2 base = world_->base_pose();
+  const double c = std::cos(base.yaw), s = std::sin(base.yaw);
+  const auto& t = config_.reach_target;
+  const double target[3] = {base.x + c * t[0] - s * t[1], base.y + s * t[0] + c * t[1], t[2]};
+  const double* gripper = world_->data()->site_xpos + 3 * world_->robot()->gripper_site;
+  return mju_dist3(gripper, target);
 }
 
 std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {

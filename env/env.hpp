@@ -52,6 +52,12 @@ struct EnvConfig {
   // The seed's policy failure: this many identical actions in a row that fail
   // their precondition end the episode (terminated, info.policy_failure).
   int policy_failure_repeats = 3;
+  // "activity": BEHAVIOR's potential reward (0 without an activity). "reach": a
+  // dense task for testing continuous-control learners, minus the distance (m)
+  // from the gripper to `reach_target`, a point fixed in the robot's base frame
+  // (x forward, y left, z up from the floor); success stays the activity's.
+  std::string reward = "activity";
+  std::array<double, 3> reach_target = {0.35, 0.1, 0.7};  // ~0.3 m from the tucked gripper
 };
 
 struct Info {
@@ -148,6 +154,7 @@ class Env {
   // Applies one action to the world; returns physics steps run.
   int64_t act_low_level(std::span<const float> action, World::StepReport& report);
   int64_t act_primitive(std::span<const float> action, World::StepReport& report);
+  double reach_distance() const;  // gripper to reach_target (m)
   void observe();  // renders and writes into obs_ with this env's own renderer
 
   EnvConfig config_;

@@ -85,5 +85,31 @@ expect 2 "has no column 'kl'" -- "$chore" plot --out "$plot_dir/c.png" --y kl "$
 expect 0 "ppo (1 run)" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/ppo_seed0/metrics.csv"
 if [[ ! -s "$plot_dir/c.png" ]]; then echo "FAIL: $plot_dir/c.png was not written"; failures=$((failures + 1)); fi
 
+# chore train: bad arguments exit 2 naming the problem; a short symbolic run
+# writes metrics and checkpoints; a folder holding a run is not overwritten.
+run_dir="$(mktemp -d)/run"
+expect 2 "baseline" -- "$chore" train --activity collect_trash --baseline rl-magic --out "$run_dir"
+expect 2 "--activity is required" -- "$chore" train --baseline rl-prim --out "$run_dir"
+expect 2 "give --out DIR" -- "$chore" train --activity collect_trash --baseline rl-prim
+expect 2 "steps" -- "$chore" train --activity collect_trash --baseline rl-prim --steps 0 --out "$run_dir"
+expect 2 "envs" -- "$chore" train --activity collect_trash --baseline rl-prim --envs 0 --out "$run_dir"
+expect 2 "mode" -- "$chore" train --activity collect_trash --baseline rl-prim --mode teleport --out "$run_dir"
+expect 2 "unknown activity 'nope'" -- "$chore" train --activity nope --baseline rl-prim --out "$run_dir"
+expect 2 "unknown observation 'smell'" -- "$chore" train --activity collect_trash --baseline rl-prim --observations smell --out "$run_dir"
+expect 2 "--history is for rl-prim-hist" -- "$chore" train --activity collect_trash --baseline rl-prim --history 2 --out "$run_dir"
+expect 2 "no checkpoint.pt there" -- "$chore" train --resume "$run_dir"
+expect 0 "300 steps done" -- "$chore" train --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 300 --out "$run_dir"
+if [[ "$(head -1 "$run_dir/metrics.csv" | cut -d, -f1-7)" != "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length" ]]; then
+  echo "FAIL: $run_dir/metrics.csv header"; failures=$((failures + 1))
+fi
+expect 2 "already holds a run" -- "$chore" train --activity collect_trash --baseline rl-prim --out "$run_dir"
+expect 2 "holds a rl-prim run on collect_trash" -- "$chore" train --resume "$run_dir" --baseline rl-vmc
+# The trained checkpoint evaluates in the env it was trained in; a bad one is an error.
+expect 0 "success rate .* +- " -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --seeds 0-1 --episodes 1 --max-steps 5
+printf 'garbage' > "$run_dir/checkpoint.pt"
+expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
+expect 2 "not a chore checkpoint" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt"
+expect 2 "excludes" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --expert
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

@@ -182,5 +182,32 @@ TEST(EnvActivity, EachResetSamplesAFreshInstanceFixedByTheSeed) {
   EXPECT_NE(position(a), first);
 }
 
+// The reach reward: minus the gripper's distance to a point carried along in
+// the base frame, so driving and turning the base with the arm still keep it.
+TEST(Env, ReachRewardIsMinusTheGripperDistanceToATargetInTheBaseFrame) {
+  EnvConfig c = test::box_room_config();
+  c.observations = {"proprio"};
+  c.reward = "reach";
+  Env probe(c);
+  probe.reset(0);
+  const Pose2 base = probe.world().base_pose();
+  const double* g = probe.world().data()->site_xpos + 3 * probe.world().robot()->gripper_site;
+  ASSERT_NEAR(base.yaw, 0, 1e-6);
+  c.reach_target = {g[0] - base.x, g[1] - base.y, g[2] + 0.5};  // 0.5 m above the gripper
+  Env env(c);
+  env.reset(0);
+  std::vector<float> action(kLowLevelActionSize, 0.f);
+  EXPECT_NEAR(env.step(action).reward, -0.5, 0.01);
+  action[0] = 1.0f;  // forward and turning
+  action[2] = 1.0f;
+  double reward = 0;
+  for (int t = 0; t < 20; ++t) reward = env.step(action).reward;
+  EXPECT_GT(std::abs(env.world().base_pose().yaw), 0.3);
+  EXPECT_NEAR(reward, -0.5, 0.03);
+
+  c.reward = "applause";
+  EXPECT_EQ(test::error_of([&] { Env bad(c); }), "env config: unknown reward 'applause' (known: activity, reach)");
+}
+
 }  // namespace
 }  // namespace chore

@@ -11,9 +11,11 @@
 #include "env/world/error.hpp"
 #include "training/activity_commands.hpp"
 #include "training/bench.hpp"
+#include "training/checkpoint.hpp"
 #include "training/evaluate.hpp"
 #include "training/expert_command.hpp"
 #include "training/plot.hpp"
+#include "training/train_command.hpp"
 #include "training/video.hpp"
 
 namespace {
@@ -35,35 +37,56 @@ std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::str
 
 // Where eval and video get their policy and its env.
 struct PolicyArgs {
-  std::string activity, plugin, plugin_options, action_space = "primitives", mode = "physical";
+  std::vector<std::string> checkpoints;
+  std::string activity, plugin, plugin_options, action_space = "primitives", mode;
   std::vector<std::string> observations;
   int max_steps = 0;
   bool expert = false;
 };
 
 void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
+  auto* checkpoint = cmd->add_option("--checkpoint", a.checkpoints, "Checkpoint(s) of chore train (their env, greedy policy)");
   auto* plugin = cmd->add_option("--policy-plugin", a.plugin, "Shared library defining a policy (CHORE_POLICY_PLUGIN)");
   auto* expert = cmd->add_flag("--expert", a.expert, "The scripted expert (primitive action space)");
   plugin->excludes(expert);
+  checkpoint->excludes(plugin)->excludes(expert);
   cmd->add_option("--policy-options", a.plugin_options, "Text handed to the plugin's factory")->needs(plugin);
-  cmd->add_option("--activity", a.activity, "Activity name or .bddl path")->required();
+  cmd->add_option("--activity", a.activity, "Activity name or .bddl path (a checkpoint's own by default)");
   cmd->add_option("--action-space", a.action_space, "primitives or low_level (plugins)")
       ->check(CLI::IsMember({"primitives", "low_level"}))->needs(plugin)->capture_default_str();
   cmd->add_option("--observations", a.observations,
                   "Observations a plugin sees (default: rgb, depth, proprio, is_grasping, and action_mask for "
                   "primitives)")->delimiter(',')->needs(plugin);
-  cmd->add_option("--mode", a.mode, "Primitive execution: physical or symbolic")
-      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  cmd->add_option("--mode", a.mode, "Primitive execution: physical or symbolic (default: a checkpoint's own, else physical)")
+      ->check(CLI::IsMember({"physical", "symbolic"}));
   cmd->add_option("--max-steps", a.max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
       ->check(CLI::PositiveNumber);
 }
 
 std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::string& command) {
-  const chore::ExecutionMode mode = chore::parse_execution_mode(a.mode);
+  if (!a.checkpoints.empty()) {
+    // Each checkpoint brings its env; --activity, --mode and --max-steps override it.
+    chore::set_policy_threads(1);
+    std::vector<chore::PolicySource> sources;
+    for (const std::string& path : a.checkpoints) {
+      auto loaded = std::make_shared<chore::LoadedPolicy>(chore::load_policy(path));
+      chore::EnvConfig env = loaded->env;
+      if (!a.activity.empty()) env.activity = a.activity;
+      if (!a.mode.empty()) env.primitive_mode = chore::parse_execution_mode(a.mode);
+      if (a.max_steps > 0) env.max_episode_steps = a.max_steps;
+      sources.push_back({path, env, [loaded, path](const chore::VectorEnv&) {
+                           if (!loaded->policy) throw chore::Error(path + ": its policy is already in use");
+                           return std::move(loaded->policy);
+                         }});
+    }
+    return sources;
+  }
+  if (a.activity.empty()) throw chore::Error(command + ": --activity is required");
+  const chore::ExecutionMode mode = chore::parse_execution_mode(a.mode.empty() ? "physical" : a.mode);
   const bool primitives = a.expert || a.action_space == "primitives";
   const int max_steps = a.max_steps > 0 ? a.max_steps : primitives ? 60 : 500;
   if (a.expert) return {chore::expert_source(a.activity, mode, max_steps)};
-  if (a.plugin.empty()) throw chore::Error(command + ": give the policy: --policy-plugin LIB.so or --expert");
+  if (a.plugin.empty()) throw chore::Error(command + ": give the policy: --checkpoint PATH, --policy-plugin LIB.so or --expert");
   chore::EnvConfig env;
   env.activity = a.activity;
   env.action_space = a.action_space;
@@ -159,6 +182,29 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("--width", plot.width, "Picture width")->check(CLI::Range(320, 4096))->capture_default_str();
   plot_cmd->add_option("--height", plot.height, "Picture height")->check(CLI::Range(240, 4096))->capture_default_str();
 
+  chore::TrainOptions train;
+  int64_t train_steps = 0;
+  CLI::App* train_cmd = app.add_subcommand("train", "Train a baseline (SAC rl-vmc, PPO rl-prim / rl-prim-hist) on an activity");
+  train_cmd->add_option("--activity", train.activity, "Activity name or .bddl path");
+  train_cmd->add_option("--baseline", train.baseline, "rl-vmc, rl-prim or rl-prim-hist")
+      ->check(CLI::IsMember({"rl-vmc", "rl-prim", "rl-prim-hist"}));
+  train_cmd->add_option("--seed", train.seed, "Seed (env i of the vector env: seed + i)")->capture_default_str();
+  auto* train_steps_option = train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
+      ->check(CLI::PositiveNumber);
+  train_cmd->add_option("--envs", train.envs, "Envs of the vector env")->check(CLI::Range(1, 256))->capture_default_str();
+  train_cmd->add_option("--threads", train.threads, "Env worker and torch threads")->check(CLI::Range(1, 64))->capture_default_str();
+  train_cmd->add_option("--out", train.out, "Run folder: metrics.csv, checkpoint.pt, checkpoint_STEPS.pt");
+  train_cmd->add_option("--resume", train.resume, "Continue the run in this folder from its checkpoint.pt");
+  train_cmd->add_option("--mode", train.mode, "Primitive execution: physical (the paper's) or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  train_cmd->add_option("--observations", train.observations, "Observed fields (default: the baseline's), e.g. rgb is_grasping");
+  train_cmd->add_option("--episode-steps", train.episode_steps, "Steps per episode (default: 60 primitives, 500 low-level)")
+      ->check(CLI::PositiveNumber);
+  train_cmd->add_option("--history", train.history, "rl-prim-hist: past steps the policy sees (default 4)")
+      ->check(CLI::Range(1, 64));
+  train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -219,6 +265,10 @@ int main(int argc, char** argv) {
         std::cout << " " << g["label"].get<std::string>() << " (" << g["runs"] << (g["runs"] == 1 ? " run)" : " runs)");
       }
       std::cout << "\n";
+    }
+    if (*train_cmd) {
+      if (*train_steps_option) train.steps = train_steps;
+      chore::run_train(train, std::cerr);
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);

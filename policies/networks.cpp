@@ -1,0 +1,365 @@
+#include "policies/networks.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "env/world/error.hpp"
+
+namespace chore {
+namespace nn = torch::nn;
+
+namespace {
+
+constexpr int kStateEncoding = 32;  // the state encoder's width
+
+// Conv-ReLU-MaxPool blocks (Figure A.11). The first convolution is
+// Nature-CNN's 8x8 stride 4 and each block halves again by pooling:
+// 128 -> 32 -> 16 -> 8 -> 4 with 16/32/32 channels, ~5 M multiply-adds per
+// image, so a batch-64 update stays under 100 ms on this 2-core CPU
+// (docs/training.md has the measurements).
+nn::Sequential make_trunk() {
+  return nn::Sequential(
+      nn::Conv2d(nn::Conv2dOptions(3, 16, 8).stride(4).padding(2)), nn::ReLU(), nn::MaxPool2d(2),
+      nn::Conv2d(nn::Conv2dOptions(16, 32, 3).padding(1)), nn::ReLU(), nn::MaxPool2d(2),
+      nn::Conv2d(nn::Conv2dOptions(32, 32, 3).padding(1)), nn::ReLU(), nn::MaxPool2d(2),
+      nn::Flatten());
+}
+
+nn::Sequential mlp(int64_t in, int64_t hidden, int64_t out) {
+  return nn::Sequential(nn::Linear(in, hidden), nn::ReLU(), nn::Linear(hidden, hidden), nn::ReLU(),
+                        nn::Linear(hidden, out));
+}
+
+int history_width(const NetworkSpec& s) {
+  return s.history * (s.feature_size + static_cast<int>(s.num_actions));
+}
+
+}  // namespace
+
+nlohmann::json to_json(const NetworkSpec& s) {
+  return {{"height", s.height},           {"width", s.width},     {"state_size", s.state_size},
+          {"feature_size", s.feature_size}, {"history", s.history}, {"num_actions", s.num_actions},
+          {"action_size", s.action_size}, {"hidden", s.hidden}};
+}
+
+NetworkSpec network_spec_from_json(const nlohmann::json& j) {
+  try {
+    NetworkSpec s;
+    s.height = j.at("height").get<int>();
+    s.width = j.at("width").get<int>();
+    s.state_size = j.at("state_size").get<int>();
+    s.feature_size = j.at("feature_size").get<int>();
+    s.history = j.at("history").get<int>();
+    s.num_actions = j.at("num_actions").get<int64_t>();
+    s.action_size = j.at("action_size").get<int>();
+    s.hidden = j.at("hidden").get<int>();
+    if (s.height < 0 || s.width < 0 || s.state_size < 0 || s.feature_size <= 0 || s.history < 0 ||
+        s.num_actions < 0 || s.action_size < 0 || s.hidden <= 0) {
+      throw Error("a size is out of range");
+    }
+    return s;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(std::string("network spec: ") + e.what());
+  } catch (const Error& e) {
+    throw Error(std::string("network spec: ") + e.what());
+  }
+}
+
+NetworkSpec network_spec(const Space& observation, const Space& action, int history) {
+  NetworkSpec s;
+  for (const auto& [name, space] : observation.fields) {
+    if (name == "rgb") {
+      s.height = space.shape[0];
+      s.width = space.shape[1];
+    } else if (name == "is_grasping" || name == "proprio") {
+      s.state_size += static_cast<int>(space.element_count());
+    }
+  }
+  if (action.kind == Space::Kind::discrete) {
+    s.num_actions = action.n;
+  } else {
+    s.action_size = static_cast<int>(action.element_count());
+  }
+  s.history = history;
+  return s;
+}
+
+ObsTensors ObsTensors::index(const torch::Tensor& rows) const {
+  return {rgb.defined() ? rgb.index_select(0, rows) : rgb, state.index_select(0, rows)};
+}
+
+ObsTensors obs_tensors(const ArrayDict& obs, const NetworkSpec& spec) {
+  const int64_t batch = obs.batch();
+  ObsTensors t;
+  if (spec.has_rgb()) {
+    const Array& rgb = obs["rgb"];
+    t.rgb = torch::from_blob(const_cast<unsigned char*>(rgb.bytes.data()),
+                             {batch, spec.height, spec.width, 3}, torch::kUInt8)
+                .permute({0, 3, 1, 2})
+                .contiguous();
+  }
+  t.state = torch::zeros({batch, spec.state_size});
+  int64_t column = 0;
+  for (const char* name : {"is_grasping", "proprio"}) {
+    if (!obs.contains(name)) continue;
+    const Array& a = obs[name];
+    const int64_t width = static_cast<int64_t>(a.item_bytes() / sizeof(float));
+    t.state.narrow(1, column, width)
+        .copy_(torch::from_blob(const_cast<float*>(a.data<float>()), {batch, width}, torch::kFloat32));
+    column += width;
+  }
+  if (column != spec.state_size) {
+    throw Error("observations hold " + std::to_string(column) + " state values, the network expects " +
+                std::to_string(spec.state_size));
+  }
+  return t;
+}
+
+RunningNormImpl::RunningNormImpl(int64_t dims, double clip) : clip_(clip) {
+  mean_ = register_buffer("mean", torch::zeros({dims}, torch::kFloat64));
+  var_ = register_buffer("var", torch::ones({dims}, torch::kFloat64));
+  count_ = register_buffer("count", torch::zeros({1}, torch::kFloat64));
+}
+
+void RunningNormImpl::update(const torch::Tensor& samples) {
+  torch::NoGradGuard no_grad;
+  const torch::Tensor x = samples.to(torch::kFloat64);
+  const double n = static_cast<double>(x.size(0)), count = count_.item<double>();
+  const torch::Tensor batch_mean = x.mean(0), batch_var = x.var(0, /*unbiased=*/false);
+  const torch::Tensor delta = batch_mean - mean_;
+  const double total = count + n;
+  mean_.add_(delta * (n / total));
+  var_.copy_((var_ * count + batch_var * n + delta * delta * (count * n / total)) / total);
+  count_.fill_(total);
+}
+
+torch::Tensor RunningNormImpl::forward(const torch::Tensor& x, int64_t dim) const {
+  std::vector<int64_t> shape(x.dim(), 1);
+  shape[dim] = -1;
+  const torch::Tensor mean = mean_.to(torch::kFloat32).view(shape);
+  const torch::Tensor std = (var_.to(torch::kFloat32) + 1e-8f).sqrt().view(shape);
+  return ((x - mean) / std).clamp(-clip_, clip_);
+}
+
+int64_t trunk_output_size(int height, int width) {
+  torch::NoGradGuard no_grad;
+  return make_trunk()->forward(torch::zeros({1, 3, height, width})).size(1);
+}
+
+EncoderImpl::EncoderImpl(const NetworkSpec& spec) {
+  int64_t width = 0;
+  if (spec.has_rgb()) {
+    trunk_ = register_module("trunk", make_trunk());
+    rgb_norm_ = register_module("rgb_norm", RunningNorm(3, 5.0));
+    width += trunk_output_size(spec.height, spec.width);
+  }
+  if (spec.state_size > 0) {
+    state_net_ = register_module("state_net",
+                                 nn::Sequential(nn::Linear(spec.state_size, kStateEncoding), nn::ReLU()));
+    state_norm_ = register_module("state_norm", RunningNorm(spec.state_size, 5.0));
+    width += kStateEncoding;
+  }
+  if (width == 0) throw Error("network: the observation has neither rgb nor a state field");
+  mlp_ = register_module("mlp", nn::Sequential(nn::Linear(width, spec.feature_size), nn::ReLU()));
+}
+
+torch::Tensor EncoderImpl::forward(const ObsTensors& obs) {
+  std::vector<torch::Tensor> parts;
+  if (trunk_) parts.push_back(trunk_->forward(rgb_norm_->forward(obs.rgb.to(torch::kFloat32), 1)));
+  if (state_net_) parts.push_back(state_net_->forward(state_norm_->forward(obs.state, 1)));
+  return mlp_->forward(torch::cat(parts, 1));
+}
+
+void EncoderImpl::update_normalizers(const ObsTensors& obs) {
+  if (trunk_) rgb_norm_->update(obs.rgb.permute({0, 2, 3, 1}).reshape({-1, 3}));
+  if (state_net_) state_norm_->update(obs.state);
+}
+
+ActorCriticImpl::ActorCriticImpl(const NetworkSpec& spec) {
+  encoder = register_module("encoder", Encoder(spec));
+  if (spec.history > 0) {
+    history_net_ = register_module(
+        "history_net", nn::Sequential(nn::Linear(history_width(spec), spec.feature_size), nn::ReLU()));
+    combine_ = register_module(
+        "combine", nn::Sequential(nn::Linear(2 * spec.feature_size, spec.feature_size), nn::ReLU()));
+  }
+  policy_head_ = register_module("policy_head", nn::Linear(spec.feature_size, spec.num_actions));
+  value_head_ = register_module("value_head", nn::Linear(spec.feature_size, 1));
+  // The 37 PPO details: orthogonal weights, gain sqrt(2) in the body, 0.01 for
+  // the policy head (near-uniform first policy), 1 for the value head.
+  orthogonal_init(*this, std::sqrt(2.0));
+  orthogonal_init(*policy_head_, 0.01);
+  orthogonal_init(*value_head_, 1.0);
+}
+
+ActorCriticOutput ActorCriticImpl::forward(const ObsTensors& obs, const torch::Tensor& history) {
+  const torch::Tensor feature = encoder->forward(obs);
+  torch::Tensor x = feature;
+  if (history_net_) x = combine_->forward(torch::cat({feature, history_net_->forward(history)}, 1));
+  return {policy_head_->forward(x), value_head_->forward(x).squeeze(1), feature};
+}
+
+History::History(int steps, int feature_size, int64_t num_actions)
+    : steps_(steps), feature_size_(feature_size), num_actions_(num_actions),
+      memory_(torch::zeros({0, steps, feature_size + num_actions})) {}
+
+void History::ensure(int env_id) {
+  if (env_id < memory_.size(0)) return;
+  memory_ = torch::cat({memory_, torch::zeros({env_id + 1 - memory_.size(0), steps_,
+                                               feature_size_ + num_actions_})});
+}
+
+torch::Tensor History::rows(std::span<const int> env_ids) {
+  for (int id : env_ids) ensure(id);
+  const torch::Tensor ids = torch::tensor(std::vector<int64_t>(env_ids.begin(), env_ids.end()));
+  return memory_.index_select(0, ids).reshape({ids.size(0), -1});
+}
+
+void History::push(std::span<const int> env_ids, const torch::Tensor& features,
+                   const torch::Tensor& actions) {
+  const torch::Tensor entry =
+      torch::cat({features.detach(), torch::one_hot(actions.to(torch::kInt64), num_actions_).to(torch::kFloat32)}, 1);
+  for (size_t i = 0; i < env_ids.size(); ++i) {
+    ensure(env_ids[i]);
+    torch::Tensor m = memory_[env_ids[i]];
+    if (steps_ > 1) m.narrow(0, 1, steps_ - 1).copy_(m.narrow(0, 0, steps_ - 1).clone());
+    m[0].copy_(entry[static_cast<int64_t>(i)]);
+  }
+}
+
+void History::reset(std::span<const int> env_ids) {
+  for (int id : env_ids) {
+    ensure(id);
+    memory_[id].zero_();
+  }
+}
+
+SacActorImpl::SacActorImpl(const NetworkSpec& spec) {
+  mlp_ = register_module("mlp", nn::Sequential(nn::Linear(spec.feature_size, spec.hidden), nn::ReLU(),
+                                               nn::Linear(spec.hidden, spec.hidden), nn::ReLU()));
+  mean_ = register_module("mean", nn::Linear(spec.hidden, spec.action_size));
+  log_std_ = register_module("log_std", nn::Linear(spec.hidden, spec.action_size));
+}
+
+std::pair<torch::Tensor, torch::Tensor> SacActorImpl::mean_log_std(const torch::Tensor& feature) {
+  const torch::Tensor h = mlp_->forward(feature);
+  // log std squashed into [-5, 2] (CleanRL): smooth, unlike a hard clamp.
+  constexpr double kMin = -5, kMax = 2;
+  const torch::Tensor log_std = kMin + 0.5 * (kMax - kMin) * (torch::tanh(log_std_->forward(h)) + 1);
+  return {mean_->forward(h), log_std};
+}
+
+SacSample SacActorImpl::sample(const torch::Tensor& feature, at::Generator& generator) {
+  const auto [mean, log_std] = mean_log_std(feature);
+  const torch::Tensor std = log_std.exp();
+  const torch::Tensor noise = torch::randn(mean.sizes(), generator);
+  const torch::Tensor pre_tanh = mean + std * noise;
+  const torch::Tensor action = torch::tanh(pre_tanh);
+  // log N(pre_tanh) minus log |d tanh/dx| = log(1 - tanh^2).
+  const torch::Tensor log_normal = -0.5 * noise.pow(2) - log_std - 0.5 * std::log(2 * M_PI);
+  const torch::Tensor log_prob = (log_normal - torch::log(1 - action.pow(2) + 1e-6)).sum(1);
+  return {action, log_prob};
+}
+
+torch::Tensor SacActorImpl::deterministic(const torch::Tensor& feature) {
+  return torch::tanh(mean_log_std(feature).first);
+}
+
+SacCriticImpl::SacCriticImpl(const NetworkSpec& spec) {
+  encoder = register_module("encoder", Encoder(spec));
+  q1_ = register_module("q1", mlp(spec.feature_size + spec.action_size, spec.hidden, 1));
+  q2_ = register_module("q2", mlp(spec.feature_size + spec.action_size, spec.hidden, 1));
+}
+
+std::pair<torch::Tensor, torch::Tensor> SacCriticImpl::q(const torch::Tensor& feature,
+                                                         const torch::Tensor& action) {
+  const torch::Tensor x = torch::cat({feature, action}, 1);
+  return {q1_->forward(x).squeeze(1), q2_->forward(x).squeeze(1)};
+}
+
+namespace {
+
+class PpoPolicy : public Policy {
+ public:
+  PpoPolicy(ActorCritic net, const NetworkSpec& spec)
+      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.feature_size, spec.num_actions) {
+    net_->eval();
+  }
+
+  void act(const Batch& batch, std::span<float> actions) override {
+    torch::NoGradGuard no_grad;
+    const ObsTensors obs = obs_tensors(*batch.obs, spec_);
+    const torch::Tensor history = spec_.history > 0 ? history_.rows(batch.env_ids) : torch::Tensor();
+    const ActorCriticOutput out = net_->forward(obs, history);
+    const torch::Tensor chosen = out.logits.argmax(1);
+    if (spec_.history > 0) history_.push(batch.env_ids, out.feature, chosen);
+    for (int64_t i = 0; i < chosen.size(0); ++i) actions[i] = static_cast<float>(chosen[i].item<int64_t>());
+  }
+
+  void reset(std::span<const int> env_ids) override { history_.reset(env_ids); }
+
+ private:
+  ActorCritic net_;
+  NetworkSpec spec_;
+  History history_;
+};
+
+class SacPolicy : public Policy {
+ public:
+  SacPolicy(SacCritic critic, SacActor actor, const NetworkSpec& spec)
+      : critic_(std::move(critic)), actor_(std::move(actor)), spec_(spec) {
+    critic_->eval();
+    actor_->eval();
+  }
+
+  void act(const Batch& batch, std::span<float> actions) override {
+    torch::NoGradGuard no_grad;
+    const torch::Tensor a =
+        actor_->deterministic(critic_->encoder->forward(obs_tensors(*batch.obs, spec_))).contiguous();
+    std::copy_n(a.data_ptr<float>(), a.numel(), actions.begin());
+  }
+
+ private:
+  SacCritic critic_;
+  SacActor actor_;
+  NetworkSpec spec_;
+};
+
+}  // namespace
+
+std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec) {
+  return std::make_unique<PpoPolicy>(std::move(net), spec);
+}
+
+std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec) {
+  return std::make_unique<SacPolicy>(std::move(critic), std::move(actor), spec);
+}
+
+std::vector<float> flat_parameters(const torch::nn::Module& module) {
+  std::vector<float> out;
+  auto append = [&](const torch::Tensor& t) {
+    const torch::Tensor f = t.detach().to(torch::kFloat32).contiguous();
+    out.insert(out.end(), f.data_ptr<float>(), f.data_ptr<float>() + f.numel());
+  };
+  for (const torch::Tensor& p : module.parameters()) append(p);
+  for (const torch::Tensor& b : module.buffers()) append(b);
+  return out;
+}
+
+void orthogonal_init(torch::nn::Module& module, double gain) {
+  torch::NoGradGuard no_grad;
+  module.apply([gain](torch::nn::Module& m) {
+    torch::Tensor weight, bias;
+    if (auto* linear = dynamic_cast<nn::LinearImpl*>(&m)) {
+      weight = linear->weight, bias = linear->bias;
+    } else if (auto* conv = dynamic_cast<nn::Conv2dImpl*>(&m)) {
+      weight = conv->weight, bias = conv->bias;
+    } else {
+      return;
+    }
+    nn::init::orthogonal_(weight, gain);
+    nn::init::zeros_(bias);
+  });
+}
+
+}  // namespace chore

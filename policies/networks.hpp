@@ -1,0 +1,162 @@
+// The baselines' networks (BEHAVIOR-1K appendix F.1, Figure A.11), in LibTorch.
+// Only torch translation units include this header (policies/networks.cpp,
+// training/ppo.cpp, training/sac.cpp, training/checkpoint.cpp): <torch/torch.h>
+// costs ~20 s and 1 GB per file to compile.
+//
+//   Encoder      128x128x3 RGB, normalised by a per-channel running mean/std,
+//                -> Conv-ReLU-MaxPool x3 -> Flatten;  state (is_grasping,
+//                proprio), normalised per dimension, -> Linear-ReLU;  both
+//                -> Linear-ReLU to a 128-d feature.
+//   ActorCritic  (PPO) feature [+ history of K past (feature, action)]
+//                -> action logits over primitives, value.
+//   SacActor     feature -> tanh-squashed Gaussian over the low-level action.
+//   SacCritic    its own Encoder + twin Q heads on (feature, action).
+#pragma once
+
+#include <torch/torch.h>
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <span>
+
+#include "env/spaces.hpp"
+#include "policies/policy.hpp"
+
+namespace chore {
+
+// What the networks are built for; saved in checkpoints to rebuild them.
+struct NetworkSpec {
+  int height = 0, width = 0;  // image size; 0: no image observed
+  int state_size = 0;         // is_grasping (1) then proprio (30), as observed
+  int feature_size = 128;     // the MLP's output (Figure A.11)
+  int history = 0;            // RL-Prim.Hist.: past steps the policy sees (K)
+  int64_t num_actions = 0;    // PPO: Discrete size
+  int action_size = 0;        // SAC: Box size
+  int hidden = 256;           // SAC actor/critic MLP width
+  bool has_rgb() const { return height > 0; }
+};
+nlohmann::json to_json(const NetworkSpec& spec);
+NetworkSpec network_spec_from_json(const nlohmann::json& j);  // throws chore::Error
+// From an env's spaces: rgb and the state fields it observes (depth is unused).
+NetworkSpec network_spec(const Space& observation, const Space& action, int history);
+
+// A batch of observations as tensors: rgb (B, 3, H, W) uint8 (undefined when
+// not observed), state (B, S) float32 (S may be 0).
+struct ObsTensors {
+  torch::Tensor rgb, state;
+  ObsTensors index(const torch::Tensor& rows) const;
+};
+ObsTensors obs_tensors(const ArrayDict& obs, const NetworkSpec& spec);
+
+// Running mean and variance over samples of `dims` channels (Chan et al.'s
+// parallel update), kept as module buffers so checkpoints hold them.
+class RunningNormImpl : public torch::nn::Module {
+ public:
+  RunningNormImpl(int64_t dims, double clip);
+  // `samples` is (N, dims).
+  void update(const torch::Tensor& samples);
+  // Normalises `x` whose dimension `dim` holds the channels; clipped to +-clip.
+  torch::Tensor forward(const torch::Tensor& x, int64_t dim) const;
+
+ private:
+  torch::Tensor mean_, var_, count_;
+  double clip_;
+};
+TORCH_MODULE(RunningNorm);
+
+class EncoderImpl : public torch::nn::Module {
+ public:
+  explicit EncoderImpl(const NetworkSpec& spec);
+  torch::Tensor forward(const ObsTensors& obs);  // (B, feature_size)
+  // Moves the normalisers' statistics towards this batch (acting time only).
+  void update_normalizers(const ObsTensors& obs);
+
+ private:
+  torch::nn::Sequential trunk_{nullptr}, state_net_{nullptr}, mlp_{nullptr};
+  RunningNorm rgb_norm_{nullptr}, state_norm_{nullptr};
+};
+TORCH_MODULE(Encoder);
+
+// The visual trunk's output size for an image, for tests and the benchmark.
+int64_t trunk_output_size(int height, int width);
+
+struct ActorCriticOutput {
+  torch::Tensor logits, value;  // (B, num_actions), (B)
+  torch::Tensor feature;        // (B, feature_size): what the history keeps
+};
+
+class ActorCriticImpl : public torch::nn::Module {
+ public:
+  explicit ActorCriticImpl(const NetworkSpec& spec);
+  // `history` is (B, K * (feature_size + num_actions)), from History::rows;
+  // undefined without history.
+  ActorCriticOutput forward(const ObsTensors& obs, const torch::Tensor& history);
+  Encoder encoder{nullptr};
+
+ private:
+  torch::nn::Sequential history_net_{nullptr}, combine_{nullptr};
+  torch::nn::Linear policy_head_{nullptr}, value_head_{nullptr};
+};
+TORCH_MODULE(ActorCritic);
+
+// RL-Prim.Hist.'s memory: per env, the last K steps' features (as computed
+// when acting, no gradient flows into them) and one-hot actions, newest first;
+// zeros before an episode's first step.
+class History {
+ public:
+  History(int steps, int feature_size, int64_t num_actions);
+  torch::Tensor rows(std::span<const int> env_ids);  // (B, K * (F + A))
+  void push(std::span<const int> env_ids, const torch::Tensor& features, const torch::Tensor& actions);
+  void reset(std::span<const int> env_ids);
+
+ private:
+  void ensure(int env_id);
+  int steps_, feature_size_;
+  int64_t num_actions_;
+  torch::Tensor memory_;  // (envs, K, F + A)
+};
+
+struct SacSample {
+  torch::Tensor action, log_prob;  // (B, A) in [-1, 1], (B)
+};
+
+class SacActorImpl : public torch::nn::Module {
+ public:
+  explicit SacActorImpl(const NetworkSpec& spec);
+  // Reparameterised sample of tanh(N(mean, std)) with its log-density; the
+  // noise comes from `generator` (each trainer owns one, for determinism).
+  SacSample sample(const torch::Tensor& feature, at::Generator& generator);
+  torch::Tensor deterministic(const torch::Tensor& feature);  // tanh(mean)
+
+ private:
+  std::pair<torch::Tensor, torch::Tensor> mean_log_std(const torch::Tensor& feature);
+  torch::nn::Sequential mlp_{nullptr};
+  torch::nn::Linear mean_{nullptr}, log_std_{nullptr};
+};
+TORCH_MODULE(SacActor);
+
+class SacCriticImpl : public torch::nn::Module {
+ public:
+  explicit SacCriticImpl(const NetworkSpec& spec);
+  // Both Q values, (B) each, on features from `encoder`.
+  std::pair<torch::Tensor, torch::Tensor> q(const torch::Tensor& feature, const torch::Tensor& action);
+  Encoder encoder{nullptr};
+
+ private:
+  torch::nn::Sequential q1_{nullptr}, q2_{nullptr};
+};
+TORCH_MODULE(SacCritic);
+
+// Greedy policies over trained networks (chore eval/video): PPO takes the
+// argmax action, SAC tanh(mean). Not thread-safe; they run without gradients.
+std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec);
+std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec);
+
+// Every parameter and buffer of `module`, flattened in registration order
+// (determinism tests compare these).
+std::vector<float> flat_parameters(const torch::nn::Module& module);
+// Orthogonal weights with `gain`, zero biases (PPO's initialisation).
+void orthogonal_init(torch::nn::Module& module, double gain);
+
+}  // namespace chore

@@ -1,0 +1,369 @@
+// The trainers learn (a return rising past what random actions get), are
+// deterministic on one thread, and checkpoint, resume and load; bad checkpoints
+// are clear errors. State observations keep these fast.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "policies/networks.hpp"
+#include "test_util.hpp"
+#include "training/checkpoint.hpp"
+#include "training/trainer.hpp"
+
+namespace chore {
+namespace {
+namespace fs = std::filesystem;
+
+// SAC's dense task: the gripper to a point 0.3 m away, 50 steps, proprioception.
+TrainConfig reach_config() {
+  TrainConfig c = baseline_config("rl-vmc", "");
+  c.env.scene = test::box_room();
+  c.env.observations = {"proprio"};
+  c.env.reward = "reach";
+  c.env.max_episode_steps = 50;
+  c.sac.buffer = 10000;
+  c.sac.learning_starts = 250;
+  c.sac.hidden = 64;
+  c.sac.report_every = 500;
+  return c;
+}
+
+// PPO's task: CollectTrash's symbolic primitives, 16-step episodes; each
+// bottle or cup in the bin is worth 0.25 (BEHAVIOR's potential).
+TrainConfig collect_trash_config(const std::string& baseline = "rl-prim") {
+  TrainConfig c = baseline_config(baseline, "collect_trash");
+  c.env.observations = {"proprio", "is_grasping"};
+  c.env.primitive_mode = ExecutionMode::symbolic;
+  c.env.max_episode_steps = 16;
+  return c;
+}
+
+// PPO's learning task: one bottle from the coffee table into the bin (four
+// primitives), symbolic, 12-step episodes; the goal is worth 1 (BEHAVIOR's potential).
+TrainConfig one_bottle_config() {
+  TrainConfig c = baseline_config("rl-prim", std::string(CHORE_TEST_DATA) + "/bddl/collect_one_bottle.bddl");
+  c.env.scene = "studio";
+  c.env.observations = {"proprio", "is_grasping"};
+  c.env.primitive_mode = ExecutionMode::symbolic;
+  c.env.max_episode_steps = 12;
+  return c;
+}
+
+// The mean return of uniformly random actions: the bar a learner must clear.
+double random_return(const EnvConfig& config, int episodes, uint64_t seed) {
+  Env env(config);
+  std::mt19937 rng(seed);
+  double total = 0;
+  for (int e = 0; e < episodes; ++e) {
+    env.reset(seed + e);
+    for (bool done = false; !done;) {
+      std::vector<float> action(env.action_space().element_count());
+      if (env.action_space().kind == Space::Kind::discrete) {
+        action[0] = static_cast<float>(std::uniform_int_distribution<int64_t>(0, env.action_space().n - 1)(rng));
+      } else {
+        for (float& a : action) a = std::uniform_real_distribution<float>(-1, 1)(rng);
+      }
+      const Env::StepResult r = env.step(action);
+      total += r.reward;
+      done = r.terminated || r.truncated;
+    }
+  }
+  return total / episodes;
+}
+
+std::vector<MetricsRow> train(Trainer& trainer, int64_t steps) {
+  std::vector<MetricsRow> rows;
+  trainer.train(steps, [&](const MetricsRow& row) { rows.push_back(row); });
+  return rows;
+}
+
+TEST(Training, SacLearnsToReach) {
+  TrainConfig config = reach_config();
+  const double random = random_return(config.env, 10, 1000);
+  // Rewards of ~0.3 a step: a smaller first temperature than 1, a faster learning rate.
+  config.sac.initial_alpha = 0.1;
+  config.sac.lr = 1e-3;
+  auto trainer = make_trainer(config);
+  const std::vector<MetricsRow> rows = train(*trainer, 5000);
+  const MetricsRow& last = rows.back();
+  // Random actions hold the gripper ~0.3 m away (return ~ -15); the learner
+  // must at least halve the mean distance over its last 20 episodes.
+  EXPECT_LT(random, -12);
+  EXPECT_GT(last.mean_return, random / 2) << "random " << random;
+  EXPECT_GT(last.mean_return, rows.front().mean_return + 5);
+}
+
+TEST(Training, PpoLearnsToPutABottleInTheBin) {
+  TrainConfig config = one_bottle_config();
+  config.ppo.lr = 1e-3;
+  const double random = random_return(config.env, 40, 1000);
+  auto trainer = make_trainer(config);
+  const std::vector<MetricsRow> rows = train(*trainer, 4000);
+  // Random primitives finish about one episode in six; the learner (measured:
+  // 0.2 -> 0.8 success over 3000 steps) must finish most of its last ones.
+  EXPECT_LT(random, 0.25);
+  EXPECT_GT(rows.back().mean_return, random + 0.4) << "random " << random;
+  EXPECT_GT(rows.back().success_rate, 0.6);
+}
+
+// Everything but timings.
+std::vector<double> comparable(const std::vector<MetricsRow>& rows, const std::vector<std::string>& extras) {
+  std::vector<double> out;
+  for (const MetricsRow& r : rows) {
+    out.insert(out.end(), {static_cast<double>(r.env_steps), static_cast<double>(r.episodes),
+                           r.success_rate, r.mean_q, r.mean_return, r.mean_length});
+    for (size_t i = 0; i < extras.size(); ++i) {
+      if (extras[i].find("_s") == std::string::npos && extras[i] != "update_ms") out.push_back(r.extras[i]);
+    }
+  }
+  return out;
+}
+
+void expect_deterministic(const TrainConfig& config, int64_t steps) {
+  auto a = make_trainer(config);
+  auto b = make_trainer(config);
+  const std::vector<MetricsRow> rows_a = train(*a, steps), rows_b = train(*b, steps);
+  ASSERT_FALSE(rows_a.empty());
+  EXPECT_EQ(comparable(rows_a, a->extra_metric_names()), comparable(rows_b, b->extra_metric_names()));
+  EXPECT_EQ(a->parameters(), b->parameters());
+  // And the seed matters.
+  TrainConfig other = config;
+  other.seed += 1;
+  auto c = make_trainer(other);
+  train(*c, steps);
+  EXPECT_NE(a->parameters(), c->parameters());
+}
+
+TEST(Training, PpoWithHistoryIsDeterministicOnOneThread) {
+  expect_deterministic(collect_trash_config("rl-prim-hist"), 600);
+}
+
+// With 32x32 RGB: the conv trunk and the image normaliser.
+TEST(Training, SacWithImagesIsDeterministicOnOneThread) {
+  TrainConfig config = reach_config();
+  config.env.observations = {"rgb", "proprio"};
+  config.env.width = config.env.height = 32;
+  config.sac.learning_starts = 100;
+  config.sac.report_every = 100;
+  expect_deterministic(config, 300);
+}
+
+TEST(Training, HistoryKeepsTheLastKStepsNewestFirst) {
+  History history(2, 3, 4);
+  const int ids[] = {1};
+  history.push(ids, torch::full({1, 3}, 1.0f), torch::tensor({2}));
+  history.push(ids, torch::full({1, 3}, 5.0f), torch::tensor({0}));
+  const torch::Tensor row = history.rows(ids)[0];
+  const std::vector<float> expected = {5, 5, 5, 1, 0, 0, 0, 1, 1, 1, 0, 0, 1, 0};
+  EXPECT_TRUE(torch::equal(row, torch::tensor(expected)));
+  const int env0[] = {0};
+  EXPECT_EQ(history.rows(env0).abs().sum().item<float>(), 0.0f);  // untouched env: zeros
+  history.reset(ids);
+  EXPECT_EQ(history.rows(ids).abs().sum().item<float>(), 0.0f);
+}
+
+TEST(Training, ImageTrunkPoolsTo4x4) {
+  EXPECT_EQ(trunk_output_size(128, 128), 32 * 4 * 4);
+}
+
+// A short PPO run's checkpoint: save, resume, load the policy.
+TEST(Checkpoint, ResumesTheRunAndLoadsAGreedyPolicy) {
+  const fs::path dir = test::scratch_dir("checkpoint_resume");
+  const std::string path = (dir / "checkpoint.pt").string();
+  auto trainer = make_trainer(collect_trash_config("rl-prim-hist"));
+  train(*trainer, 300);
+  trainer->save(path);
+  EXPECT_FALSE(fs::exists(path + ".tmp" + std::to_string(getpid())));
+
+  auto resumed = resume_trainer(path);
+  EXPECT_EQ(resumed->env_steps(), 300);
+  EXPECT_EQ(resumed->parameters(), trainer->parameters());
+  EXPECT_EQ(resumed->config().baseline, "rl-prim-hist");
+  const std::vector<MetricsRow> rows = train(*resumed, 600);
+  EXPECT_EQ(rows.back().env_steps, 600);
+  EXPECT_GE(rows.back().episodes, 2 * (300 / 16));  // the envs restart on resume
+
+  LoadedPolicy loaded = load_policy(path);
+  EXPECT_EQ(loaded.baseline, "rl-prim-hist");
+  EXPECT_EQ(loaded.steps, 300);
+  EXPECT_EQ(loaded.env.max_episode_steps, 16);
+  VectorEnv env({.env = loaded.env, .num_envs = 2, .autoreset = AutoReset::same_step});
+  Batch batch = env.reset(7);
+  std::vector<float> actions(2);
+  const int64_t n = env.single_action_space().n;
+  for (int t = 0; t < 20; ++t) {
+    loaded.policy->act(batch, actions);
+    for (float a : actions) EXPECT_TRUE(a >= 0 && a < n && a == std::floor(a)) << a;
+    batch = env.step(actions);
+    std::vector<int> ended;
+    for (int i = 0; i < batch.size(); ++i) {
+      if (batch.terminated[i] || batch.truncated[i]) ended.push_back(batch.env_ids[i]);
+    }
+    loaded.policy->reset(ended);
+  }
+}
+
+TEST(Checkpoint, PolicyThreadsArePinned) {
+  set_policy_threads(1);
+  EXPECT_EQ(torch::get_num_threads(), 1);
+  set_policy_threads(2);
+  EXPECT_EQ(torch::get_num_threads(), 2);
+  EXPECT_NE(test::error_of([] { set_policy_threads(0); }).find("at least 1"), std::string::npos);
+}
+
+TEST(Checkpoint, SacPolicyActsWithTanhMean) {
+  const fs::path dir = test::scratch_dir("checkpoint_sac");
+  const std::string path = (dir / "checkpoint.pt").string();
+  TrainConfig config = reach_config();
+  config.sac.learning_starts = 64;
+  auto trainer = make_trainer(config);
+  train(*trainer, 100);
+  trainer->save(path);
+  EXPECT_EQ(resume_trainer(path)->parameters(), trainer->parameters());
+  LoadedPolicy loaded = load_policy(path);
+  EXPECT_EQ(loaded.baseline, "rl-vmc");
+  VectorEnv env({.env = loaded.env, .num_envs = 1});
+  const Batch batch = env.reset(3);
+  std::vector<float> a(kLowLevelActionSize), b(kLowLevelActionSize);
+  loaded.policy->act(batch, a);
+  loaded.policy->act(batch, b);
+  EXPECT_EQ(a, b);  // greedy: the same observation, the same action
+  for (float x : a) EXPECT_TRUE(x > -1 && x < 1) << x;
+}
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
+  const fs::path dir = test::scratch_dir("checkpoint_bad");
+  const fs::path good = dir / "good.pt";
+  auto trainer = make_trainer(collect_trash_config());
+  trainer->save(good.string());
+  const std::string bytes = read_bytes(good);
+  auto write = [&](const std::string& name, const std::string& content) {
+    const fs::path p = dir / name;
+    std::ofstream(p, std::ios::binary) << content;
+    return p.string();
+  };
+  auto load_error = [](const std::string& path) { return test::error_of([&] { load_policy(path); }); };
+  auto resume_error = [](const std::string& path) { return test::error_of([&] { resume_trainer(path); }); };
+
+  std::string corrupt = bytes;
+  corrupt[bytes.size() / 2] ^= 0x5a;
+  const std::string corrupt_path = write("corrupt.pt", corrupt);
+  EXPECT_NE(load_error(corrupt_path).find("corrupt (checksum mismatch)"), std::string::npos);
+  EXPECT_NE(resume_error(corrupt_path).find("corrupt"), std::string::npos);
+
+  for (size_t size : {size_t{3}, size_t{20}, bytes.size() / 2, bytes.size() - 1}) {
+    const std::string path = write("truncated.pt", bytes.substr(0, size));
+    const std::string error = load_error(path);
+    EXPECT_TRUE(error.find("truncated") != std::string::npos || error.find("bad magic") != std::string::npos)
+        << size << ": " << error;
+  }
+  EXPECT_NE(load_error(write("text.pt", "hello")).find("not a chore checkpoint"), std::string::npos);
+  EXPECT_NE(load_error((dir / "missing.pt").string()).find("cannot open"), std::string::npos);
+
+  std::string future = bytes;
+  future[8] = 99;  // the version field
+  EXPECT_NE(load_error(write("future.pt", future)).find("format version 99, this chore reads version 1"),
+            std::string::npos);
+
+  // Well-formed files whose contents do not fit: a network spec that does not
+  // match the weights, an unknown baseline, missing metadata.
+  CheckpointFile file = read_checkpoint(good.string());
+  CheckpointFile wrong_spec = file;
+  wrong_spec.meta["network"]["feature_size"] = 64;
+  write_checkpoint((dir / "spec.pt").string(), wrong_spec);
+  EXPECT_NE(load_error((dir / "spec.pt").string()).find("the network expects [64"), std::string::npos)
+      << load_error((dir / "spec.pt").string());
+  CheckpointFile wrong_baseline = file;
+  wrong_baseline.meta["config"]["baseline"] = "rl-magic";
+  write_checkpoint((dir / "baseline.pt").string(), wrong_baseline);
+  EXPECT_NE(resume_error((dir / "baseline.pt").string()).find("unknown baseline 'rl-magic'"), std::string::npos);
+  CheckpointFile no_steps = file;
+  no_steps.meta.erase("steps");
+  write_checkpoint((dir / "steps.pt").string(), no_steps);
+  EXPECT_NE(load_error((dir / "steps.pt").string()).find("bad metadata"), std::string::npos);
+  CheckpointFile bad_tensors = file;
+  bad_tensors.tensors = "not a torch archive";
+  write_checkpoint((dir / "tensors.pt").string(), bad_tensors);
+  EXPECT_NE(load_error((dir / "tensors.pt").string()).find("checkpoint"), std::string::npos);
+  // The good file still loads.
+  EXPECT_EQ(load_policy(good.string()).steps, 0);
+}
+
+std::vector<std::vector<std::string>> csv_rows(const fs::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// chore train, SIGKILLed after its first checkpoints, resumed to the end; the
+// final checkpoint loads as a policy.
+TEST(Checkpoint, TrainKilledMidRunResumesAndFinishes) {
+  const fs::path dir = test::scratch_dir("train_kill");
+  const std::string chore = CHORE_BINARY;
+  const std::vector<std::string> args = {chore, "train", "--activity", "collect_trash", "--baseline",
+                                         "rl-prim-hist", "--mode", "symbolic", "--observations",
+                                         "proprio", "is_grasping", "--episode-steps", "16", "--steps",
+                                         "1500", "--checkpoint-every", "300", "--seed", "3", "--out",
+                                         dir.string()};
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    freopen("/dev/null", "w", stderr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(dir / "checkpoint_600.pt") && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before it was killed";
+  const int64_t killed_at = read_checkpoint((dir / "checkpoint.pt").string()).meta["steps"].get<int64_t>();
+  EXPECT_GE(killed_at, 600);
+  EXPECT_LT(killed_at, 1500);
+
+  const std::string resume = chore + " train --resume " + dir.string() + " 2>/dev/null";
+  ASSERT_EQ(std::system(resume.c_str()), 0);
+  const auto rows = csv_rows(dir / "metrics.csv");
+  ASSERT_GE(rows.size(), 6u);
+  EXPECT_EQ(rows[0][0], "env_steps");
+  for (size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_EQ(std::stoll(rows[i][0]), static_cast<int64_t>(300 * i)) << "row " << i;  // no gap, no repeat
+  }
+  EXPECT_EQ(rows.back()[0], "1500");
+  const LoadedPolicy loaded = load_policy((dir / "checkpoint.pt").string());
+  EXPECT_EQ(loaded.steps, 1500);
+  EXPECT_TRUE(fs::exists(dir / "checkpoint_1500.pt"));
+  // Resuming a finished run with the same --steps does nothing more.
+  ASSERT_EQ(std::system(resume.c_str()), 0);
+  EXPECT_EQ(csv_rows(dir / "metrics.csv").size(), rows.size());
+}
+
+}  // namespace
+}  // namespace chore

@@ -1,0 +1,224 @@
+#include "training/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "env/world/error.hpp"
+#include "policies/networks.hpp"
+#include "training/torch_support.hpp"
+#include "training/trainer.hpp"
+
+namespace chore {
+namespace {
+
+constexpr char kMagic[8] = {'C', 'H', 'O', 'R', 'E', 'C', 'K', 'P'};
+
+uint64_t fnv1a(const std::string& bytes) {
+  uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  return hash;
+}
+
+template <class T>
+void put(std::string& out, T value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// Reads a T at `offset`, or throws "truncated".
+template <class T>
+T take(const std::string& bytes, size_t& offset, const std::string& path) {
+  if (bytes.size() - offset < sizeof(T)) throw Error("checkpoint " + path + ": truncated");
+  T value;
+  std::memcpy(&value, bytes.data() + offset, sizeof value);
+  offset += sizeof value;
+  return value;
+}
+
+std::string take_block(const std::string& bytes, size_t& offset, const std::string& path) {
+  const uint64_t length = take<uint64_t>(bytes, offset, path);
+  if (bytes.size() - offset < length) throw Error("checkpoint " + path + ": truncated");
+  std::string block = bytes.substr(offset, length);
+  offset += length;
+  return block;
+}
+
+void write_all(int fd, const std::string& bytes, const std::string& path) {
+  for (size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw Error("checkpoint " + path + ": write failed: " + std::strerror(errno));
+    done += static_cast<size_t>(n);
+  }
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint) {
+  std::string bytes(kMagic, sizeof kMagic);
+  put(bytes, kCheckpointVersion);
+  const std::string meta = checkpoint.meta.dump();
+  put(bytes, static_cast<uint64_t>(meta.size()));
+  bytes += meta;
+  put(bytes, static_cast<uint64_t>(checkpoint.tensors.size()));
+  bytes += checkpoint.tensors;
+  put(bytes, fnv1a(bytes));
+
+  // Write beside the target, flush to disk, then rename over it: the old file
+  // stays whole until the new one is.
+  const std::string temp = path + ".tmp" + std::to_string(::getpid());
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw Error("checkpoint " + temp + ": cannot create: " + std::strerror(errno));
+  try {
+    write_all(fd, bytes, temp);
+    if (::fsync(fd) != 0) throw Error("checkpoint " + temp + ": fsync failed: " + std::strerror(errno));
+  } catch (...) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    throw;
+  }
+  ::close(fd);
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    ::unlink(temp.c_str());
+    throw Error("checkpoint " + path + ": rename failed: " + std::strerror(errno));
+  }
+  const std::string dir = std::filesystem::absolute(path).parent_path().string();
+  if (const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); dfd >= 0) {
+    ::fsync(dfd);  // makes the rename itself durable
+    ::close(dfd);
+  }
+}
+
+CheckpointFile read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("checkpoint " + path + ": cannot open");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string bytes = buffer.str();
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    throw Error("checkpoint " + path + ": not a chore checkpoint (bad magic)");
+  }
+  size_t offset = sizeof kMagic;
+  const uint32_t version = take<uint32_t>(bytes, offset, path);
+  if (version != kCheckpointVersion) {
+    throw Error("checkpoint " + path + ": format version " + std::to_string(version) +
+                ", this chore reads version " + std::to_string(kCheckpointVersion));
+  }
+  CheckpointFile checkpoint;
+  checkpoint.path = path;
+  const std::string meta = take_block(bytes, offset, path);
+  checkpoint.tensors = take_block(bytes, offset, path);
+  const size_t body = offset;
+  const uint64_t checksum = take<uint64_t>(bytes, offset, path);
+  if (offset != bytes.size()) throw Error("checkpoint " + path + ": trailing bytes after the checksum");
+  if (checksum != fnv1a(bytes.substr(0, body))) {
+    throw Error("checkpoint " + path + ": corrupt (checksum mismatch)");
+  }
+  try {
+    checkpoint.meta = nlohmann::json::parse(meta);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("checkpoint " + path + ": bad metadata: " + e.what());
+  }
+  return checkpoint;
+}
+
+std::string archive_bytes(torch::serialize::OutputArchive& archive) {
+  std::ostringstream out;
+  archive.save_to(out);
+  return out.str();
+}
+
+void read_archive(torch::serialize::InputArchive& archive, const std::string& bytes, const std::string& what) {
+  load_or_throw(what, [&] {
+    std::istringstream in(bytes);
+    archive.load_from(in);
+  });
+}
+
+at::Generator seed_torch(uint64_t seed, int threads) {
+  torch::set_num_threads(threads);
+  torch::manual_seed(seed);
+  return at::detail::createCPUGenerator(seed);
+}
+
+void save_rng(torch::serialize::OutputArchive& archive, const at::Generator& generator) {
+  archive.write("rng", generator.get_state(), /*is_buffer=*/true);
+}
+
+void load_rng(torch::serialize::InputArchive& archive, at::Generator& generator) {
+  torch::Tensor state;
+  archive.read("rng", state, /*is_buffer=*/true);
+  generator.set_state(state);
+}
+
+void load_or_throw(const std::string& what, const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const c10::Error& e) {
+    throw Error(what + ": " + e.what_without_backtrace());
+  }
+}
+
+void load_module(torch::nn::Module& module, torch::serialize::InputArchive& archive, const std::string& key,
+                 const std::string& what) {
+  std::vector<std::pair<std::string, std::vector<int64_t>>> expected;
+  for (const auto& p : module.named_parameters()) expected.push_back({p.key(), p.value().sizes().vec()});
+  for (const auto& b : module.named_buffers()) expected.push_back({b.key(), b.value().sizes().vec()});
+  load_or_throw(what, [&] {
+    torch::serialize::InputArchive sub;
+    archive.read(key, sub);
+    module.load(sub);
+  });
+  std::vector<torch::Tensor> loaded = module.parameters();
+  for (const torch::Tensor& b : module.buffers()) loaded.push_back(b);
+  for (size_t i = 0; i < expected.size(); ++i) {
+    if (loaded[i].sizes().vec() != expected[i].second) {
+      throw Error(what + ": tensor '" + key + "." + expected[i].first + "' has shape " +
+                  c10::str(loaded[i].sizes()) + ", the network expects " + c10::str(c10::IntArrayRef(expected[i].second)));
+    }
+  }
+}
+
+void set_policy_threads(int threads) {
+  if (threads < 1) throw Error("policy threads must be at least 1, got " + std::to_string(threads));
+  torch::set_num_threads(threads);
+}
+
+LoadedPolicy load_policy(const std::string& checkpoint_path) {
+  const CheckpointFile file = read_checkpoint(checkpoint_path);
+  const std::string what = "checkpoint " + checkpoint_path;
+  LoadedPolicy loaded;
+  NetworkSpec spec;
+  try {
+    const TrainConfig config = train_config_from_json(file.meta.at("config"));
+    spec = network_spec_from_json(file.meta.at("network"));
+    loaded.env = config.env;
+    loaded.baseline = config.baseline;
+    loaded.steps = file.meta.at("steps").get<int64_t>();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(what + ": bad metadata: " + e.what());
+  } catch (const Error& e) {
+    throw Error(what + ": " + e.what());
+  }
+  torch::serialize::InputArchive archive;
+  read_archive(archive, file.tensors, what);
+  if (uses_sac(loaded.baseline)) {
+    SacCritic critic(spec);
+    SacActor actor(spec);
+    load_module(*critic, archive, "critic", what);
+    load_module(*actor, archive, "actor", what);
+    loaded.policy = make_sac_policy(critic, actor, spec);
+  } else {
+    ActorCritic net(spec);
+    load_module(*net, archive, "net", what);
+    loaded.policy = make_ppo_policy(net, spec);
+  }
+  return loaded;
+}
+
+}  // namespace chore

@@ -1,0 +1,52 @@
+// Checkpoints: one file each, written atomically (a temporary file in the same
+// folder, fsync, rename), so a run killed at any moment leaves the last one whole.
+//
+// Layout (little-endian):
+//   "CHORECKP"              8 bytes, magic
+//   version                 uint32 (kCheckpointVersion)
+//   meta length, meta       uint64 + JSON: baseline, train config (env config
+//                           included), network spec, step count, episode statistics
+//   tensors length, tensors uint64 + a torch archive: "net" (PPO) or "critic",
+//                           "critic_target", "actor", "log_alpha" (SAC) with the
+//                           normalisers' statistics as buffers; optimizer states;
+//                           the torch RNG state; SAC's replay buffer
+//   checksum                uint64 FNV-1a of all bytes before it
+// A corrupt, truncated or incompatible file is a chore::Error naming the file.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "env/env.hpp"
+#include "policies/policy.hpp"
+
+namespace chore {
+
+constexpr uint32_t kCheckpointVersion = 1;
+
+struct CheckpointFile {
+  nlohmann::json meta;
+  std::string tensors;  // a serialised torch archive
+  std::string path;     // where it was read from (for messages)
+};
+
+void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint);
+CheckpointFile read_checkpoint(const std::string& path);
+
+// A trained policy for chore eval/video: PPO acts by argmax, SAC by tanh(mean);
+// `env` rebuilds the env it was trained in.
+struct LoadedPolicy {
+  std::unique_ptr<chore::Policy> policy;
+  chore::EnvConfig env;
+  std::string baseline;
+  int64_t steps = 0;
+};
+LoadedPolicy load_policy(const std::string& checkpoint_path);  // throws chore::Error
+// Pins torch's intra-op threads (process-wide) for loaded policies: its OpenMP
+// pool competes with the VectorEnv's workers and the renderer for the cores.
+void set_policy_threads(int threads);
+
+}  // namespace chore

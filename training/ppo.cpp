@@ -1,0 +1,264 @@
+// PPO for the primitive baselines (RL-Prim., RL-Prim.Hist.; appendix F.3,
+// Table A.12), after CleanRL's ppo.py and the "37 implementation details":
+// a vector env collects a rollout of `buffer` transitions with the current
+// policy; GAE(gamma, lambda) gives advantages and returns; `epochs` passes of
+// shuffled minibatches optimise the clipped surrogate, the value loss and the
+// entropy bonus with Adam (eps 1e-5) and global gradient clipping. Episode ends
+// by truncation bootstrap from the value of the final observation.
+#include <chrono>
+#include <numeric>
+#include <optional>
+
+#include "env/world/error.hpp"
+#include "policies/networks.hpp"
+#include "training/checkpoint.hpp"
+#include "training/torch_support.hpp"
+#include "training/trainer.hpp"
+
+namespace chore {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// One rollout: T steps of N envs, flattened to T * N rows at update time.
+struct Rollout {
+  std::vector<ObsTensors> obs;
+  std::vector<torch::Tensor> history, actions, log_probs, values, rewards, dones;
+  void clear() { *this = Rollout(); }
+};
+
+struct UpdateStats {
+  double policy_loss = 0, value_loss = 0, entropy = 0, approx_kl = 0, clip_fraction = 0;
+  double update_ms = 0;  // per minibatch update
+};
+
+class PpoTrainer : public Trainer {
+ public:
+  PpoTrainer(const TrainConfig& config, const CheckpointFile* resume)
+      : config_(config),
+        env_(vector_env_config(config)),
+        spec_(network_spec(env_.single_observation_space(), env_.single_action_space(),
+                           config.baseline == "rl-prim-hist" ? config.ppo.history : 0)),
+        stats_(config.num_envs) {
+    const PpoConfig& p = config_.ppo;
+    if (env_.single_action_space().kind != Space::Kind::discrete) {
+      throw Error("ppo: needs the primitive (Discrete) action space, got " +
+                  env_.single_action_space().to_string());
+    }
+    if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
+    generator_ = seed_torch(config_.seed, config_.threads);
+    net_ = ActorCritic(spec_);
+    optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
+    if (spec_.history > 0) history_.emplace(spec_.history, spec_.feature_size, spec_.num_actions);
+    steps_per_rollout_ = (p.buffer + config_.num_envs - 1) / config_.num_envs;
+    if (resume) load(*resume);
+    // A resumed run restarts its envs; seed + steps keeps it reproducible.
+    obs_ = obs_tensors(*env_.reset(config_.seed + static_cast<uint64_t>(steps_)).obs, spec_);
+    if (!resume) net_->encoder->update_normalizers(obs_);
+  }
+
+  void train(int64_t until, const Report& report) override {
+    while (steps_ < until) {
+      const auto start = Clock::now();
+      collect();
+      const double collect_s = seconds_since(start);
+      const UpdateStats u = update();
+      const double period_s = seconds_since(start);
+      wall_s_ += period_s;
+      MetricsRow row = stats_.row(steps_, wall_s_);
+      const double steps = static_cast<double>(steps_per_rollout_ * config_.num_envs);
+      row.extras = {steps / period_s, steps / collect_s, u.update_ms, u.policy_loss, u.value_loss,
+                    u.entropy, u.approx_kl, u.clip_fraction};
+      report(row);
+    }
+  }
+
+  std::vector<std::string> extra_metric_names() const override {
+    return {"steps_per_s", "env_steps_per_s", "update_ms", "policy_loss", "value_loss",
+            "entropy", "approx_kl", "clip_fraction"};
+  }
+
+  int64_t env_steps() const override { return steps_; }
+  const TrainConfig& config() const override { return config_; }
+  std::vector<float> parameters() const override { return flat_parameters(*net_); }
+
+  void save(const std::string& path) const override {
+    torch::serialize::OutputArchive archive, net, optimizer;
+    net_->save(net);
+    optimizer_->save(optimizer);
+    archive.write("net", net);
+    archive.write("optimizer", optimizer);
+    save_rng(archive, generator_);
+    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
+  }
+
+ private:
+  void load(const CheckpointFile& file) {
+    torch::serialize::InputArchive archive, optimizer;
+    const std::string what = "checkpoint " + file.path;
+    read_archive(archive, file.tensors, what);
+    load_module(*net_, archive, "net", what);
+    load_or_throw(what, [&] {
+      archive.read("optimizer", optimizer);
+      optimizer_->load(optimizer);
+      load_rng(archive, generator_);
+    });
+    const RunProgress progress = load_run_meta(file.meta, stats_);
+    steps_ = progress.steps;
+    wall_s_ = progress.wall_s;
+  }
+
+  torch::Tensor history_rows(std::span<const int> env_ids) {
+    return history_ ? history_->rows(env_ids) : torch::Tensor();
+  }
+
+  // Runs the policy for steps_per_rollout_ vector steps, filling rollout_.
+  void collect() {
+    torch::NoGradGuard no_grad;
+    rollout_.clear();
+    const int n = config_.num_envs;
+    std::vector<int> ids(n);
+    std::iota(ids.begin(), ids.end(), 0);
+    std::vector<float> action_values(n);
+    for (int t = 0; t < steps_per_rollout_; ++t) {
+      const torch::Tensor history = history_rows(ids);
+      const ActorCriticOutput out = net_->forward(obs_, history);
+      const torch::Tensor log_probs = torch::log_softmax(out.logits, 1);
+      const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1, false, generator_).squeeze(1);
+      rollout_.obs.push_back(obs_);
+      rollout_.history.push_back(history);
+      rollout_.actions.push_back(actions);
+      rollout_.log_probs.push_back(log_probs.gather(1, actions.unsqueeze(1)).squeeze(1));
+      rollout_.values.push_back(out.value);
+      if (history_) history_->push(ids, out.feature, actions);
+
+      for (int i = 0; i < n; ++i) action_values[i] = static_cast<float>(actions[i].item<int64_t>());
+      const Batch batch = env_.step(action_values);
+      torch::Tensor rewards = torch::from_blob(const_cast<float*>(batch.rewards.data()), {n}).clone();
+      torch::Tensor dones = torch::zeros({n});
+      std::vector<int> ended;
+      std::optional<ObsTensors> final_obs;
+      for (int i = 0; i < n; ++i) {
+        if (!batch.terminated[i] && !batch.truncated[i]) continue;
+        dones[i] = 1.0f;
+        ended.push_back(batch.env_ids[i]);
+        // Cut off by the time limit, not ended by the task: bootstrap.
+        if (!batch.terminated[i]) {
+          if (!final_obs) final_obs = obs_tensors(*batch.final_obs, spec_);
+          const int id[] = {batch.env_ids[i]};
+          const ObsTensors last = final_obs->index(torch::tensor({static_cast<int64_t>(i)}));
+          rewards[i] += config_.ppo.gamma * net_->forward(last, history_rows(id)).value[0];
+        }
+      }
+      rollout_.rewards.push_back(rewards);
+      rollout_.dones.push_back(dones);
+      stats_.record(batch);
+      if (history_) history_->reset(ended);
+      obs_ = obs_tensors(*batch.obs, spec_);
+      steps_ += n;
+    }
+  }
+
+  // GAE over the rollout, then minibatch epochs; the normalisers then take in
+  // the rollout's observations (constant while one rollout is acted and learned).
+  UpdateStats update() {
+    const PpoConfig& p = config_.ppo;
+    const int64_t steps = steps_per_rollout_;
+    torch::Tensor advantages = torch::zeros({steps, config_.num_envs});
+    {
+      torch::NoGradGuard no_grad;
+      std::vector<int> ids(config_.num_envs);
+      std::iota(ids.begin(), ids.end(), 0);
+      torch::Tensor next_value = net_->forward(obs_, history_rows(ids)).value;
+      torch::Tensor next_advantage = torch::zeros({config_.num_envs});
+      for (int64_t t = steps - 1; t >= 0; --t) {
+        const torch::Tensor live = 1.0 - rollout_.dones[t];
+        const torch::Tensor delta = rollout_.rewards[t] + p.gamma * next_value * live - rollout_.values[t];
+        next_advantage = delta + p.gamma * p.gae_lambda * live * next_advantage;
+        advantages[t] = next_advantage;
+        next_value = rollout_.values[t];
+      }
+    }
+    // Flatten (T, N) to rows.
+    const torch::Tensor rgb = spec_.has_rgb() ? cat_field(&ObsTensors::rgb) : torch::Tensor();
+    const ObsTensors obs{rgb, cat_field(&ObsTensors::state)};
+    const torch::Tensor history = history_ ? torch::cat(rollout_.history) : torch::Tensor();
+    const torch::Tensor actions = torch::cat(rollout_.actions);
+    const torch::Tensor old_log_probs = torch::cat(rollout_.log_probs);
+    const torch::Tensor values = torch::cat(rollout_.values);
+    advantages = advantages.reshape({-1});
+    const torch::Tensor returns = advantages + values;
+    const int64_t rows = actions.size(0);
+
+    UpdateStats s;
+    int updates = 0;
+    const auto start = Clock::now();
+    for (int epoch = 0; epoch < p.epochs; ++epoch) {
+      const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
+      for (int64_t begin = 0; begin < rows; begin += p.batch) {
+        const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
+        const ActorCriticOutput out =
+            net_->forward(obs.index(idx), history_ ? history.index_select(0, idx) : history);
+        const torch::Tensor log_probs_all = torch::log_softmax(out.logits, 1);
+        const torch::Tensor log_probs = log_probs_all.gather(1, actions.index_select(0, idx).unsqueeze(1)).squeeze(1);
+        const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
+        const torch::Tensor log_ratio = log_probs - old_log_probs.index_select(0, idx);
+        const torch::Tensor ratio = log_ratio.exp();
+        torch::Tensor adv = advantages.index_select(0, idx);
+        if (adv.size(0) > 1) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
+        const torch::Tensor policy_loss =
+            torch::max(-adv * ratio, -adv * torch::clamp(ratio, 1 - p.clip, 1 + p.clip)).mean();
+        const torch::Tensor value_loss = 0.5 * (out.value - returns.index_select(0, idx)).pow(2).mean();
+        const torch::Tensor loss = policy_loss - p.entropy_coef * entropy + p.value_coef * value_loss;
+        optimizer_->zero_grad();
+        loss.backward();
+        torch::nn::utils::clip_grad_norm_(net_->parameters(), p.max_grad_norm);
+        optimizer_->step();
+
+        torch::NoGradGuard no_grad;
+        s.policy_loss += policy_loss.item<double>();
+        s.value_loss += value_loss.item<double>();
+        s.entropy += entropy.item<double>();
+        s.approx_kl += ((ratio - 1) - log_ratio).mean().item<double>();
+        s.clip_fraction += ((ratio - 1).abs() > p.clip).to(torch::kFloat32).mean().item<double>();
+        ++updates;
+      }
+    }
+    s.update_ms = 1000 * seconds_since(start) / updates;
+    for (double* v : {&s.policy_loss, &s.value_loss, &s.entropy, &s.approx_kl, &s.clip_fraction}) *v /= updates;
+    net_->encoder->update_normalizers(obs);
+    return s;
+  }
+
+  torch::Tensor cat_field(torch::Tensor ObsTensors::*field) const {
+    std::vector<torch::Tensor> parts;
+    for (const ObsTensors& o : rollout_.obs) parts.push_back(o.*field);
+    return torch::cat(parts);
+  }
+
+  TrainConfig config_;
+  VectorEnv env_;
+  NetworkSpec spec_;
+  ActorCritic net_{nullptr};
+  std::optional<torch::optim::Adam> optimizer_;
+  std::optional<History> history_;
+  EpisodeStats stats_;
+  Rollout rollout_;
+  ObsTensors obs_;  // the envs' current observations
+  int steps_per_rollout_ = 0;
+  at::Generator generator_;
+  int64_t steps_ = 0;
+  double wall_s_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Trainer> make_ppo_trainer(const TrainConfig& config, const CheckpointFile* resume) {
+  return std::make_unique<PpoTrainer>(config, resume);
+}
+
+}  // namespace chore

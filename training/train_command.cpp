@@ -1,0 +1,149 @@
+#include "training/train_command.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "env/world/error.hpp"
+#include "training/checkpoint.hpp"
+#include "training/trainer.hpp"
+
+namespace chore {
+namespace fs = std::filesystem;
+namespace {
+
+std::string format_duration(double seconds) {
+  char text[32];
+  const long s = std::lround(std::max(seconds, 0.0));
+  if (s >= 3600) {
+    std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, s / 60 % 60);
+  } else {
+    std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+  }
+  return text;
+}
+
+// Keeps metrics.csv's header and the rows up to `steps` (a resumed run redoes
+// what came after its checkpoint); writes the header for a new file.
+void prepare_metrics(const fs::path& path, const std::string& header, int64_t steps) {
+  std::vector<std::string> keep;
+  if (std::ifstream in(path); in) {
+    std::string line;
+    while (std::getline(in, line)) {
+      if (keep.empty()) {
+        if (line != header) throw Error(path.string() + ": header differs from this trainer's: " + line);
+      } else if (std::count(line.begin(), line.end(), ',') != std::count(header.begin(), header.end(), ',') ||
+                 std::stoll(line.substr(0, line.find(','))) > steps) {
+        continue;  // after the checkpoint, or cut short by a kill
+      }
+      keep.push_back(line);
+    }
+  }
+  if (keep.empty()) keep.push_back(header);
+  std::ofstream out(path, std::ios::trunc);
+  for (const std::string& line : keep) out << line << "\n";
+  if (!out) throw Error(path.string() + ": cannot write");
+}
+
+}  // namespace
+
+void run_train(const TrainOptions& o, std::ostream& log) {
+  const std::string dir = o.out.empty() ? o.resume : o.out;
+  if (dir.empty()) throw Error("train: give --out DIR (or --resume DIR)");
+  if (o.envs < 1) throw Error("train: --envs must be at least 1");
+  if (o.threads < 1) throw Error("train: --threads must be at least 1");
+  if (o.steps && *o.steps < 1) throw Error("train: --steps must be at least 1");
+  if (o.checkpoint_every < 1) throw Error("train: --checkpoint-every must be at least 1");
+  const fs::path checkpoint = fs::path(dir) / "checkpoint.pt";
+
+  std::unique_ptr<Trainer> trainer;
+  if (!o.resume.empty()) {
+    if (!o.out.empty() && fs::path(o.out) != fs::path(o.resume)) {
+      throw Error("train: --resume continues in its own folder; drop --out or make it the same");
+    }
+    if (!fs::exists(checkpoint)) throw Error("train: --resume " + o.resume + ": no checkpoint.pt there");
+    trainer = resume_trainer(checkpoint.string());
+    // The run's own config holds; only --steps may change (extend) it.
+    const TrainConfig& saved = trainer->config();
+    if ((!o.activity.empty() && o.activity != saved.env.activity) ||
+        (!o.baseline.empty() && o.baseline != saved.baseline)) {
+      throw Error("train: " + o.resume + " holds a " + saved.baseline + " run on " + saved.env.activity +
+                  "; --resume continues it as it was");
+    }
+  } else {
+    if (o.activity.empty()) throw Error("train: --activity is required");
+    if (o.baseline.empty()) throw Error("train: --baseline is required");
+    if (fs::exists(checkpoint)) {
+      throw Error("train: " + dir + " already holds a run (checkpoint.pt); --resume " + dir +
+                  " continues it, or choose another --out");
+    }
+    TrainConfig config = baseline_config(o.baseline, o.activity);
+    config.seed = o.seed;
+    config.num_envs = o.envs;
+    config.threads = o.threads;
+    config.total_steps = o.steps.value_or(30000);
+    config.env.primitive_mode = parse_execution_mode(o.mode);
+    if (!o.observations.empty()) config.env.observations = o.observations;
+    // Primitive episodes: 60 steps (as the scripted expert's); low-level: the env's 500.
+    if (config.env.action_space == "primitives") config.env.max_episode_steps = 60;
+    if (o.episode_steps > 0) config.env.max_episode_steps = o.episode_steps;
+    if (o.history > 0) {
+      if (config.baseline != "rl-prim-hist") throw Error("train: --history is for rl-prim-hist");
+      config.ppo.history = o.history;
+    }
+    fs::create_directories(dir);
+    trainer = make_trainer(config);
+  }
+  TrainConfig config = trainer->config();
+  const int64_t total = o.steps.value_or(config.total_steps);
+
+  std::string header = kMetricsHeader;
+  for (const std::string& name : trainer->extra_metric_names()) header += "," + name;
+  const fs::path metrics_path = fs::path(dir) / "metrics.csv";
+  prepare_metrics(metrics_path, header, trainer->env_steps());
+  std::ofstream metrics(metrics_path, std::ios::app);
+
+  // A TTY gets one line redrawn in place; a log file a line every 30 s.
+  const bool tty = isatty(STDERR_FILENO);
+  const int64_t first_step = trainer->env_steps();
+  const auto start = std::chrono::steady_clock::now();
+  auto last_line = start - std::chrono::hours(1);
+  auto report = [&](const MetricsRow& row) {
+    metrics << row.env_steps << "," << row.wall_s << "," << row.episodes << "," << row.success_rate
+            << "," << row.mean_q << "," << row.mean_return << "," << row.mean_length;
+    for (double v : row.extras) metrics << "," << v;
+    metrics << std::endl;
+    const auto now = std::chrono::steady_clock::now();
+    if (!tty && now - last_line < std::chrono::seconds(30) && row.env_steps < total) return;
+    last_line = now;
+    const double elapsed = std::chrono::duration<double>(now - start).count();
+    const double rate = (row.env_steps - first_step) / std::max(elapsed, 1e-9);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "train %s: %lld/%lld steps (%.1f%%), %.1f steps/s, %lld episodes, success %.2f, "
+                  "return %.3f, ETA %s",
+                  config.baseline.c_str(), static_cast<long long>(row.env_steps),
+                  static_cast<long long>(total), 100.0 * row.env_steps / total, rate,
+                  static_cast<long long>(row.episodes), row.success_rate, row.mean_return,
+                  format_duration((total - row.env_steps) / std::max(rate, 1e-9)).c_str());
+    log << (tty ? "\r\033[K" : "") << line << (tty ? "" : "\n") << std::flush;
+  };
+
+  while (trainer->env_steps() < total) {
+    const int64_t next = std::min(total, (trainer->env_steps() / o.checkpoint_every + 1) * o.checkpoint_every);
+    trainer->train(next, report);
+    trainer->save(checkpoint.string());
+    trainer->save((fs::path(dir) / ("checkpoint_" + std::to_string(trainer->env_steps()) + ".pt")).string());
+  }
+  if (tty) log << "\n";
+  log << "train: " << trainer->env_steps() << " steps done; checkpoint " << checkpoint.string()
+      << ", metrics " << metrics_path.string() << std::endl;
+}
+
+}  // namespace chore

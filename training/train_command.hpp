@@ -1,0 +1,31 @@
+// `chore train`: trains a baseline (rl-vmc, rl-prim, rl-prim-hist) on an
+// activity; metrics to DIR/metrics.csv, checkpoints to DIR, a progress line
+// on the log; --resume continues a run from its last checkpoint.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace chore {
+
+struct TrainOptions {
+  std::string activity, baseline;
+  uint64_t seed = 0;
+  std::optional<int64_t> steps;  // total env steps; default 30000, or the resumed run's
+  int envs = 1, threads = 1;
+  std::string out;     // run folder; defaults to `resume`
+  std::string resume;  // a run folder holding checkpoint.pt
+  std::string mode = "physical";  // primitive execution (rl-prim, rl-prim-hist)
+  std::vector<std::string> observations;  // empty: the baseline's
+  int episode_steps = 0;                  // 0: the baseline's
+  int history = 0;                        // rl-prim-hist's K; 0: PpoConfig's default
+  int64_t checkpoint_every = 3000;        // env steps
+};
+
+// Runs (or resumes) the training; throws chore::Error for bad options or files.
+void run_train(const TrainOptions& options, std::ostream& log);
+
+}  // namespace chore

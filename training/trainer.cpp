@@ -1,0 +1,217 @@
+#include "training/trainer.hpp"
+
+#include <algorithm>
+
+#include "env/world/error.hpp"
+#include "training/checkpoint.hpp"
+
+namespace chore {
+
+const char* const kMetricsHeader = "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length";
+
+bool uses_sac(const std::string& baseline) { return baseline == "rl-vmc"; }
+
+TrainConfig baseline_config(const std::string& baseline, const std::string& activity) {
+  TrainConfig c;
+  c.baseline = baseline;
+  c.env.activity = activity;
+  if (baseline == "rl-vmc") {
+    // Figure A.11 (a): egocentric RGB and proprioception, joint-level control.
+    c.env.observations = {"rgb", "proprio", "is_grasping"};
+    c.env.action_space = "low_level";
+  } else if (baseline == "rl-prim" || baseline == "rl-prim-hist") {
+    // Figure A.11 (b), appendix F.1: RGB and is-grasping, physical primitives.
+    c.env.observations = {"rgb", "is_grasping"};
+    c.env.action_space = "primitives";
+    c.env.primitive_mode = ExecutionMode::physical;
+    if (baseline == "rl-prim") c.ppo.history = 0;
+  } else {
+    throw Error("unknown baseline '" + baseline + "' (known: rl-vmc, rl-prim, rl-prim-hist)");
+  }
+  return c;
+}
+
+nlohmann::json to_json(const EnvConfig& c) {
+  return {{"activity", c.activity},
+          {"scene", c.scene},
+          {"width", c.width},
+          {"height", c.height},
+          {"observations", c.observations},
+          {"lighting", c.lighting == Lighting::full ? "full" : "lamps_only"},
+          {"max_episode_steps", c.max_episode_steps},
+          {"robot", c.robot},
+          {"object_states", c.object_states},
+          {"cloth", c.cloth},
+          {"start_jitter", c.start_jitter},
+          {"action_space", c.action_space},
+          {"primitive_mode", to_string(c.primitive_mode)},
+          {"policy_failure_repeats", c.policy_failure_repeats},
+          {"reward", c.reward},
+          {"reach_target", c.reach_target}};
+}
+
+EnvConfig env_config_from_json(const nlohmann::json& j) {
+  try {
+    EnvConfig c;
+    c.activity = j.at("activity").get<std::string>();
+    c.scene = j.at("scene").get<std::string>();
+    c.width = j.at("width").get<int>();
+    c.height = j.at("height").get<int>();
+    c.observations = j.at("observations").get<std::vector<std::string>>();
+    const std::string lighting = j.at("lighting").get<std::string>();
+    if (lighting != "full" && lighting != "lamps_only") throw Error("unknown lighting '" + lighting + "'");
+    c.lighting = lighting == "full" ? Lighting::full : Lighting::lamps_only;
+    c.max_episode_steps = j.at("max_episode_steps").get<int>();
+    c.robot = j.at("robot").get<bool>();
+    c.object_states = j.at("object_states").get<bool>();
+    c.cloth = j.at("cloth").get<bool>();
+    c.start_jitter = j.at("start_jitter").get<double>();
+    c.action_space = j.at("action_space").get<std::string>();
+    c.primitive_mode = parse_execution_mode(j.at("primitive_mode").get<std::string>());
+    c.policy_failure_repeats = j.at("policy_failure_repeats").get<int>();
+    c.reward = j.at("reward").get<std::string>();
+    c.reach_target = j.at("reach_target").get<std::array<double, 3>>();
+    return c;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(std::string("env config: ") + e.what());
+  }
+}
+
+nlohmann::json to_json(const TrainConfig& c) {
+  const PpoConfig& p = c.ppo;
+  const SacConfig& s = c.sac;
+  return {{"baseline", c.baseline},
+          {"env", to_json(c.env)},
+          {"num_envs", c.num_envs},
+          {"threads", c.threads},
+          {"seed", c.seed},
+          {"total_steps", c.total_steps},
+          {"ppo", {{"lr", p.lr}, {"buffer", p.buffer}, {"batch", p.batch}, {"epochs", p.epochs},
+                   {"gamma", p.gamma}, {"gae_lambda", p.gae_lambda}, {"clip", p.clip},
+                   {"entropy_coef", p.entropy_coef}, {"value_coef", p.value_coef},
+                   {"max_grad_norm", p.max_grad_norm}, {"history", p.history}}},
+          {"sac", {{"lr", s.lr}, {"buffer", s.buffer}, {"batch", s.batch}, {"gamma", s.gamma},
+                   {"tau", s.tau}, {"learning_starts", s.learning_starts},
+                   {"initial_alpha", s.initial_alpha}, {"hidden", s.hidden},
+                   {"report_every", s.report_every}}}};
+}
+
+TrainConfig train_config_from_json(const nlohmann::json& j) {
+  try {
+    TrainConfig c;
+    c.baseline = j.at("baseline").get<std::string>();
+    c.env = env_config_from_json(j.at("env"));
+    c.num_envs = j.at("num_envs").get<int>();
+    c.threads = j.at("threads").get<int>();
+    c.seed = j.at("seed").get<uint64_t>();
+    c.total_steps = j.at("total_steps").get<int64_t>();
+    const nlohmann::json& p = j.at("ppo");
+    c.ppo = {p.at("lr").get<double>(), p.at("buffer").get<int>(), p.at("batch").get<int>(),
+             p.at("epochs").get<int>(), p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(),
+             p.at("clip").get<double>(), p.at("entropy_coef").get<double>(),
+             p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
+             p.at("history").get<int>()};
+    const nlohmann::json& s = j.at("sac");
+    c.sac = {s.at("lr").get<double>(), s.at("buffer").get<int>(), s.at("batch").get<int>(),
+             s.at("gamma").get<double>(), s.at("tau").get<double>(),
+             s.at("learning_starts").get<int>(), s.at("initial_alpha").get<double>(),
+             s.at("hidden").get<int>(), s.at("report_every").get<int>()};
+    return c;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(std::string("train config: ") + e.what());
+  }
+}
+
+void EpisodeStats::record(const Batch& batch) {
+  for (int i = 0; i < batch.size(); ++i) {
+    double& ret = returns_[batch.env_ids[i]];
+    ret += batch.rewards[i];
+    if (!batch.terminated[i] && !batch.truncated[i]) continue;
+    const Info& info = batch.final_obs ? batch.final_infos[i] : batch.infos[i];
+    recent_.push_back({ret, info.q, info.elapsed_steps, info.success});
+    if (recent_.size() > kWindow) recent_.pop_front();
+    ++episodes_;
+    ret = 0;
+  }
+}
+
+MetricsRow EpisodeStats::row(int64_t env_steps, double wall_s) const {
+  MetricsRow row;
+  row.env_steps = env_steps;
+  row.wall_s = wall_s;
+  row.episodes = episodes_;
+  for (const Episode& e : recent_) {
+    row.success_rate += e.success;
+    row.mean_q += e.q;
+    row.mean_return += e.ret;
+    row.mean_length += static_cast<double>(e.length);
+  }
+  if (!recent_.empty()) {
+    const double n = static_cast<double>(recent_.size());
+    row.success_rate /= n, row.mean_q /= n, row.mean_return /= n, row.mean_length /= n;
+  }
+  return row;
+}
+
+nlohmann::json EpisodeStats::to_json() const {
+  nlohmann::json recent = nlohmann::json::array();
+  for (const Episode& e : recent_) recent.push_back({e.ret, e.q, e.length, e.success});
+  return {{"episodes", episodes_}, {"recent", recent}};
+}
+
+void EpisodeStats::load(const nlohmann::json& j) {
+  episodes_ = j.at("episodes").get<int64_t>();
+  recent_.clear();
+  for (const nlohmann::json& e : j.at("recent")) {
+    recent_.push_back({e.at(0).get<double>(), e.at(1).get<double>(), e.at(2).get<int64_t>(),
+                       e.at(3).get<bool>()});
+  }
+}
+
+VectorEnvConfig vector_env_config(const TrainConfig& config) {
+  return {.env = config.env,
+          .num_envs = config.num_envs,
+          .num_threads = std::min(config.threads, config.num_envs),
+          .autoreset = AutoReset::same_step};
+}
+
+nlohmann::json run_meta(const TrainConfig& config, const nlohmann::json& network, const RunProgress& progress,
+                        const EpisodeStats& stats) {
+  return {{"config", to_json(config)},
+          {"network", network},
+          {"steps", progress.steps},
+          {"wall_s", progress.wall_s},
+          {"episodes", stats.to_json()}};
+}
+
+RunProgress load_run_meta(const nlohmann::json& meta, EpisodeStats& stats) {
+  stats.load(meta.at("episodes"));
+  return {meta.at("steps").get<int64_t>(), meta.at("wall_s").get<double>()};
+}
+
+std::unique_ptr<Trainer> make_trainer(const TrainConfig& config) {
+  if (config.num_envs < 1) throw Error("train: --envs must be at least 1");
+  if (config.threads < 1) throw Error("train: --threads must be at least 1");
+  baseline_config(config.baseline, "");  // names an unknown baseline
+  return uses_sac(config.baseline) ? make_sac_trainer(config, nullptr) : make_ppo_trainer(config, nullptr);
+}
+
+std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint) {
+  const CheckpointFile file = read_checkpoint(checkpoint);
+  TrainConfig config;
+  try {
+    config = train_config_from_json(file.meta.at("config"));
+    baseline_config(config.baseline, "");
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
+  } catch (const Error& e) {
+    throw Error("checkpoint " + checkpoint + ": " + e.what());
+  }
+  try {
+    return uses_sac(config.baseline) ? make_sac_trainer(config, &file) : make_ppo_trainer(config, &file);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
+  }
+}
+
+}  // namespace chore

@@ -1,0 +1,149 @@
+// The baselines' trainers behind one torch-free interface (training/ppo.cpp and
+// training/sac.cpp hold the algorithms, each readable top to bottom):
+//
+//   rl-vmc        SAC on the 14-d low-level control, RGB + proprio + is-grasping
+//   rl-prim       PPO over the primitive action space, RGB + is-grasping
+//   rl-prim-hist  rl-prim whose policy also sees the last K steps
+//
+//   auto trainer = chore::make_trainer(config);
+//   trainer->train(30000, [](const chore::MetricsRow& row) { ... });
+//   trainer->save("run/checkpoint.pt");
+//   auto resumed = chore::resume_trainer("run/checkpoint.pt");
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "env/env.hpp"
+#include "env/vector_env.hpp"
+
+namespace chore {
+
+// Table A.12 (RL-Prim., RL-Prim.Hist.); the rest from SB3/CleanRL's defaults.
+struct PpoConfig {
+  double lr = 3e-4;
+  int buffer = 300;  // transitions per rollout, over all envs (rounded up to a multiple of them)
+  int batch = 64;    // minibatch
+  int epochs = 10;
+  double gamma = 0.99, gae_lambda = 0.99, clip = 0.2;
+  double entropy_coef = 0.0, value_coef = 0.5, max_grad_norm = 0.5;
+  int history = 4;  // rl-prim-hist: past steps the policy sees (K)
+};
+
+// Table A.11 (RL-VMC); the rest from SB3/CleanRL's defaults.
+struct SacConfig {
+  double lr = 3e-4;
+  int buffer = 300;  // replay capacity in transitions (Table A.11's "buffer size")
+  int batch = 64;
+  double gamma = 0.99, tau = 0.005;
+  int learning_starts = 100;  // env steps of uniform random actions before learning
+  double initial_alpha = 1.0;
+  int hidden = 256;           // actor/critic MLP width
+  int report_every = 300;     // env steps between metrics rows
+};
+
+struct TrainConfig {
+  std::string baseline = "rl-prim";  // rl-vmc, rl-prim or rl-prim-hist
+  EnvConfig env;
+  int num_envs = 1;
+  int threads = 1;  // VectorEnv workers (at most num_envs) and torch's intra-op threads
+  uint64_t seed = 0;
+  int64_t total_steps = 30000;  // env steps (primitive steps for rl-prim), as in the paper
+  PpoConfig ppo;
+  SacConfig sac;
+};
+
+// The paper's setup for a baseline on an activity: observations, action space
+// and primitive mode as in appendix F. Throws chore::Error for an unknown baseline.
+TrainConfig baseline_config(const std::string& baseline, const std::string& activity);
+bool uses_sac(const std::string& baseline);
+
+nlohmann::json to_json(const TrainConfig& config);
+TrainConfig train_config_from_json(const nlohmann::json& j);  // throws chore::Error
+nlohmann::json to_json(const EnvConfig& config);
+EnvConfig env_config_from_json(const nlohmann::json& j);  // throws chore::Error
+
+// One row of metrics.csv. The first columns are a contract with scripts/plot:
+// env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length (means
+// over the last EpisodeStats::kWindow finished episodes), then the trainer's extras.
+struct MetricsRow {
+  int64_t env_steps = 0;
+  double wall_s = 0;
+  int64_t episodes = 0;
+  double success_rate = 0, mean_q = 0, mean_return = 0, mean_length = 0;
+  std::vector<double> extras;  // named by Trainer::extra_metric_names()
+};
+extern const char* const kMetricsHeader;  // "env_steps,wall_s,...,mean_length"
+
+// Episode returns per env, and rolling statistics over finished episodes.
+class EpisodeStats {
+ public:
+  static constexpr int kWindow = 20;
+  explicit EpisodeStats(int num_envs) : returns_(num_envs, 0.0) {}
+  // After a VectorEnv step with same_step autoreset.
+  void record(const Batch& batch);
+  int64_t episodes() const { return episodes_; }
+  MetricsRow row(int64_t env_steps, double wall_s) const;
+  nlohmann::json to_json() const;
+  void load(const nlohmann::json& j);
+
+ private:
+  struct Episode {
+    double ret, q;
+    int64_t length;
+    bool success;
+  };
+  std::vector<double> returns_;
+  std::deque<Episode> recent_;
+  int64_t episodes_ = 0;
+};
+
+// The vector env a trainer steps: same_step autoreset, so an ended episode's
+// last observation is in final_obs.
+VectorEnvConfig vector_env_config(const TrainConfig& config);
+
+// A run's checkpoint metadata (checkpoint.hpp), and its progress read back.
+struct RunProgress {
+  int64_t steps = 0;
+  double wall_s = 0;
+};
+nlohmann::json run_meta(const TrainConfig& config, const nlohmann::json& network, const RunProgress& progress,
+                        const EpisodeStats& stats);
+RunProgress load_run_meta(const nlohmann::json& meta, EpisodeStats& stats);
+
+class Trainer {
+ public:
+  using Report = std::function<void(const MetricsRow&)>;
+  virtual ~Trainer() = default;
+  // Trains until env_steps() >= until (PPO: whole rollouts), calling `report`
+  // after each PPO update or every SacConfig::report_every env steps.
+  virtual void train(int64_t until, const Report& report) = 0;
+  virtual int64_t env_steps() const = 0;
+  virtual const TrainConfig& config() const = 0;
+  virtual std::vector<std::string> extra_metric_names() const = 0;
+  // Writes a checkpoint atomically (training/checkpoint.hpp).
+  virtual void save(const std::string& path) const = 0;
+  // Every network parameter and normaliser statistic, flattened (determinism tests).
+  virtual std::vector<float> parameters() const = 0;
+};
+
+struct CheckpointFile;
+// The algorithms (training/ppo.cpp, training/sac.cpp), for make_trainer and
+// resume_trainer: `resume` is a checkpoint the same algorithm wrote, or nullptr.
+std::unique_ptr<Trainer> make_ppo_trainer(const TrainConfig& config, const CheckpointFile* resume);
+std::unique_ptr<Trainer> make_sac_trainer(const TrainConfig& config, const CheckpointFile* resume);
+
+// A fresh run; throws chore::Error for a bad config.
+std::unique_ptr<Trainer> make_trainer(const TrainConfig& config);
+// Continues the run saved in `checkpoint`: networks, optimizers, normalisers,
+// RNG state, step count and episode statistics. Its envs restart, seeded with
+// seed + steps. Throws chore::Error for a bad checkpoint.
+std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint);
+
+}  // namespace chore
