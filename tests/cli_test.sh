@@ -106,6 +106,7 @@ expect 2 "already holds a run" -- "$chore" train --activity collect_trash --base
 expect 2 "holds a rl-prim run on collect_trash" -- "$chore" train --resume "$run_dir" --baseline rl-vmc
 # The trained checkpoint evaluates in the env it was trained in; a bad one is an error.
 expect 0 "success rate .* +- " -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --seeds 0-1 --episodes 1 --max-steps 5
+expect 0 "6 frames of" -- "$chore" video --checkpoint "$run_dir/checkpoint.pt" --seed 0 --max-steps 5 --out "$(mktemp -d)/policy.mp4"
 printf 'garbage' > "$run_dir/checkpoint.pt"
 expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
 expect 2 "not a chore checkpoint" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt"

@@ -363,6 +363,15 @@ TEST(Checkpoint, TrainKilledMidRunResumesAndFinishes) {
   // Resuming a finished run with the same --steps does nothing more.
   ASSERT_EQ(std::system(resume.c_str()), 0);
   EXPECT_EQ(csv_rows(dir / "metrics.csv").size(), rows.size());
+  // And the resumed run's checkpoint evaluates.
+  const fs::path report = dir / "eval.json";
+  const std::string eval = chore + " eval --checkpoint " + (dir / "checkpoint.pt").string() +
+                           " --seeds 0-1 --episodes 2 --json > " + report.string() + " 2>/dev/null";
+  ASSERT_EQ(std::system(eval.c_str()), 0);
+  std::ifstream in(report);
+  const nlohmann::json result = nlohmann::json::parse(in).at(0);
+  EXPECT_EQ(result.at("per_episode").size(), 4u);
+  EXPECT_EQ(result.at("policy").get<std::string>(), (dir / "checkpoint.pt").string());
 }
 
 }  // namespace
