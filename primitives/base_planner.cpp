@@ -91,6 +91,35 @@ bool OccupancyMap::free(double x, double y) const {
   return !occupied_[static_cast<size_t>(j) * width_ + i];
 }
 
+bool OccupancyMap::connected(double x0, double y0, double x1, double y1) const {
+  const auto cell = [&](double x, double y) {
+    return std::pair{static_cast<int>(std::floor((x - x0_) / kResolution)),
+                     static_cast<int>(std::floor((y - y0_) / kResolution))};
+  };
+  if (!free(x0, y0) || !free(x1, y1)) return false;
+  const auto [gi, gj] = cell(x1, y1);
+  std::vector<unsigned char> seen(occupied_.size(), 0);
+  std::vector<std::pair<int, int>> frontier = {cell(x0, y0)};
+  seen[static_cast<size_t>(frontier[0].second) * width_ + frontier[0].first] = 1;
+  while (!frontier.empty()) {
+    const auto [i, j] = frontier.back();
+    frontier.pop_back();
+    if (i == gi && j == gj) return true;
+    // 8-connected: a planner's checks one cell apart may step diagonally.
+    for (int dj = -1; dj <= 1; ++dj) {
+      for (int di = -1; di <= 1; ++di) {
+        const int ni = i + di, nj = j + dj;
+        if (ni < 0 || nj < 0 || ni >= width_ || nj >= height_) continue;
+        const size_t k = static_cast<size_t>(nj) * width_ + ni;
+        if (seen[k] || occupied_[k]) continue;
+        seen[k] = 1;
+        frontier.push_back({ni, nj});
+      }
+    }
+  }
+  return false;
+}
+
 namespace {
 
 // Robot-frame horizontal box of a geom: its box's corners, or its axis's ends
@@ -213,6 +242,12 @@ BasePath plan_base_path(const World& world, const Footprint& footprint, const Po
   }
   if (!footprint.free(goal)) {
     out.reason = "the goal pose is not in free space";
+    return out;
+  }
+  // The body's disk alone needs a way through: a flood fill of its map settles
+  // a goal in an enclosed pocket at once, where the planner would use up its iterations.
+  if (!map.connected(start.x, start.y, goal.x, goal.y)) {
+    out.reason = "no collision-free base path: the goal is enclosed (no free way on the occupancy map)";
     return out;
   }
   auto space = std::make_shared<ob::SE2StateSpace>();

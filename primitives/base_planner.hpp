@@ -25,6 +25,9 @@ class OccupancyMap {
   OccupancyMap(const World& world, double inflation, double above = 0.0);
 
   bool free(double x, double y) const;
+  // Whether free cells join (x0, y0) to (x1, y1), 8-connected: a base path's
+  // necessary condition, decided by a flood fill.
+  bool connected(double x0, double y0, double x1, double y1) const;
   double min_x() const { return x0_; }
   double min_y() const { return y0_; }
   double max_x() const { return x0_ + width_ * kResolution; }

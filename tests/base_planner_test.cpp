@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "env/env.hpp"
 #include "env/world/world.hpp"
 #include "primitives/base_planner.hpp"
 #include "test_util.hpp"
@@ -43,6 +44,27 @@ TEST(BasePlanner, WallsAndFurnitureAreOccupiedAndGoalsInThemAreRefused) {
   const BasePath path = plan_base_path(world, footprint, {4.8, 0.5, 0}, 7);
   EXPECT_FALSE(path.success);
   EXPECT_EQ(path.reason, "the goal pose is not in free space");
+}
+
+// StoreDecoration's seed 6 leaves a strip between the sofa, the coffee table,
+// a pumpkin and the west wall that the base fits in but cannot reach: refused
+// at once by the flood fill, not after the planner's iterations.
+TEST(BasePlanner, AnEnclosedGoalIsRefusedWithoutSearching) {
+  EnvConfig config;
+  config.activity = "store_decoration";
+  config.observations = {"is_grasping"};
+  Env env(config);
+  env.reset(6);
+  const World& world = env.world();
+  const Footprint footprint(world);
+  const OccupancyMap& map = footprint.body_map();
+  const Pose2 pocket{0.9, 1.45, 0.0}, kitchen{6.2, 2.0, 0.0};
+  ASSERT_TRUE(footprint.free(pocket));
+  EXPECT_FALSE(map.connected(world.base_pose().x, world.base_pose().y, pocket.x, pocket.y));
+  EXPECT_TRUE(map.connected(world.base_pose().x, world.base_pose().y, kitchen.x, kitchen.y));
+  const BasePath path = plan_base_path(world, footprint, pocket, 7);
+  EXPECT_FALSE(path.success);
+  EXPECT_EQ(path.reason, "no collision-free base path: the goal is enclosed (no free way on the occupancy map)");
 }
 
 TEST(BasePlanner, TheTuckedRobotIsOneDiskOfTheBaseRadius) {
