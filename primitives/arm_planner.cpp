@@ -13,7 +13,7 @@
 namespace chore {
 
 ArmCollisionChecker::ArmCollisionChecker(const World& world)
-    : world_(world), kinematics_(world), data_(world.scratch(1)) {
+    : world_(world), kinematics_(world), data_(world.scratch()) {
   const mjModel* m = world.model();
   const Robot& r = *world.robot();
   robot_and_load_ = kinematics_.robot_geoms();

@@ -22,8 +22,8 @@ struct ArmPath {
 // Collision queries of the robot and its load against the rest of the world,
 // as the world stands at construction: the robot's own kinematics place its
 // geoms (primitives/kinematics.hpp), MuJoCo's narrow-phase functions test them
-// against the geoms whose boxes they reach. The world's scratch data (slot 1)
-// holds the geom poses; the world itself is never touched. Contacts within the
+// against the geoms whose boxes they reach. The world's scratch data holds the
+// geom poses; the world itself is never touched. Contacts within the
 // robot (and with its load) do not count.
 class ArmCollisionChecker {
  public:

@@ -21,18 +21,15 @@ World::World(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
 }
 
 World::~World() {
-  for (mjData* d : scratch_) {
-    if (d) mj_deleteData(d);
-  }
+  if (scratch_) mj_deleteData(scratch_);
   if (data_) mj_deleteData(data_);
   if (model_) mj_deleteModel(model_);
 }
 
-mjData* World::scratch(int slot) const {
-  mjData*& d = scratch_.at(slot);
-  if (!d) d = mj_makeData(model_);
-  if (!d) throw Error("world: out of memory for scratch data");
-  return d;
+mjData* World::scratch() const {
+  if (!scratch_) scratch_ = mj_makeData(model_);
+  if (!scratch_) throw Error("world: out of memory for scratch data");
+  return scratch_;
 }
 
 void World::reset(const Pose2& base) {

@@ -4,7 +4,6 @@
 // physics step, as OmniGibson's does.
 #pragma once
 
-#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -57,11 +56,10 @@ class World {
   // Runs `substeps` physics steps of 1/120 s.
   StepReport step(int substeps);
 
-  // A scratch mjData for what-if queries (IK, collision checks), one per
-  // slot, made on first use and kept: mj_makeData of a large scene costs
+  // A scratch mjData for what-if queries (the primitives' collision checks),
+  // made on first use and kept: mj_makeData of a large scene costs
   // milliseconds. Its contents are whatever the last user left.
-  static constexpr int kScratchSlots = 2;
-  mjData_* scratch(int slot) const;
+  mjData_* scratch() const;
 
   // Extended object states (temperature, soaked, dirt, toggles, ...).
   ObjectStates& states() { return states_; }
@@ -109,7 +107,7 @@ class World {
   int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
-  mutable std::array<mjData_*, kScratchSlots> scratch_{};
+  mutable mjData_* scratch_ = nullptr;
   std::vector<double> payload_jacobian_;  // 3 x nv, for the load's gravity compensation
 };
 
