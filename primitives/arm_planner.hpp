@@ -27,7 +27,8 @@ struct ArmPath {
 // robot (and with its load) do not count.
 class ArmCollisionChecker {
  public:
-  explicit ArmCollisionChecker(const World& world);
+  // With a clearance, geoms closer than it count as touching.
+  explicit ArmCollisionChecker(const World& world, double clearance = 0.0);
   ArmCollisionChecker(const ArmCollisionChecker&) = delete;
   ArmCollisionChecker& operator=(const ArmCollisionChecker&) = delete;
   // Whether the robot (or what it holds) with torso and arm at q touches
@@ -50,6 +51,8 @@ class ArmCollisionChecker {
   std::vector<Box> others_;           // what the robot can touch, with world boxes
   std::vector<int> robot_and_load_;   // colliding geoms moving with the robot
   std::vector<int> hand_and_load_;
+  std::vector<int> moved_by_arm_;     // sorted: geoms the clearance applies to
+  double clearance_;
 };
 
 // Whether the robot (or what it holds) in configuration q touches anything else.

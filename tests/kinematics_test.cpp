@@ -138,5 +138,18 @@ TEST(ArmCollisionChecker, AgreesWithMujocosCollisionDetection) {
   }
 }
 
+// A clearance counts what comes within it as touching, for what the torso and
+// arm move only: the base stands on the floor whatever the clearance.
+TEST(ArmCollisionChecker, AClearanceAppliesToWhatTheArmMoves) {
+  Env env = make_env("store_decoration");
+  env.reset(1);
+  const World& w = env.world();
+  const ArmConfiguration tucked = arm_configuration(w);
+  ArmCollisionChecker exact(w), near(w, 0.015), far(w, 3.0);
+  EXPECT_FALSE(exact.collides(tucked.data()));
+  EXPECT_FALSE(near.collides(tucked.data()));  // the base's contact with the floor does not count
+  EXPECT_TRUE(far.collides(tucked.data()));    // a wall or furniture within 3 m of the arm
+}
+
 }  // namespace
 }  // namespace chore
