@@ -18,61 +18,58 @@ constexpr double kEndpointSpan = 0.15;        // rad from its start or goal wher
 
 }  // namespace
 
-ArmCollisionChecker::ArmCollisionChecker(const World& world, double clearance)
-    : world_(world), kinematics_(world), data_(world.scratch()), clearance_(clearance) {
+ArmCollisionChecker::ArmCollisionChecker(const World& world)
+    : world_(world), kinematics_(world), data_(world.scratch()) {
   const mjModel* m = world.model();
   const Robot& r = *world.robot();
-  robot_and_load_ = kinematics_.robot_geoms();
+  // Which geoms move with the robot: its own, and for the clearance those
+  // below the torso joint, and the load's.
+  std::vector<unsigned char> mine(m->ngeom, 0);
+  moved_by_arm_.assign(m->ngeom, 0);
+  const int torso = m->jnt_bodyid[r.torso.joint];
   for (int g : kinematics_.robot_geoms()) {
-    const int b = m->geom_bodyid[g];
+    robot_and_load_.push_back(g);
+    mine[g] = 1;
+    int b = m->geom_bodyid[g];
     if (b == r.gripper_body || b == r.left_finger_body || b == r.right_finger_body) hand_and_load_.push_back(g);
+    while (b != torso && m->body_rootid[b] != b) b = m->body_parentid[b];
+    moved_by_arm_[g] = b == torso;
   }
   for (int g : kinematics_.load_geoms()) {
     robot_and_load_.push_back(g);
     hand_and_load_.push_back(g);
+    mine[g] = moved_by_arm_[g] = 1;
   }
-  // The clearance holds for what the torso and arm move (the base stands on the floor).
-  const int torso = m->jnt_bodyid[r.torso.joint];
-  for (int g : robot_and_load_) {
-    int b = m->geom_bodyid[g];
-    while (b != torso && b != 0 && m->body_rootid[b] != b) b = m->body_parentid[b];
-    const bool load = std::find(kinematics_.load_geoms().begin(), kinematics_.load_geoms().end(), g) !=
-                      kinematics_.load_geoms().end();
-    if (b == torso || load) moved_by_arm_.push_back(g);
-  }
-  std::sort(moved_by_arm_.begin(), moved_by_arm_.end());
-  const std::vector<int>& mine = robot_and_load_;
   mju_copy(data_->geom_xpos, world.data()->geom_xpos, 3 * m->ngeom);
   mju_copy(data_->geom_xmat, world.data()->geom_xmat, 9 * m->ngeom);
   for (int g = 0; g < m->ngeom; ++g) {
-    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
-    if (std::find(mine.begin(), mine.end(), g) != mine.end()) continue;
+    if (mine[g] || (!m->geom_contype[g] && !m->geom_conaffinity[g])) continue;
     const Aabb box = geom_aabb(world, g);
     others_.push_back({g, box.lo, box.hi});
   }
 }
 
-bool ArmCollisionChecker::collides(const double* q, const Pose2* base) {
+bool ArmCollisionChecker::collides(const double* q, const Pose2* base, double clearance) {
   ArmConfiguration joints;
   std::copy(q, q + joints.size(), joints.begin());
   kinematics_.set(base ? *base : world_.base_pose(), joints);
-  return touches(robot_and_load_);
+  return touches(robot_and_load_, -1, clearance);
 }
 
 bool ArmCollisionChecker::hand_touches(const ArmConfiguration& q, const Pose2* base, int ignored_object) {
   kinematics_.set(base ? *base : world_.base_pose(), q);
-  return touches(hand_and_load_, ignored_object);
+  return touches(hand_and_load_, ignored_object, 0.0);
 }
 
 // Broad phase by bounding spheres against world boxes, then MuJoCo's pair functions.
-bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_object) {
+bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_object, double clearance) {
   const mjModel* m = world_.model();
   mjData* d = data_;
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
   for (int g : mine) {
     kinematics_.geom_pose(g, d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
     const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
-    const Eigen::Vector3d r = Eigen::Vector3d::Constant(m->geom_rbound[g] + clearance_);
+    const Eigen::Vector3d r = Eigen::Vector3d::Constant(m->geom_rbound[g] + clearance);
     lo = lo.cwiseMin(c - r);
     hi = hi.cwiseMax(c + r);
   }
@@ -82,16 +79,16 @@ bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_obje
     const int o = other.geom;
     if (ignored_object >= 0 && world_.scene().object_of_body(m->geom_bodyid[o]) == ignored_object) continue;
     for (int g : mine) {
-      const double clearance = std::binary_search(moved_by_arm_.begin(), moved_by_arm_.end(), g) ? clearance_ : 0.0;
       if (!((m->geom_contype[g] & m->geom_conaffinity[o]) || (m->geom_contype[o] & m->geom_conaffinity[g]))) continue;
-      const double r = m->geom_rbound[g] + clearance;
+      const double extra = moved_by_arm_[g] ? clearance : 0.0;
+      const double r = m->geom_rbound[g] + extra;
       const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
       if ((other.lo.array() > c.array() + r).any() || (other.hi.array() < c.array() - r).any()) continue;
       // MuJoCo's table takes the lower geom type first.
       const bool ordered = m->geom_type[g] <= m->geom_type[o];
       const int g1 = ordered ? g : o, g2 = ordered ? o : g;
       const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
-      const double margin = std::max(m->geom_margin[g1], m->geom_margin[g2]) + clearance;
+      const double margin = std::max(m->geom_margin[g1], m->geom_margin[g2]) + extra;
       if (collide && collide(m, d, contacts, g1, g2, margin) > 0) return true;
     }
   }
@@ -131,16 +128,14 @@ ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t
   og::SimpleSetup setup(space);
   // Away from its ends a path keeps kPlanningClearance from everything: the
   // tracked arm lags its trajectory by a few millimetres and cuts corners.
-  auto clear = std::make_shared<ArmCollisionChecker>(world, kPlanningClearance);
-  setup.setStateValidityChecker([probe, clear, start, goal](const ob::State* s) {
+  setup.setStateValidityChecker([probe, start, goal](const ob::State* s) {
     const double* q = s->as<ob::RealVectorStateSpace::StateType>()->values;
     double to_start = 0, to_goal = 0;
     for (size_t k = 0; k < start.size(); ++k) {
       to_start = std::max(to_start, std::abs(q[k] - start[k]));
       to_goal = std::max(to_goal, std::abs(q[k] - goal[k]));
     }
-    if (probe->collides(q)) return false;
-    return std::min(to_start, to_goal) < kEndpointSpan || !clear->collides(q);
+    return !probe->collides(q, nullptr, std::min(to_start, to_goal) < kEndpointSpan ? 0.0 : kPlanningClearance);
   });
   setup.getSpaceInformation()->setStateValidityCheckingResolution(0.005);
   ob::ScopedState<> from(space), to(space);

@@ -1,6 +1,7 @@
 // Collision-free paths of the torso and arm in joint space: OMPL RRTConnect
-// with MuJoCo's narrow-phase collision functions as the validity check, shortened by OMPL's simplifier. The manipulation primitives
-// move between poses along these paths.
+// with MuJoCo's narrow-phase collision functions as the validity check,
+// shortened by OMPL's simplifier. The manipulation primitives move between
+// poses along these paths.
 #pragma once
 
 #include <array>
@@ -27,13 +28,14 @@ struct ArmPath {
 // robot (and with its load) do not count.
 class ArmCollisionChecker {
  public:
-  // With a clearance, geoms closer than it count as touching.
-  explicit ArmCollisionChecker(const World& world, double clearance = 0.0);
+  explicit ArmCollisionChecker(const World& world);
   ArmCollisionChecker(const ArmCollisionChecker&) = delete;
   ArmCollisionChecker& operator=(const ArmCollisionChecker&) = delete;
   // Whether the robot (or what it holds) with torso and arm at q touches
-  // anything else, with the base where it is or at `base`.
-  bool collides(const double* q, const Pose2* base = nullptr);
+  // anything else, with the base where it is or at `base`. With a clearance,
+  // what the torso and arm move (and the load) touches what comes that close
+  // (the base stands on the floor whatever the clearance).
+  bool collides(const double* q, const Pose2* base = nullptr, double clearance = 0.0);
   // Whether the hand (gripper and fingers) or what it holds touches anything
   // else (but `ignored_object`), with the base where it is or at `base`.
   bool hand_touches(const ArmConfiguration& q, const Pose2* base = nullptr, int ignored_object = -1);
@@ -43,7 +45,7 @@ class ArmCollisionChecker {
     int geom;
     Eigen::Vector3d lo, hi;
   };
-  bool touches(const std::vector<int>& mine, int ignored_object = -1);
+  bool touches(const std::vector<int>& mine, int ignored_object, double clearance);
 
   const World& world_;
   RobotKinematics kinematics_;
@@ -51,8 +53,7 @@ class ArmCollisionChecker {
   std::vector<Box> others_;           // what the robot can touch, with world boxes
   std::vector<int> robot_and_load_;   // colliding geoms moving with the robot
   std::vector<int> hand_and_load_;
-  std::vector<int> moved_by_arm_;     // sorted: geoms the clearance applies to
-  double clearance_;
+  std::vector<unsigned char> moved_by_arm_;  // by geom id: a clearance applies to it
 };
 
 // Whether the robot (or what it holds) in configuration q touches anything else.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "env/world/object_geometry.hpp"
 #include "primitives/arm_planner.hpp"
@@ -248,11 +249,12 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
     const int held = world_.carried_object();
     const ObjectAbilities* load = held >= 0 ? world_.states().abilities(held) : nullptr;
     const bool rules_along = world_.state_updates() && load && (load->soakable || load->cleaning_tool);
-    ArmCollisionChecker checker(world_);
+    std::optional<ArmCollisionChecker> checker;
+    if (until_contact) checker.emplace(world_);
     size_t last = 0;
     for (size_t i = 1; i < path.size(); ++i) {
       last = i;
-      if (until_contact && checker.hand_touches(path[i])) touched_ = true;
+      if (checker && checker->hand_touches(path[i])) touched_ = true;
       if (rules_along) {
         world_.set_robot_configuration(world_.base_pose(), path[i].data());
         world_.states().after_physics_step(world_, dt);

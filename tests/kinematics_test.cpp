@@ -145,10 +145,10 @@ TEST(ArmCollisionChecker, AClearanceAppliesToWhatTheArmMoves) {
   env.reset(1);
   const World& w = env.world();
   const ArmConfiguration tucked = arm_configuration(w);
-  ArmCollisionChecker exact(w), near(w, 0.015), far(w, 3.0);
-  EXPECT_FALSE(exact.collides(tucked.data()));
-  EXPECT_FALSE(near.collides(tucked.data()));  // the base's contact with the floor does not count
-  EXPECT_TRUE(far.collides(tucked.data()));    // a wall or furniture within 3 m of the arm
+  ArmCollisionChecker checker(w);
+  EXPECT_FALSE(checker.collides(tucked.data()));
+  EXPECT_FALSE(checker.collides(tucked.data(), nullptr, 0.015));  // the base's contact with the floor does not count
+  EXPECT_TRUE(checker.collides(tucked.data(), nullptr, 3.0));     // a wall or furniture within 3 m of the arm
 }
 
 }  // namespace
