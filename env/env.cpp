@@ -15,7 +15,10 @@ constexpr double kActionDt = Env::kPhysicsSubsteps / 120.0;
 constexpr double kBaseSpeed = 0.5, kTurnSpeed = 1.0;  // m/s, rad/s at |action| = 1
 constexpr double kTorsoSpeed = 0.1, kJointSpeed = 1.0;
 constexpr int kProprioSize = 30;
-const std::vector<std::string> kKnownObservations = {"rgb", "depth", "proprio", "is_grasping", "action_mask"};
+// In the order of the observation Dict (the layout of batched buffers).
+const std::vector<std::string> kKnownObservations = {
+    "rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow", "lidar",
+    "proprio", "is_grasping", "action_mask"};
 
 bool wants(const EnvConfig& c, const char* name) {
   return std::find(c.observations.begin(), c.observations.end(), name) != c.observations.end();
@@ -57,10 +60,11 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
   for (const std::string& name : config_.observations) {
     if (std::find(kKnownObservations.begin(), kKnownObservations.end(), name) ==
         kKnownObservations.end()) {
-      throw Error("env config: unknown observation '" + name +
-                  "' (known: rgb, depth, proprio, is_grasping, action_mask)");
+      std::string known;
+      for (const std::string& k : kKnownObservations) known += (known.empty() ? "" : ", ") + k;
+      throw Error("env config: unknown observation '" + name + "' (known: " + known + ")");
     }
-    if (!config_.robot && (name == "proprio" || name == "is_grasping")) {
+    if (!config_.robot && (name == "proprio" || name == "is_grasping" || name == "lidar")) {
       throw Error("env config: observation '" + name + "' needs the robot");
     }
     if (name == "action_mask" && config_.action_space != "primitives") {
@@ -72,7 +76,15 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     throw Error("env config: unknown reward '" + config_.reward + "' (known: activity, reach)");
   }
   if (config_.reward == "reach" && !config_.robot) throw Error("env config: the reach reward needs the robot");
+  try {
+    validate(config_.lidar);
+    validate(config_.noise);
+    validate(config_.randomization);
+  } catch (const Error& e) {
+    throw Error(std::string("env config: ") + e.what());
+  }
   world_ = std::make_unique<World>(scene_);
+  sensors_ = std::make_unique<Sensors>(config_.width, config_.height, config_.lidar, config_.noise);
   world_->set_lighting(config_.lighting);
   world_->set_state_updates(config_.object_states);
   if (activity_) activity_->configure(*world_);
@@ -96,6 +108,23 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
   }
   if (wants(config_, "depth")) {
     fields.push_back({"depth", Space::box({config_.height, config_.width}, DType::float32, 0, inf)});
+  }
+  if (wants(config_, "seg_semantic")) {
+    const int classes = static_cast<int>(segmentation().classes().size());
+    fields.push_back({"seg_semantic", Space::box({config_.height, config_.width}, DType::int32, 0, classes - 1)});
+  }
+  if (wants(config_, "seg_instance")) {
+    const int instances = static_cast<int>(segmentation().instances().size());
+    fields.push_back({"seg_instance", Space::box({config_.height, config_.width}, DType::int32, 0, instances - 1)});
+  }
+  if (wants(config_, "normal")) {
+    fields.push_back({"normal", Space::box({config_.height, config_.width, 3}, DType::float32, -1, 1)});
+  }
+  if (wants(config_, "flow")) {
+    fields.push_back({"flow", Space::box({config_.height, config_.width, 2}, DType::float32, -inf, inf)});
+  }
+  if (wants(config_, "lidar")) {
+    fields.push_back({"lidar", Space::box({config_.lidar.beams}, DType::float32, 0, config_.lidar.range)});
   }
   if (wants(config_, "proprio")) {
     fields.push_back({"proprio", Space::box({kProprioSize}, DType::float32, -inf, inf)});
@@ -147,6 +176,8 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   start.y += config_.start_jitter * uniform(rng_, -1, 1);
   start.yaw += 10 * config_.start_jitter * uniform(rng_, -1, 1);
   world_->reset(start);
+  sensors_->reset(seed);
+  if (config_.randomization.any()) world_->randomize_appearance(config_.randomization, sensors_->rng());
   elapsed_ = 0;
   episode_over_ = false;
   diverged_ = false;
@@ -259,15 +290,28 @@ double Env::reach_distance() const {
   return mju_dist3(gripper, target);
 }
 
+SensorFrame Env::sensor_frame(ArrayDict& obs, int index) const {
+  auto item = [&](const char* name) { return obs.contains(name) ? obs[name].item(index) : nullptr; };
+  SensorFrame f;
+  f.rgb = static_cast<std::uint8_t*>(item("rgb"));
+  f.depth = static_cast<float*>(item("depth"));
+  f.semantic = static_cast<std::int32_t*>(item("seg_semantic"));
+  f.instance = static_cast<std::int32_t*>(item("seg_instance"));
+  f.normal = static_cast<float*>(item("normal"));
+  f.flow = static_cast<float*>(item("flow"));
+  f.lidar = static_cast<float*>(item("lidar"));
+  return f;
+}
+
 std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {
   check_open();
-  const bool rgb = obs.contains("rgb"), depth = obs.contains("depth");
-  if (!rgb && !depth) return {};
-  CameraView view{world_->model(), world_->data(), scene_->camera(),
-                  rgb ? static_cast<std::uint8_t*>(obs["rgb"].item(index)) : nullptr,
-                  depth ? static_cast<float*>(obs["depth"].item(index)) : nullptr};
-  view.world = world_.get();
-  return {view};
+  return sensors_->views(*world_, sensor_frame(obs, index));
+}
+
+void Env::finish_observation(ArrayDict& obs, int index) {
+  check_open();
+  sensors_->finish(*world_, sensor_frame(obs, index));
+  write_state(obs, index);
 }
 
 void Env::write_state(ArrayDict& obs, int index) const {
@@ -316,7 +360,7 @@ void Env::observe() {
     }
     renderer_->render(views);
   }
-  write_state(obs_, 0);
+  finish_observation(obs_, 0);
 }
 
 Env::ResetResult Env::reset(std::optional<uint64_t> seed) {

@@ -20,6 +20,7 @@
 #include "env/spaces.hpp"
 #include "env/world/random.hpp"
 #include "env/world/renderer.hpp"
+#include "env/world/sensors.hpp"
 #include "env/world/world.hpp"
 #include "tasks/activity.hpp"
 
@@ -32,11 +33,18 @@ struct EnvConfig {
   // Empty: the activity's scene (tasks/activities/scenes.json), or the apartment.
   std::string scene;
   int width = 128, height = 128;
-  // Any of "rgb", "depth", "proprio", "is_grasping", and for the primitive
-  // action space "action_mask": (n,) uint8, 1 where action i's precondition
-  // holds now (unmet_precondition in primitives/primitive.hpp is empty).
+  // Any of "rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow",
+  // "lidar", "proprio", "is_grasping", and for the primitive action space
+  // "action_mask": (n,) uint8, 1 where action i's precondition holds now
+  // (unmet_precondition in primitives/primitive.hpp is empty). Shapes and
+  // conventions: docs/observations.md.
   std::vector<std::string> observations = {"rgb", "depth", "proprio", "is_grasping"};
   Lighting lighting = Lighting::full;
+  // Domain randomisation of lights and colours, drawn afresh at every reset
+  // from the episode seed (off by default).
+  AppearanceRandomization randomization;
+  LidarConfig lidar;  // the "lidar" observation's beams, field of view and range
+  SensorNoise noise;  // off by default; drawn from the episode seed's sensor stream
   int max_episode_steps = 500;  // then the episode is truncated
   bool robot = true;            // false: a fixed camera, no robot (benchmarks)
   bool object_states = true;    // false: extended states are not updated (benchmarks)
@@ -137,9 +145,14 @@ class Env {
   };
   Outcome advance(std::span<const float> action);
   // The camera views writing into element `index` of `obs` (empty when no
-  // image is observed), and the non-image observations written there.
+  // image is observed). Once they are rendered, finish_observation() writes
+  // the rest: the modalities derived from the images, the LiDAR, sensor
+  // noise, and the state observations (those alone: write_state()).
   std::vector<CameraView> camera_views(ArrayDict& obs, int index);
+  void finish_observation(ArrayDict& obs, int index);
   void write_state(ArrayDict& obs, int index) const;
+  // The semantic classes and instances that "seg_semantic" and "seg_instance" number.
+  const Segmentation& segmentation() const { return sensors_->segmentation(*world_); }
 
   // The last primitive's full result (reason, timings), primitive action space only.
   const PrimitiveResult& last_primitive() const { return last_primitive_; }
@@ -156,6 +169,7 @@ class Env {
   int64_t act_primitive(std::span<const float> action, World::StepReport& report);
   double reach_distance() const;  // gripper to reach_target (m)
   void observe();  // renders and writes into obs_ with this env's own renderer
+  SensorFrame sensor_frame(ArrayDict& obs, int index) const;
 
   EnvConfig config_;
   std::shared_ptr<const Scene> scene_;
@@ -163,6 +177,7 @@ class Env {
   double potential_ = 0;  // BEHAVIOR's potential after the last step
   std::unique_ptr<World> world_;
   std::unique_ptr<Renderer> renderer_;  // made on first use, on the calling thread
+  std::unique_ptr<Sensors> sensors_;
   Space observation_space_, action_space_;
   ArrayDict obs_;
   Rng rng_;

@@ -10,7 +10,7 @@
 
 namespace chore {
 
-enum class DType { uint8, float32, int64 };
+enum class DType { uint8, int32, float32, int64 };
 size_t dtype_size(DType dtype);
 const char* dtype_name(DType dtype);
 

@@ -220,23 +220,24 @@ struct VectorEnv::Impl {
     // same_step: observe the last state of ended episodes, then reset them.
     for (size_t i : ended) {
       Block& b = *rows[i].block;
-      Env& env = *envs[task.envs[i]];
       add_views(views, task.envs[i], b.final_obs, rows[i].index);
-      env.write_state(b.final_obs, rows[i].index);
       b.final_infos[rows[i].index] = b.infos[rows[i].index];
     }
     render(views, renderer);
     for (size_t i : ended) {
       Block& b = *rows[i].block;
+      envs[task.envs[i]]->finish_observation(b.final_obs, rows[i].index);
       Info info = envs[task.envs[i]]->reset_state(std::nullopt);
       info.env_id = task.envs[i];
       b.infos[rows[i].index] = info;
     }
     for (size_t i = 0; i < rows.size(); ++i) {
       add_views(views, task.envs[i], rows[i].block->obs, rows[i].index);
-      envs[task.envs[i]]->write_state(rows[i].block->obs, rows[i].index);
     }
     render(views, renderer);
+    for (size_t i = 0; i < rows.size(); ++i) {
+      envs[task.envs[i]]->finish_observation(rows[i].block->obs, rows[i].index);
+    }
   }
 
   // Splits env ids into tasks of at most one render pass each (one env on

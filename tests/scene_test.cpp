@@ -38,12 +38,14 @@ TEST(Scene, RoomAtAnswersFromTheFloorRectangles) {
 TEST(Scene, StaticGeometryIsOneDrawnMeshAndMovingPartsKeepTheirGeoms) {
   auto scene = Scene::load(test::box_room());
   const mjModel* m = scene->model();
-  int drawn_static = 0, hidden_static = 0;
+  int merged = 0, drawn_static = 0, hidden_static = 0;
   for (int g = 0; g < m->ngeom; ++g) {
     if (m->body_weldid[m->geom_bodyid[g]] != 0) continue;  // moves
-    (m->geom_group[g] == 0 ? drawn_static : hidden_static)++;
+    const int group = m->geom_group[g];
+    (group == kMergedGroup ? merged : group == kStaticGroup ? drawn_static : hidden_static)++;
   }
-  EXPECT_EQ(drawn_static, 1);       // the merged static mesh
+  EXPECT_EQ(merged, 1);        // the merged static mesh, in a group of its own
+  EXPECT_EQ(drawn_static, 0);  // nothing static is drawn apart from it
   EXPECT_GE(hidden_static, 1 + 4 + 2);  // floor, 4 walls, 2 fixed objects for collision
   const SceneObject* block = scene->find_object("small_block_1");
   ASSERT_NE(block, nullptr);

@@ -3,6 +3,7 @@
 // bits itself.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 
@@ -18,6 +19,21 @@ inline double uniform(Rng& rng, double lo, double hi) {
 // Uniform integer in [0, n).
 inline int uniform_index(Rng& rng, int n) {
   return static_cast<int>(uniform(rng, 0, n));
+}
+
+// Standard normal (Box-Muller on two uniforms; one of the pair is used).
+inline double normal(Rng& rng) {
+  const double u = 1.0 - uniform(rng, 0, 1);  // (0, 1]: log(u) is finite
+  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * uniform(rng, 0, 1));
+}
+
+// A seed for a stream of its own drawn from `seed` (SplitMix64's mixer): streams
+// seeded with seed and seed + 1 share nothing.
+inline uint64_t derive_seed(uint64_t seed, uint64_t stream) {
+  uint64_t z = seed + 0x9e3779b97f4a7c15ull * (stream + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
 }
 
 }  // namespace chore

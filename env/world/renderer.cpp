@@ -10,6 +10,7 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "env/world/error.hpp"
@@ -99,6 +100,9 @@ struct Renderer::State {
   mjrContext render_context;
   std::vector<unsigned char> rgb;
   std::vector<float> depth;
+  // Whose textures the context holds (see use_textures); none known at first.
+  std::pair<const World*, int> textures{nullptr, 0};
+  bool textures_uploaded = false;
 
   void make_current() const {
     if (eglGetCurrentContext() != context &&
@@ -145,9 +149,10 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles)
   // Room for the model's geoms and for decor (dirt particles).
   mjv_makeScene(model, &s.scene, model->ngeom + 1000);
   mjv_defaultOption(&s.option);
-  // Drawn: group 0 and, per view, the ceilings; collision geoms stay hidden.
+  // Drawn: groups 0 and 2 (the merged static scene) and, per view, the
+  // ceilings; collision geoms stay hidden.
   for (int g = 0; g < mjNGROUP; ++g) {
-    s.option.geomgroup[g] = g == kStaticGroup;
+    s.option.geomgroup[g] = g == kStaticGroup || g == kMergedGroup;
     s.option.sitegroup[g] = 0;
   }
   mjv_defaultCamera(&s.camera);
@@ -224,10 +229,17 @@ void cull_to_frustum(mjvScene& scene, double aspect) {
 
 }  // namespace
 
+// One camera drawn once: in colour (RGB and depth) or in segmentation colours.
+struct Renderer::Draw {
+  const CameraView* view;
+  bool segment;
+  std::vector<int> segid_geom;  // segmentation pass: scene geom segid -> model geom id
+};
+
 void Renderer::render(std::span<const CameraView> views) {
   State& s = *state_;
   s.make_current();
-  std::vector<const CameraView*> todo;
+  std::vector<Draw> draws;
   for (const CameraView& v : views) {
     if (v.camera < 0 || v.camera >= v.model->ncam) {
       throw Error("renderer: camera id " + std::to_string(v.camera) + " out of range");
@@ -235,54 +247,92 @@ void Renderer::render(std::span<const CameraView> views) {
     if (v.tile < 0 || v.tile >= s.tiles) {
       throw Error("renderer: tile " + std::to_string(v.tile) + " outside 0.." + std::to_string(s.tiles - 1));
     }
-    todo.push_back(&v);
+    if (v.rgb || (v.depth && !v.segment)) draws.push_back({&v, false, {}});
+    if (v.segment) draws.push_back({&v, true, {}});
   }
+  std::vector<Draw*> todo;
+  for (Draw& d : draws) todo.push_back(&d);
   // Passes in which each tile is drawn at most once.
   while (!todo.empty()) {
-    std::vector<const CameraView*> pass, later;
+    std::vector<Draw*> pass, later;
     std::vector<char> used(s.tiles, 0);
-    for (const CameraView* v : todo) {
-      (used[v->tile] ? later : pass).push_back(v);
-      used[v->tile] = 1;
+    for (Draw* d : todo) {
+      (used[d->view->tile] ? later : pass).push_back(d);
+      used[d->view->tile] = 1;
     }
     render_pass(pass);
     todo.swap(later);
   }
 }
 
-void Renderer::render_pass(const std::vector<const CameraView*>& pass) {
+void Renderer::use_textures(const CameraView& v) {
+  State& s = *state_;
+  // Worlds with the scene's own textures share them; a randomised world has its own.
+  const std::pair<const World*, int> key =
+      v.world && v.world->texture_version() ? std::pair{v.world, v.world->texture_version()}
+                                            : std::pair<const World*, int>{nullptr, 0};
+  if (s.textures_uploaded && key == s.textures) return;
+  for (int t = 0; t < v.model->ntex; ++t) mjr_uploadTexture(v.model, &s.render_context, t);
+  s.textures = key;
+  s.textures_uploaded = true;
+}
+
+void Renderer::render_pass(const std::vector<Draw*>& pass) {
   State& s = *state_;
   int first = s.tiles, last = -1;
   bool want_rgb = false, want_depth = false;
-  for (const CameraView* v : pass) {
+  // The depth of a view comes from its colour draw when it has one.
+  auto reads_depth = [](const Draw& d) { return d.view->depth && (!d.segment || !d.view->rgb); };
+  for (Draw* d : pass) {
+    const CameraView* v = d->view;
+    if (!d->segment) use_textures(*v);
+    s.scene.flags[mjRND_SEGMENT] = s.scene.flags[mjRND_IDCOLOR] = d->segment;
     s.camera.fixedcamid = v->camera;
     s.option.geomgroup[kCeilingGroup] = v->ceiling;
     mjv_updateScene(v->model, v->data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
-    if (v->world) v->world->states().add_dirt_geoms(*v->world, &s.scene);
+    if (v->world && !d->segment) v->world->states().add_dirt_geoms(*v->world, &s.scene);
     cull_to_frustum(s.scene, double(s.width) / s.height);
+    if (d->segment) {
+      // MuJoCo colours a geom with its segid + 1 (r + 256 g + 65536 b).
+      for (int i = 0; i < s.scene.ngeom; ++i) {
+        const mjvGeom& g = s.scene.geoms[i];
+        if (g.segid < 0) continue;
+        if (g.segid >= static_cast<int>(d->segid_geom.size())) d->segid_geom.resize(g.segid + 1, -1);
+        d->segid_geom[g.segid] = g.objtype == mjOBJ_GEOM ? g.objid : -1;
+      }
+    }
     const mjrRect viewport = {v->tile * s.width, 0, s.width, s.height};
     mjr_render(viewport, &s.scene, &s.render_context);
     first = std::min(first, v->tile);
     last = std::max(last, v->tile);
-    want_rgb |= v->rgb != nullptr;
-    want_depth |= v->depth != nullptr;
+    want_rgb |= d->segment || v->rgb;
+    want_depth |= reads_depth(*d);
   }
   // One readback for the pass, of the span of tiles drawn.
   const int read_width = (last - first + 1) * s.width;
   const mjrRect read = {first * s.width, 0, read_width, s.height};
   mjr_readPixels(want_rgb ? s.rgb.data() : nullptr, want_depth ? s.depth.data() : nullptr, read,
                  &s.render_context);
-  for (const CameraView* v : pass) {
+  for (const Draw* d : pass) {
+    const CameraView* v = d->view;
     const int x0 = (v->tile - first) * s.width;
     const double extent = v->model->stat.extent;
     const double near = v->model->vis.map.znear * extent, far = v->model->vis.map.zfar * extent;
     for (int row = 0; row < s.height; ++row) {
       // OpenGL rows run bottom-up.
       const size_t src = size_t(s.height - 1 - row) * read_width + x0;
-      if (v->rgb) {
+      if (d->segment) {
+        std::int32_t* out = v->segment + size_t(row) * s.width;
+        const unsigned char* in = s.rgb.data() + 3 * src;
+        const int known = static_cast<int>(d->segid_geom.size());
+        for (int col = 0; col < s.width; ++col) {
+          const int id = in[3 * col] | in[3 * col + 1] << 8 | in[3 * col + 2] << 16;
+          out[col] = id > 0 && id <= known ? d->segid_geom[id - 1] : -1;
+        }
+      } else if (v->rgb) {
         std::memcpy(v->rgb + size_t(row) * s.width * 3, s.rgb.data() + 3 * src, 3 * s.width);
       }
-      if (v->depth) {
+      if (reads_depth(*d)) {
         float* out = v->depth + size_t(row) * s.width;
         const float* in = s.depth.data() + src;
         for (int col = 0; col < s.width; ++col) {

@@ -22,14 +22,20 @@ struct CameraView {
   mjData_* data;          // mjv_updateScene needs it non-const; it is not changed
   int camera;             // camera id in `model`
   std::uint8_t* rgb;      // height x width x 3, top row first; nullptr to skip
-  float* depth;           // height x width metres along the optical axis; nullptr to skip
+  // height x width metres along the optical axis; nullptr to skip. From the
+  // colour pass when there is one, else from the segmentation pass.
+  float* depth;
   // Where in the offscreen buffer it is drawn (0 .. max_tiles-1). llvmpipe's
   // rasteriser rounds differently at different offsets (a few pixels differ by
   // one level), so an environment that must render bit-identically keeps its tile.
   int tile = 0;
   bool ceiling = true;  // false for views from above the scene
-  // When set, extended-state visuals (dirt particles) of this world are drawn.
+  // When set, extended-state visuals (dirt particles) of this world are drawn,
+  // and its randomised textures (World::texture_version) are used.
   const class World* world = nullptr;
+  // height x width model geom id seen at each pixel (-1: none), from a second
+  // pass with MuJoCo's segmentation rendering (flat colours, no decor); nullptr to skip.
+  std::int32_t* segment = nullptr;
 };
 
 class Renderer {
@@ -50,7 +56,9 @@ class Renderer {
   static const char* platform();
 
  private:
-  void render_pass(const std::vector<const CameraView*>& pass);
+  struct Draw;
+  void render_pass(const std::vector<Draw*>& pass);
+  void use_textures(const CameraView& view);
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -361,7 +361,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
 
   const double wall_height = j.number("wall_height", 2.6);
   const double wall_thickness = j.number("wall_thickness", 0.1);
-  StaticMesh mesh("static_visual", kStaticGroup);
+  StaticMesh mesh("static_visual", kMergedGroup);
   // Ceilings in their own group, so that views from above can leave them out.
   StaticMesh ceilings("ceiling_visual", kCeilingGroup);
   std::string world;    // <worldbody> children

@@ -17,11 +17,14 @@ namespace chore {
 // Root of the asset library: $CHORE_ASSETS if set, else the source tree's assets/.
 std::string default_assets_dir();
 
-// Geom groups: what cameras draw (group 0: robot, objects, the merged static
-// scene), ceilings (group 1, drawn by egocentric views only) and collision-only
-// geoms (group 3, never drawn).
+// Geom groups: what cameras draw (group 0: robot and objects, which also
+// collide; group 2: the merged static scene, drawn only), ceilings (group 1,
+// drawn by egocentric views only) and collision-only geoms (group 3, never
+// drawn). Ray casts test groups 0 and 3: the merged mesh would cost them a
+// test of every static triangle.
 constexpr int kStaticGroup = 0;
 constexpr int kCeilingGroup = 1;
+constexpr int kMergedGroup = 2;
 constexpr int kCollisionGroup = 3;
 
 struct Room {

@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -60,6 +61,12 @@ void World::set_lighting(Lighting lighting) {
   for (int light : scene_->ceiling_lights()) {
     model_->light_active[light] = lighting == Lighting::full ? 1 : 0;
   }
+}
+
+void World::randomize_appearance(const AppearanceRandomization& r, Rng& rng) {
+  // Process-wide, so that two worlds' randomised textures never share a version.
+  static std::atomic<int> versions{0};
+  texture_version_ = chore::randomize_appearance(*scene_, model_, r, rng) ? ++versions : 0;
 }
 
 void World::command_base_velocity(double forward, double left, double turn) {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "env/world/appearance.hpp"
 #include "env/world/object_states.hpp"
 #include "env/world/robot.hpp"
 #include "env/world/scene.hpp"
@@ -15,9 +16,6 @@
 struct mjData_;
 
 namespace chore {
-
-// "full": ceiling lights and lamps; "lamps_only": the paper's dim condition.
-enum class Lighting { full, lamps_only };
 
 class World {
  public:
@@ -41,6 +39,12 @@ class World {
   // tucked, gripper open, no grasp, zero velocities.
   void reset(const Pose2& base);
   void set_lighting(Lighting lighting);
+  // Domain randomisation (env/world/appearance.hpp): the scene's lights and
+  // colours perturbed by draws from `rng`; all-zero spreads restore them.
+  void randomize_appearance(const AppearanceRandomization& r, Rng& rng);
+  // Changes whenever the model's textures do (0: the scene's own), so that a
+  // renderer knows when to upload them again.
+  int texture_version() const { return texture_version_; }
 
   // Robot commands, held until changed. Base velocity is in the robot frame
   // (m/s, m/s, rad/s) and is re-projected to the world every physics step.
@@ -107,6 +111,7 @@ class World {
   int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
+  int texture_version_ = 0;
   mutable mjData_* scratch_ = nullptr;
   std::vector<double> payload_jacobian_;  // 3 x nv, for the load's gravity compensation
 };
