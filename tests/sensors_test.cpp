@@ -309,5 +309,233 @@ TEST(Lidar, RangesMatchTheRoomsGeometry) {
   EXPECT_GT(capped, 20);  // the corners are out of range
 }
 
+
+// One env without noise and one with, reset with the same seed: the same
+// scene, so the difference is the noise.
+struct CleanAndNoisy {
+  Env clean, noisy;
+  CleanAndNoisy(EnvConfig c, const SensorNoise& noise) : clean(c), noisy((c.noise = noise, c)) {
+    clean.reset(3);
+    noisy.reset(3);
+  }
+  const Array& clean_obs(const char* name) { return clean.reset(3).obs[name]; }
+  const Array& noisy_obs(const char* name) { return noisy.reset(3).obs[name]; }
+};
+
+EnvConfig observing(std::vector<std::string> observations) {
+  EnvConfig c = test::box_room_config();
+  c.observations = std::move(observations);
+  return c;
+}
+
+TEST(SensorNoise, RgbExposureAndBlackLevelFollowTheirFormula) {
+  SensorNoise n;
+  n.rgb_exposure = 2.5;
+  n.rgb_black_level = 0.2;
+  CleanAndNoisy envs(observing({"rgb"}), n);
+  const auto clean = envs.clean_obs("rgb").bytes, noisy = envs.noisy_obs("rgb").bytes;
+  int burnt = 0, crushed = 0;
+  for (size_t i = 0; i < clean.size(); ++i) {
+    const double expected = std::round(std::max(0.0, std::min(255.0, 2.5 * clean[i]) - 51) / 0.8);
+    ASSERT_EQ(noisy[i], std::min(255.0, expected)) << "value " << i << " was " << int(clean[i]);
+    burnt += noisy[i] == 255;
+    crushed += noisy[i] == 0;
+  }
+  EXPECT_GT(burnt, 100);    // highlights clip
+  EXPECT_GT(crushed, 100);  // shadows crush: a narrower dynamic range
+}
+
+TEST(SensorNoise, RgbShotNoiseGrowsWithTheSquareRootOfIntensity) {
+  SensorNoise n;
+  n.rgb_shot_noise = 0.8;
+  CleanAndNoisy envs(observing({"rgb"}), n);
+  const auto clean = envs.clean_obs("rgb").bytes, noisy = envs.noisy_obs("rgb").bytes;
+  // Away from the clipping ends, E[(noisy - clean)^2] = 0.64 I + 1/12 (rounding).
+  double squares = 0, expected = 0;
+  for (size_t i = 0; i < clean.size(); ++i) {
+    if (clean[i] < 30 || clean[i] > 220) continue;
+    const double r = double(noisy[i]) - clean[i];
+    squares += r * r;
+    expected += 0.64 * clean[i] + 1.0 / 12;
+  }
+  EXPECT_GT(expected, 1e5);
+  EXPECT_NEAR(squares / expected, 1.0, 0.03);
+}
+
+TEST(SensorNoise, DepthNoiseGrowsWithTheSquareOfDistance) {
+  SensorNoise n;
+  n.depth_noise_quadratic = 0.01;
+  CleanAndNoisy envs(observing({"depth"}), n);
+  const Array clean = envs.clean_obs("depth");
+  const Array noisy = envs.noisy_obs("depth");
+  double normalised = 0;
+  int count = 0;
+  for (int i = 0; i < kSize * kSize; ++i) {
+    const double z = clean.data<float>()[i], r = noisy.data<float>()[i] - z;
+    normalised += (r / (0.01 * z * z)) * (r / (0.01 * z * z));
+    ++count;
+  }
+  EXPECT_NEAR(normalised / count, 1.0, 0.03);  // unit variance once scaled by sigma(z)
+}
+
+TEST(SensorNoise, DepthLosesTheFarSideOfOccludingEdgesAndWhatIsOutOfRange) {
+  SensorNoise n;
+  n.depth_edge = 0.2;
+  n.depth_max = 2.8;
+  CleanAndNoisy envs(observing({"depth"}), n);
+  const Array clean_array = envs.clean_obs("depth");
+  const float* clean = clean_array.data<float>();
+  const float* noisy = envs.noisy_obs("depth").data<float>();
+  int shadows = 0, far = 0;
+  for (int row = 0; row < kSize; ++row) {
+    for (int col = 0; col < kSize; ++col) {
+      const int i = row * kSize + col;
+      bool behind_edge = false;  // a 4-neighbour is nearer by more than 0.2 m
+      for (auto [c, r] : {std::pair{col - 1, row}, {col + 1, row}, {col, row - 1}, {col, row + 1}}) {
+        if (c >= 0 && c < kSize && r >= 0 && r < kSize) behind_edge |= clean[i] - clean[r * kSize + c] > 0.2f;
+      }
+      const bool lost = behind_edge || clean[i] > 2.8f;
+      ASSERT_EQ(noisy[i], lost ? 0.f : clean[i]) << col << "," << row;
+      shadows += behind_edge;
+      far += clean[i] > 2.8f;
+    }
+  }
+  EXPECT_GT(shadows, 50);  // around the pillar and the panel
+  EXPECT_GT(far, 1000);    // the walls beside the panel
+}
+
+TEST(SensorNoise, LidarDropsBeamsAndJittersRanges) {
+  EnvConfig c = observing({"lidar"});
+  c.lidar.beams = 4000;
+  c.lidar.fov = 2 * M_PI;
+  SensorNoise n;
+  n.lidar_dropout = 0.25;
+  n.lidar_noise = 0.02;
+  CleanAndNoisy envs(c, n);
+  const Array clean_array = envs.clean_obs("lidar");
+  const float* clean = clean_array.data<float>();
+  const float* noisy = envs.noisy_obs("lidar").data<float>();
+  int dropped = 0, kept = 0;
+  double squares = 0;
+  for (int i = 0; i < c.lidar.beams; ++i) {
+    ASSERT_LT(clean[i], c.lidar.range);  // the room is smaller than the range
+    if (noisy[i] == c.lidar.range) {
+      ++dropped;
+    } else {
+      squares += (noisy[i] - clean[i]) * (noisy[i] - clean[i]);
+      ++kept;
+    }
+  }
+  EXPECT_NEAR(dropped / 4000.0, 0.25, 0.025);
+  EXPECT_NEAR(std::sqrt(squares / kept), 0.02, 0.001);
+}
+
+TEST(SensorNoise, BadSettingsAreErrorsNamingThem) {
+  auto error = [](auto change) {
+    EnvConfig c = observing({"lidar"});
+    change(c);
+    return test::error_of([&] { Env env(c); });
+  };
+  EXPECT_NE(error([](EnvConfig& c) { c.noise.depth_noise = -0.1; }).find("env config: noise.depth_noise = -0.1"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.noise.lidar_dropout = 1; }).find("noise.lidar_dropout"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.noise.rgb_exposure = 0; }).find("noise.rgb_exposure"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.lidar.beams = 0; }).find("env config: lidar.beams = 0"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.lidar.fov = 7; }).find("lidar.fov"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.randomization.surface_color = 1.5; }).find("randomization.surface_color"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.robot = false; }).find("observation 'lidar' needs the robot"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.observations = {"normals"}; }).find("unknown observation 'normals' (known: rgb, depth, seg_semantic, seg_instance, normal, flow, lidar,"), std::string::npos);
+}
+
+const std::vector<std::string> kAllModalities = {"rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow", "lidar", "proprio"};
+
+EnvConfig everything_on() {
+  EnvConfig c = observing(kAllModalities);
+  c.start_jitter = 0.1;
+  c.noise.rgb_shot_noise = 0.5;
+  c.noise.rgb_read_noise = 2;
+  c.noise.depth_noise = 0.002;
+  c.noise.depth_noise_quadratic = 0.002;
+  c.noise.depth_edge = 0.1;
+  c.noise.lidar_noise = 0.01;
+  c.noise.lidar_dropout = 0.05;
+  c.randomization = {0.4, 0.2, 0.3};
+  return c;
+}
+
+std::vector<unsigned char> bytes_of(const ArrayDict& obs) {
+  std::vector<unsigned char> out;
+  for (const Array& a : obs.arrays()) out.insert(out.end(), a.bytes.begin(), a.bytes.end());
+  return out;
+}
+
+TEST(Sensors, EveryModalityWithNoiseIsFixedBitForBitByTheSeed) {
+  Env a(everything_on()), b(everything_on());
+  const std::vector<float> turn = {0.3f, 0, 0.5f, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0.2f, 0};
+  auto episode = [&](Env& env, uint64_t seed) {
+    std::vector<unsigned char> out = bytes_of(env.reset(seed).obs);
+    for (int i = 0; i < 3; ++i) {
+      const auto more = bytes_of(env.step(turn).obs);
+      out.insert(out.end(), more.begin(), more.end());
+    }
+    return out;
+  };
+  const auto first = episode(a, 11);
+  episode(b, 12);  // b has run another episode before
+  EXPECT_EQ(first, episode(b, 11));
+  EXPECT_NE(first, episode(b, 12));
+}
+
+TEST(Sensors, VectorEnvBatchesEveryModalityWhateverTheThreadCount) {
+  VectorEnvConfig c;
+  c.env = everything_on();
+  c.env.max_episode_steps = 3;  // autoresets inside the comparison
+  c.num_envs = 3;
+  VectorEnvConfig c2 = c;
+  c2.num_threads = 2;
+  VectorEnv one(c), two(c2);
+  Env single(c.env);
+  EXPECT_EQ(bytes_of(*one.reset(7).obs), bytes_of(*two.reset(7).obs));
+  single.reset(7);
+  // Env 0 of the batch is the single env seeded 7 (it draws in tile 0 as the single env does).
+  const std::vector<float> zero(3 * kLowLevelActionSize, 0.f);
+  const Batch batch = one.step(zero);
+  two.step(zero);
+  const auto alone = single.step(std::span<const float>(zero).first(kLowLevelActionSize));
+  for (const Array& a : alone.obs.arrays()) {
+    EXPECT_EQ(std::memcmp((*batch.obs)[a.name].item(0), a.item(0), a.item_bytes()), 0) << a.name;
+  }
+  const std::vector<float> turn(3 * kLowLevelActionSize, 0.4f);
+  for (int i = 0; i < 5; ++i) {
+    const Batch b1 = one.step(turn);
+    EXPECT_EQ((*b1.obs)["flow"].shape, (std::vector<int>{3, kSize, kSize, 2}));
+    EXPECT_EQ(bytes_of(*b1.obs), bytes_of(*two.step(turn).obs)) << "step " << i;
+  }
+}
+
+TEST(Appearance, RandomisationIsSeededAndLeavesSegmentationAlone) {
+  EnvConfig plain = observing({"rgb", "seg_instance"});
+  EnvConfig randomised = plain;
+  randomised.randomization = {0.5, 0.3, 0.3};
+  Env a(plain), b(randomised);
+  const auto base_rgb = a.reset(1).obs["rgb"].bytes;
+  const auto base_ids = a.reset(1).obs["seg_instance"].bytes;
+  const auto rgb1 = b.reset(1).obs["rgb"].bytes;
+  EXPECT_EQ(b.reset(1).obs["seg_instance"].bytes, base_ids);  // ids ignore light and colour
+  const auto rgb2 = b.reset(2).obs["rgb"].bytes;
+  EXPECT_NE(rgb1, base_rgb);
+  EXPECT_NE(rgb1, rgb2);
+  EXPECT_EQ(b.reset(1).obs["rgb"].bytes, rgb1);  // after another episode's draws
+  // Zero spreads put the scene's own lights, colours and textures back.
+  World& w = b.world();
+  Rng rng(0);
+  w.randomize_appearance({}, rng);
+  const mjModel* scene = w.scene().model();
+  const mjModel* m = w.model();
+  EXPECT_EQ(std::memcmp(m->light_diffuse, scene->light_diffuse, sizeof(float) * 3 * m->nlight), 0);
+  EXPECT_EQ(std::memcmp(m->geom_rgba, scene->geom_rgba, sizeof(float) * 4 * m->ngeom), 0);
+  EXPECT_EQ(std::memcmp(m->tex_rgb, scene->tex_rgb, m->ntexdata), 0);
+  EXPECT_EQ(w.texture_version(), 0);
+}
+
 }  // namespace
 }  // namespace chore
