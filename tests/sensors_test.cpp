@@ -129,7 +129,7 @@ std::array<double, 3> in_camera(const Env& env, const double v[3]) {
   return out;
 }
 
-TEST(Normals, FloorAndWallInTheCameraFrameAreUnitAndExact) {
+TEST(SurfaceNormals, FloorAndWallInTheCameraFrameAreUnitAndExact) {
   EnvConfig c = test::box_room_config();
   c.observations = {"normal", "seg_instance"};
   Env env(c);

@@ -9,6 +9,7 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
+#include "env/world/error.hpp"
 #include "policies/expert.hpp"
 
 namespace chore {
@@ -112,6 +113,76 @@ VectorRates vector_rates(const EnvConfig& env, int envs, const BenchOptions& o) 
   return {median(ones), median(twos), median(asyncs), median(ratios), median(async_ratios)};
 }
 
+// The observations whose cost per frame the modality rows measure, each on its
+// own over a step that observes nothing (physics, states, the activity).
+struct ModalityRow {
+  const char* name;
+  std::vector<std::string> observations;
+  bool noise = false;
+};
+
+const std::vector<ModalityRow> kModalityRows = {
+    {"rgb", {"rgb"}},
+    {"depth", {"depth"}},
+    {"seg_semantic", {"seg_semantic"}},
+    {"seg_instance", {"seg_instance"}},
+    {"normal", {"normal"}},
+    {"flow", {"flow"}},
+    {"lidar", {"lidar"}},
+    {"rgb + noise", {"rgb"}, true},
+    {"depth + noise", {"depth"}, true},
+    {"lidar + noise", {"lidar"}, true},
+    {"all of them", {"rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow", "lidar"}},
+};
+
+// Milliseconds per step of each modality row over the bare step, medians of
+// per-repetition differences (repetitions alternate over the rows).
+nlohmann::json modality_costs(const std::string& scene, const BenchOptions& o) {
+  EnvConfig config;
+  config.scene = scene;
+  config.activity = scene_activity(scene);
+  config.width = o.width;
+  config.height = o.height;
+  config.max_episode_steps = 1 << 30;
+  const EnvAssets assets = load_assets(config);
+  auto make = [&](const std::vector<std::string>& observations, bool noise) {
+    EnvConfig c = config;
+    c.observations = observations;
+    if (noise) {
+      c.noise.rgb_shot_noise = c.noise.rgb_read_noise = 1;
+      c.noise.depth_noise = c.noise.depth_noise_quadratic = c.noise.depth_edge = 0.01;
+      c.noise.lidar_noise = c.noise.lidar_dropout = 0.01;
+    }
+    auto env = std::make_unique<Env>(c, assets);
+    env->reset(0);
+    return env;
+  };
+  auto bare = make({}, false);
+  std::vector<std::unique_ptr<Env>> envs;
+  for (const ModalityRow& row : kModalityRows) envs.push_back(make(row.observations, row.noise));
+  std::vector<float> zero(bare->action_space().element_count(), 0.f);
+  auto ms_per_step = [&](Env& env) {
+    const auto start = Clock::now();
+    for (int i = 0; i < o.steps; ++i) env.step(zero);
+    return 1e3 * std::chrono::duration<double>(Clock::now() - start).count() / o.steps;
+  };
+  ms_per_step(*bare);  // warm-up
+  for (auto& env : envs) ms_per_step(*env);
+  std::vector<double> bases;
+  std::vector<std::vector<double>> extra(envs.size());
+  for (int r = 0; r < o.repeats; ++r) {
+    const double base = ms_per_step(*bare);
+    bases.push_back(base);
+    for (size_t k = 0; k < envs.size(); ++k) extra[k].push_back(ms_per_step(*envs[k]) - base);
+  }
+  nlohmann::json out;
+  out["scene"] = scene;
+  out["activity"] = config.activity;
+  out["bare_step_ms"] = median(bases);
+  for (size_t k = 0; k < envs.size(); ++k) out["ms_per_frame"][kModalityRows[k].name] = median(extra[k]);
+  return out;
+}
+
 }  // namespace
 
 // The scripted expert's primitive steps, timed one by one: wall time of the
@@ -170,6 +241,15 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
   out["repeats"] = o.repeats;
   out["hardware_threads"] = std::thread::hardware_concurrency();
   out["scenes"] = o.scenes;
+  out["sections"] = o.sections;
+  for (const std::string& section : o.sections) {
+    if (section != "table" && section != "vector" && section != "primitives" && section != "modalities") {
+      throw Error("bench: unknown section '" + section + "' (known: table, vector, primitives, modalities)");
+    }
+  }
+  auto runs = [&](const char* section) {
+    return std::find(o.sections.begin(), o.sections.end(), section) != o.sections.end();
+  };
   for (const std::string& scene : o.scenes) {
     EnvConfig config;
     config.scene = scene;
@@ -179,6 +259,7 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
     // The seed's protocol renders RGB only.
     config.observations = {"rgb"};
     for (const Row& row : kRows) {
+      if (!runs("table")) break;
       config.robot = row.robot;
       config.cloth = row.cloth;
       config.object_states = row.object_states;
@@ -188,6 +269,7 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
       out["table"][row.name][scene] = sps;
       if (*row.note) out["notes"][row.name] = row.note;
     }
+    if (!runs("vector")) continue;
     // Vector env throughput with RGB-D, the observation RL uses.
     config.robot = config.cloth = config.object_states = true;
     config.activity = scene_activity(scene);
@@ -203,16 +285,39 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
   out["primitive_episodes"] = o.primitive_episodes;
   for (const std::string& scene : o.scenes) {
     const std::string activity = scene_activity(scene);
-    if (activity.empty() || o.primitive_episodes <= 0) continue;
+    if (activity.empty() || o.primitive_episodes <= 0 || !runs("primitives")) continue;
     for (ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
       log << "bench: " << activity << " / primitives, " << to_string(mode) << " ..." << std::endl;
       out["primitives"][activity][to_string(mode)] = primitive_rates(activity, mode, o.primitive_episodes);
     }
   }
+  if (runs("modalities") && !o.scenes.empty()) {
+    log << "bench: " << o.scenes.front() << " / observation modalities ..." << std::endl;
+    out["modalities"] = modality_costs(o.scenes.front(), o);
+  }
   return out;
 }
 
-std::string format_bench(const nlohmann::json& r) {
+namespace {
+
+std::string format_modalities(const nlohmann::json& r) {
+  const auto& m = r["modalities"];
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "\nObservation modalities, %s (%s), %s, one env: ms per frame over a step that observes\n"
+                "nothing (%.2f ms), median of %d x %d steps\n",
+                m["scene"].get<std::string>().c_str(), m["activity"].get<std::string>().c_str(),
+                r["image"].get<std::string>().c_str(), m["bare_step_ms"].get<double>(), r["repeats"].get<int>(),
+                r["steps"].get<int>());
+  std::string text = buf;
+  for (const ModalityRow& row : kModalityRows) {
+    std::snprintf(buf, sizeof buf, "  %-16s%8.2f\n", row.name, m["ms_per_frame"][row.name].get<double>());
+    text += buf;
+  }
+  return text;
+}
+
+std::string format_table(const nlohmann::json& r) {
   std::string text;
   char buf[256];
   std::snprintf(buf, sizeof buf,
@@ -241,6 +346,13 @@ std::string format_bench(const nlohmann::json& r) {
     }
     text += "\n";
   }
+  return text;
+}
+
+std::string format_vector_env(const nlohmann::json& r) {
+  std::string text;
+  char buf[256];
+  const std::vector<std::string> scenes = r["scenes"].get<std::vector<std::string>>();
   text += "\nVectorEnv, " + r["image"].get<std::string>() +
           " RGB-D + proprioception, zero action, env steps per second (speed-up: median of\n"
           "per-block ratios to 1 thread, blocks alternating)\n";
@@ -254,7 +366,12 @@ std::string format_bench(const nlohmann::json& r) {
                   v["2_async"].get<double>(), v["speedup_async"].get<double>());
     text += buf;
   }
-  if (!r.contains("primitives")) return text;
+  return text;
+}
+
+std::string format_primitives(const nlohmann::json& r) {
+  std::string text;
+  char buf[256];
   std::snprintf(buf, sizeof buf,
                 "\nPrimitive action space: the scripted expert, %d episodes per activity and mode, one thread;\n"
                 "primitive steps per second (state observation, no rendering), planning / execution ms per primitive\n",
@@ -285,6 +402,17 @@ std::string format_bench(const nlohmann::json& r) {
       text += "\n";
     }
   }
+  return text;
+}
+
+}  // namespace
+
+std::string format_bench(const nlohmann::json& r) {
+  std::string text;
+  if (r.contains("table")) text += format_table(r);
+  if (r.contains("vector_env")) text += format_vector_env(r);
+  if (r.contains("primitives")) text += format_primitives(r);
+  if (r.contains("modalities")) text += format_modalities(r);
   return text;
 }
 

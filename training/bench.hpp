@@ -3,7 +3,8 @@
 // extended-state update (when the scene's activity has one) and renders the
 // egocentric camera. Reports env steps per second. Then the primitive action
 // space: primitive steps per second for each primitive and activity in both
-// modes, with planning and execution time per primitive.
+// modes, with planning and execution time per primitive. Then the cost of each
+// observation modality (and noise model) per frame, over a state-only step.
 #pragma once
 
 #include <ostream>
@@ -23,6 +24,9 @@ struct BenchOptions {
   // Primitive rows: the scripted expert's episodes (seeds 0 ..) on each scene's
   // activity, in both execution modes; 0 skips them.
   int primitive_episodes = 3;
+  // What to run, of "table", "vector", "primitives", "modalities" (the first
+  // scene's activity, one env).
+  std::vector<std::string> sections = {"table", "vector", "primitives", "modalities"};
 };
 
 // Runs the benchmark and returns its results; `log` gets progress lines.

@@ -1,4 +1,4 @@
-// The `chore` command line: bench, activity check/sample, expert, eval, video, plot;
+// The `chore` command line: bench, activity check/sample, expert, eval, video, observe, plot;
 // train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
@@ -14,6 +14,7 @@
 #include "training/checkpoint.hpp"
 #include "training/evaluate.hpp"
 #include "training/expert_command.hpp"
+#include "training/observe_command.hpp"
 #include "training/plot.hpp"
 #include "training/train_command.hpp"
 #include "training/video.hpp"
@@ -118,6 +119,10 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--primitive-episodes", bench.primitive_episodes,
                         "Expert episodes per activity and mode for the primitive rows (0: none)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
+  bench_cmd->add_option("--sections", bench.sections,
+                        "What to run: table (Table A.10), vector (VectorEnv), primitives, modalities "
+                        "(ms per frame of each observation, first scene)")
+      ->check(CLI::IsMember({"table", "vector", "primitives", "modalities"}))->capture_default_str();
   bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
 
   CLI::App* activity_cmd = app.add_subcommand("activity", "BDDL activities");
@@ -170,6 +175,16 @@ int main(int argc, char** argv) {
   video_cmd->add_option("--size", video.size, "Pixels of each view")->check(CLI::Range(16, 2048))->capture_default_str();
   video_cmd->add_option("--fps", video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
       ->check(CLI::PositiveNumber);
+
+  chore::ObserveOptions observe;
+  CLI::App* observe_cmd = app.add_subcommand("observe", "Every observation modality of one frame, as a PNG panel");
+  observe_cmd->add_option("--activity", observe.activity, "Activity name or .bddl path (its scene)");
+  observe_cmd->add_option("--scene", observe.scene, "Scene (default: the activity's, else the apartment)");
+  observe_cmd->add_option("--seed", observe.seed, "The episode's env seed")->capture_default_str();
+  observe_cmd->add_option("--size", observe.size, "Pixels of each tile")->check(CLI::Range(32, 2048))->capture_default_str();
+  observe_cmd->add_option("--steps", observe.steps, "Steps of motion before the frame (flow shows the last)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  observe_cmd->add_option("--out", observe.out, "PNG to write")->required();
 
   chore::PlotOptions plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "Learning curves from metrics.csv files to PNG");
@@ -257,6 +272,12 @@ int main(int argc, char** argv) {
       std::cout << "video: " << r["out"].get<std::string>() << ", " << r["frames"] << " frames of " << r["width"]
                 << "x" << r["height"] << " at " << r["fps"] << " fps (" << r["codec"].get<std::string>() << "); " << r["steps"] << " steps, "
                 << (r["success"].get<bool>() ? "success" : "no success") << ", Q " << r["q"] << "\n";
+    }
+    if (*observe_cmd) {
+      const nlohmann::json r = chore::observe_panel(observe);
+      std::cout << "observe: " << r["out"].get<std::string>() << " (" << r["scene"].get<std::string>() << "): "
+                << r["instances"] << " instances of " << r["classes"].size() << " classes in view, depth to "
+                << r["max_depth_m"] << " m, flow up to " << r["max_flow_px"] << " px\n";
     }
     if (*plot_cmd) {
       const nlohmann::json r = chore::plot_curves(plot);

@@ -21,11 +21,27 @@ inline int uniform_index(Rng& rng, int n) {
   return static_cast<int>(uniform(rng, 0, n));
 }
 
-// Standard normal (Box-Muller on two uniforms; one of the pair is used).
-inline double normal(Rng& rng) {
-  const double u = 1.0 - uniform(rng, 0, 1);  // (0, 1]: log(u) is finite
-  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * M_PI * uniform(rng, 0, 1));
-}
+// Standard normals drawn in pairs (Box-Muller), handed out one at a time.
+class Normals {
+ public:
+  explicit Normals(Rng& rng) : rng_(rng) {}
+  double operator()() {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    const double r = std::sqrt(-2.0 * std::log(1.0 - uniform(rng_, 0, 1)));  // 1 - u in (0, 1]
+    const double angle = 2.0 * M_PI * uniform(rng_, 0, 1);
+    spare_ = r * std::sin(angle);
+    has_spare_ = true;
+    return r * std::cos(angle);
+  }
+
+ private:
+  Rng& rng_;
+  double spare_ = 0;
+  bool has_spare_ = false;
+};
 
 // A seed for a stream of its own drawn from `seed` (SplitMix64's mixer): streams
 // seeded with seed and seed + 1 share nothing.

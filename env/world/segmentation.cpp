@@ -167,24 +167,29 @@ Segmentation::Segmentation(const World& world) {
 
 Segmentation::~Segmentation() = default;
 
-int Segmentation::resolve(const double point[3]) const {
+int Segmentation::resolve(const double point[3], int& part) const {
+  // A point on the surface of the last pixel's part is on that part (depth is
+  // good to ~0.1 mm at 10 m): neighbouring pixels mostly are.
+  constexpr double kOnSurface = 1e-3;
+  if (part >= 0 && std::abs(parts_[part].distance(point)) < kOnSurface) return parts_[part].instance;
   if (cells_.empty()) return 0;
   const int ix = std::clamp(static_cast<int>(std::floor((point[0] - x0_) / cell_)), 0, nx_ - 1);
   const int iy = std::clamp(static_cast<int>(std::floor((point[1] - y0_) / cell_)), 0, ny_ - 1);
-  int best = 0;
   double nearest = std::numeric_limits<double>::infinity();
+  part = -1;
   for (int i : cells_[size_t(iy) * nx_ + ix]) {
     const double distance = std::abs(parts_[i].distance(point));
     if (distance < nearest) {
       nearest = distance;
-      best = parts_[i].instance;
+      part = i;
     }
   }
-  return best;
+  return part < 0 ? 0 : parts_[part].instance;
 }
 
 void Segmentation::label(const Pinhole& camera, const CameraPose& pose, const std::int32_t* geom,
                          const float* depth, std::int32_t* instance, std::int32_t* semantic) const {
+  int part = -1;  // the static part the last resolved pixel lay on
   for (int row = 0, i = 0; row < camera.height; ++row) {
     for (int col = 0; col < camera.width; ++col, ++i) {
       int id = geom[i] < 0 ? 0 : geom_instance_[geom[i]];
@@ -192,7 +197,7 @@ void Segmentation::label(const Pinhole& camera, const CameraPose& pose, const st
         double local[3], world[3];
         camera.unproject(col, row, depth[i], local);
         pose.to_world(local, world);
-        id = resolve(world);
+        id = resolve(world, part);
       }
       if (instance) instance[i] = id;
       if (semantic) semantic[i] = instances_[id].semantic;

@@ -60,7 +60,9 @@ class Segmentation {
 
  private:
   struct Part;   // a static collision geom and its instance
-  int resolve(const double point[3]) const;  // instance of the static part nearest a point
+  // The instance of the static part nearest a point; `part` (in: a guess, -1
+  // for none; out: the part found) carries one pixel's answer to the next.
+  int resolve(const double point[3], int& part) const;
 
   std::vector<SemanticClass> classes_;
   std::vector<Instance> instances_;

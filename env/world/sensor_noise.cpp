@@ -37,10 +37,12 @@ void validate(const SensorNoise& n) {
 void add_rgb_noise(const SensorNoise& n, Rng& rng, std::uint8_t* rgb, size_t values) {
   const double black = 255 * n.rgb_black_level, stretch = 1 / (1 - n.rgb_black_level);
   const bool noisy = n.rgb_shot_noise > 0 || n.rgb_read_noise > 0;
+  const double shot = n.rgb_shot_noise * n.rgb_shot_noise, read = n.rgb_read_noise * n.rgb_read_noise;
+  Normals normal(rng);
   for (size_t i = 0; i < values; ++i) {
     double v = std::min(255.0, rgb[i] * n.rgb_exposure);
     v = std::max(0.0, v - black) * stretch;
-    if (noisy) v += normal(rng) * std::hypot(n.rgb_shot_noise * std::sqrt(v), n.rgb_read_noise);
+    if (noisy) v += normal() * std::sqrt(shot * v + read);
     rgb[i] = static_cast<std::uint8_t>(std::clamp(std::round(v), 0.0, 255.0));
   }
 }
@@ -62,21 +64,23 @@ void add_depth_noise(const SensorNoise& n, Rng& rng, float* depth, int width, in
     }
   }
   const bool noisy = n.depth_noise > 0 || n.depth_noise_quadratic > 0;
+  Normals normal(rng);
   for (size_t i = 0; i < size_t(width) * height; ++i) {
     const double z = depth[i];
     if ((!shadow.empty() && shadow[i]) || (n.depth_max > 0 && z > n.depth_max)) {
       depth[i] = 0;
       continue;
     }
-    if (noisy) depth[i] = static_cast<float>(std::max(0.0, z + normal(rng) * (n.depth_noise + n.depth_noise_quadratic * z * z)));
+    if (noisy) depth[i] = static_cast<float>(std::max(0.0, z + normal() * (n.depth_noise + n.depth_noise_quadratic * z * z)));
   }
 }
 
 void add_lidar_noise(const SensorNoise& n, Rng& rng, float* ranges, int beams, double max_range) {
+  Normals normal(rng);
   for (int i = 0; i < beams; ++i) {
     // Both draws for every beam, so that one beam's dropout does not shift the others' noise.
     const bool lost = uniform(rng, 0, 1) < n.lidar_dropout;
-    const double noise = n.lidar_noise > 0 ? normal(rng) * n.lidar_noise : 0.0;
+    const double noise = n.lidar_noise > 0 ? normal() * n.lidar_noise : 0.0;
     if (lost || ranges[i] >= max_range) {  // no return has no range to perturb
       ranges[i] = static_cast<float>(max_range);
     } else {
