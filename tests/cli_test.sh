@@ -36,6 +36,15 @@ else
 fi
 expect 0 '"vector_env"' -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2 --json
 expect 0 "Full Feature Set" -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2
+expect 2 "sections" -- "$chore" bench --sections nope
+expect 0 "flow" -- "$chore" bench --scenes "$data/scenes/box_room.json" --sections modalities --steps 2 --repeats 1
+
+# Every observation modality of one frame, as a picture.
+expect 2 "size" -- "$chore" observe --size 8 --out /tmp/chore_cli_observe.png
+expect 2 "unknown scene 'nope'" -- "$chore" observe --scene nope --out /tmp/chore_cli_observe.png
+observe_png="$(mktemp -d)/observe.png"
+expect 0 "observe: $observe_png (box_room)" -- "$chore" observe --scene "$data/scenes/box_room.json" --size 64 --out "$observe_png"
+if [[ ! -s "$observe_png" ]]; then echo "FAIL: $observe_png was not written"; failures=$((failures + 1)); fi
 
 # Activities: valid files are checked, a malformed one is located.
 tasks="$(cd "$(dirname "${BASH_SOURCE[0]}")/../tasks/activities" && pwd)"

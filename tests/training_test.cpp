@@ -211,6 +211,30 @@ TEST(Checkpoint, ResumesTheRunAndLoadsAGreedyPolicy) {
   }
 }
 
+TEST(Checkpoint, EnvConfigKeepsSensorSettingsAndOlderFilesGetDefaults) {
+  EnvConfig c;
+  c.observations = {"rgb", "lidar"};
+  c.lidar.beams = 90;
+  c.lidar.range = 5.5;
+  c.noise.depth_noise_quadratic = 0.0019;
+  c.noise.lidar_dropout = 0.05;
+  c.randomization.surface_color = 0.25;
+  nlohmann::json j = to_json(c);
+  const EnvConfig back = env_config_from_json(j);
+  EXPECT_EQ(back.lidar.beams, 90);
+  EXPECT_EQ(back.lidar.range, 5.5);
+  EXPECT_EQ(back.noise.depth_noise_quadratic, 0.0019);
+  EXPECT_EQ(back.noise.lidar_dropout, 0.05);
+  EXPECT_EQ(back.randomization.surface_color, 0.25);
+  EXPECT_EQ(to_json(back), j);
+  // A checkpoint written before the sensor settings existed: the defaults.
+  for (const char* group : {"lidar", "noise", "randomization"}) j.erase(group);
+  const EnvConfig old = env_config_from_json(j);
+  EXPECT_EQ(old.lidar.beams, LidarConfig{}.beams);
+  EXPECT_EQ(old.noise.lidar_dropout, 0.0);
+  EXPECT_FALSE(old.randomization.any());
+}
+
 TEST(Checkpoint, PolicyThreadsArePinned) {
   set_policy_threads(1);
   EXPECT_EQ(torch::get_num_threads(), 1);

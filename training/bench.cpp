@@ -306,7 +306,8 @@ std::string format_modalities(const nlohmann::json& r) {
   std::snprintf(buf, sizeof buf,
                 "\nObservation modalities, %s (%s), %s, one env: ms per frame over a step that observes\n"
                 "nothing (%.2f ms), median of %d x %d steps\n",
-                m["scene"].get<std::string>().c_str(), m["activity"].get<std::string>().c_str(),
+                m["scene"].get<std::string>().c_str(),
+                m["activity"].get<std::string>().empty() ? "no activity" : m["activity"].get<std::string>().c_str(),
                 r["image"].get<std::string>().c_str(), m["bare_step_ms"].get<double>(), r["repeats"].get<int>(),
                 r["steps"].get<int>());
   std::string text = buf;

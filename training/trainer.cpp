@@ -31,8 +31,36 @@ TrainConfig baseline_config(const std::string& baseline, const std::string& acti
   return c;
 }
 
+namespace {
+
+// The sensor settings by name (absent from checkpoints older than them: defaults).
+template <class Config, class Visit>  // Config: EnvConfig or const EnvConfig
+void sensor_fields(Config& c, Visit visit) {
+  visit("lidar", "beams", c.lidar.beams);
+  visit("lidar", "fov", c.lidar.fov);
+  visit("lidar", "range", c.lidar.range);
+  auto& n = c.noise;
+  for (auto [name, value] : {std::pair{"rgb_exposure", &n.rgb_exposure}, {"rgb_black_level", &n.rgb_black_level},
+                             {"rgb_shot_noise", &n.rgb_shot_noise}, {"rgb_read_noise", &n.rgb_read_noise},
+                             {"depth_noise", &n.depth_noise}, {"depth_noise_quadratic", &n.depth_noise_quadratic},
+                             {"depth_edge", &n.depth_edge}, {"depth_max", &n.depth_max},
+                             {"lidar_noise", &n.lidar_noise}, {"lidar_dropout", &n.lidar_dropout}}) {
+    visit("noise", name, *value);
+  }
+  auto& r = c.randomization;
+  visit("randomization", "light_intensity", r.light_intensity);
+  visit("randomization", "light_color", r.light_color);
+  visit("randomization", "surface_color", r.surface_color);
+}
+
+}  // namespace
+
 nlohmann::json to_json(const EnvConfig& c) {
-  return {{"activity", c.activity},
+  nlohmann::json sensors;
+  sensor_fields(c, [&](const char* group, const char* name, const auto& value) {
+    sensors[group][name] = value;
+  });
+  nlohmann::json j = {{"activity", c.activity},
           {"scene", c.scene},
           {"width", c.width},
           {"height", c.height},
@@ -48,6 +76,8 @@ nlohmann::json to_json(const EnvConfig& c) {
           {"policy_failure_repeats", c.policy_failure_repeats},
           {"reward", c.reward},
           {"reach_target", c.reach_target}};
+  j.update(sensors);
+  return j;
 }
 
 EnvConfig env_config_from_json(const nlohmann::json& j) {
@@ -71,6 +101,9 @@ EnvConfig env_config_from_json(const nlohmann::json& j) {
     c.policy_failure_repeats = j.at("policy_failure_repeats").get<int>();
     c.reward = j.at("reward").get<std::string>();
     c.reach_target = j.at("reach_target").get<std::array<double, 3>>();
+    sensor_fields(c, [&](const char* group, const char* name, auto& value) {
+      if (j.contains(group) && j[group].contains(name)) value = j[group][name].get<std::decay_t<decltype(value)>>();
+    });
     return c;
   } catch (const nlohmann::json::exception& e) {
     throw Error(std::string("env config: ") + e.what());
