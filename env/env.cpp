@@ -101,6 +101,19 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     throw Error("env config: unknown action space '" + config_.action_space +
                 "' (known: low_level, primitives)");
   }
+  if (activity_ && config_.robot && config_.reachable_instances) {
+    const auto placed_inside = [&](const std::string& instance) {
+      const std::vector<Literal>& init = activity_->problem().init;
+      return std::any_of(init.begin(), init.end(), [&](const Literal& l) {
+        return l.predicate == "inside" && !l.negated && l.args.at(0) == instance;
+      });
+    };
+    for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_)) {
+      const bool acts = a.type == PrimitiveType::pick || a.type == PrimitiveType::push ||
+                        a.type == PrimitiveType::dip || a.type == PrimitiveType::wipe;
+      if (acts && !(a.type == PrimitiveType::pick && placed_inside(a.instance))) reach_checks_.push_back(a);
+    }
+  }
   // A fixed order, whatever the config's: the layout of batched buffers.
   const double inf = std::numeric_limits<double>::infinity();
   if (wants(config_, "rgb")) {
@@ -185,10 +198,29 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   last_primitive_status_ = last_invalid_action_ = -1;
   invalid_repeats_ = 0;
   if (!activity_) return make_info();
-  activity_->instantiate(*world_, rng_);
+  std::string out_of_reach;
+  for (int attempt = 0; attempt < kInstanceAttempts; ++attempt) {
+    if (attempt > 0) world_->reset(start);
+    activity_->instantiate(*world_, rng_);
+    out_of_reach = first_out_of_reach();
+    if (out_of_reach.empty()) break;
+  }
+  if (!out_of_reach.empty()) {
+    throw Error("env: no instance of activity '" + activity_->name() + "' in " +
+                std::to_string(kInstanceAttempts) + " samples had everything within the robot's reach; the last: " +
+                out_of_reach + " (EnvConfig::reachable_instances = false accepts such instances)");
+  }
   const Activity::Evaluation goal = activity_->evaluate(*world_);
   potential_ = goal.potential;
   return make_info(&goal.score);
+}
+
+std::string Env::first_out_of_reach() {
+  std::vector<PrimitiveType> types;
+  std::vector<int> objects;
+  for (const PrimitiveAction& a : reach_checks_) types.push_back(a.type), objects.push_back(a.object);
+  const ReachProblem problem = chore::first_out_of_reach(*world_, types, objects, rng_());
+  return problem.index < 0 ? "" : to_string(reach_checks_[problem.index]) + ": " + problem.reason;
 }
 
 Env::Outcome Env::advance(std::span<const float> action) {

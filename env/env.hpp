@@ -57,6 +57,13 @@ struct EnvConfig {
   // (env/primitive_actions.hpp), executed in `primitive_mode`.
   std::string action_space = "low_level";
   ExecutionMode primitive_mode = ExecutionMode::physical;
+  // Reset samples the activity's instance again (up to kInstanceAttempts
+  // times, then chore::Error) while something the robot must act on lies out
+  // of its reach from every base pose it can drive to: first_out_of_reach
+  // (primitives/primitive.hpp) over each pick, push, dip and wipe of the
+  // primitive action space, but picks of what :init puts inside something.
+  // Whatever the action space, so that both see the same instances.
+  bool reachable_instances = true;
   // The seed's policy failure: this many identical actions in a row that fail
   // their precondition end the episode (terminated, info.policy_failure).
   int policy_failure_repeats = 3;
@@ -106,6 +113,7 @@ class Env {
  public:
   // Physics steps of 1/120 s per env step of 1/30 s (the seed's time steps).
   static constexpr int kPhysicsSubsteps = 4;
+  static constexpr int kInstanceAttempts = 20;
 
   explicit Env(const EnvConfig& config);
   // Shares what load_assets(config) compiled (scene, activity) with other envs.
@@ -168,6 +176,7 @@ class Env {
   int64_t act_low_level(std::span<const float> action, World::StepReport& report);
   int64_t act_primitive(std::span<const float> action, World::StepReport& report);
   double reach_distance() const;  // gripper to reach_target (m)
+  std::string first_out_of_reach();  // a reach check failing in the sampled instance, or ""
   void observe();  // renders and writes into obs_ with this env's own renderer
   SensorFrame sensor_frame(ArrayDict& obs, int index) const;
 
@@ -182,6 +191,7 @@ class Env {
   ArrayDict obs_;
   Rng rng_;
   std::vector<PrimitiveAction> primitive_actions_;
+  std::vector<PrimitiveAction> reach_checks_;  // what reset checks is within reach
   PrimitiveResult last_primitive_;
   std::array<int, kPrimitiveStatuses> primitive_counts_{};
   int last_primitive_status_ = -1, last_invalid_action_ = -1, invalid_repeats_ = 0;

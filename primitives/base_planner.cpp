@@ -92,32 +92,53 @@ bool OccupancyMap::free(double x, double y) const {
 }
 
 bool OccupancyMap::connected(double x0, double y0, double x1, double y1) const {
-  const auto cell = [&](double x, double y) {
-    return std::pair{static_cast<int>(std::floor((x - x0_) / kResolution)),
-                     static_cast<int>(std::floor((y - y0_) / kResolution))};
+  return free(x0, y0) && free(x1, y1) && flood(x0, y0, x1, y1).free(x1, y1);
+}
+
+OccupancyMap OccupancyMap::reachable_from(double x, double y) const {
+  return flood(x, y, std::nullopt, std::nullopt);
+}
+
+OccupancyMap OccupancyMap::flood(double x, double y, std::optional<double> stop_x,
+                                 std::optional<double> stop_y) const {
+  const auto cell = [&](double cx, double cy) {
+    return std::pair{static_cast<int>(std::floor((cx - x0_) / kResolution)),
+                     static_cast<int>(std::floor((cy - y0_) / kResolution))};
   };
-  if (!free(x0, y0) || !free(x1, y1)) return false;
-  const auto [gi, gj] = cell(x1, y1);
-  std::vector<unsigned char> seen(occupied_.size(), 0);
-  std::vector<std::pair<int, int>> frontier = {cell(x0, y0)};
-  seen[static_cast<size_t>(frontier[0].second) * width_ + frontier[0].first] = 1;
+  OccupancyMap out = *this;
+  std::fill(out.occupied_.begin(), out.occupied_.end(), 1);
+  if (!free(x, y)) return out;
+  const auto [gi, gj] = stop_x ? cell(*stop_x, *stop_y) : std::pair{-1, -1};
+  std::vector<std::pair<int, int>> frontier = {cell(x, y)};
+  out.occupied_[static_cast<size_t>(frontier[0].second) * width_ + frontier[0].first] = 0;
   while (!frontier.empty()) {
     const auto [i, j] = frontier.back();
     frontier.pop_back();
-    if (i == gi && j == gj) return true;
+    if (i == gi && j == gj) break;
     // 8-connected: a planner's checks one cell apart may step diagonally.
     for (int dj = -1; dj <= 1; ++dj) {
       for (int di = -1; di <= 1; ++di) {
         const int ni = i + di, nj = j + dj;
         if (ni < 0 || nj < 0 || ni >= width_ || nj >= height_) continue;
         const size_t k = static_cast<size_t>(nj) * width_ + ni;
-        if (seen[k] || occupied_[k]) continue;
-        seen[k] = 1;
+        if (!out.occupied_[k] || occupied_[k]) continue;
+        out.occupied_[k] = 0;
         frontier.push_back({ni, nj});
       }
     }
   }
-  return false;
+  return out;
+}
+
+std::optional<Pose2> free_pose_near(const Footprint& footprint, const Pose2& at) {
+  Pose2 pose = at;
+  for (double r = OccupancyMap::kResolution; !footprint.free(pose); r += OccupancyMap::kResolution) {
+    if (r > kMaxEscape) return std::nullopt;
+    for (int k = 0; k < 16 && !footprint.free(pose); ++k) {
+      pose = {at.x + r * std::cos(k * M_PI / 8), at.y + r * std::sin(k * M_PI / 8), at.yaw};
+    }
+  }
+  return pose;
 }
 
 namespace {
@@ -230,16 +251,12 @@ BasePath plan_base_path(const World& world, const Footprint& footprint, const Po
   BasePath out;
   const OccupancyMap& map = footprint.body_map();
   const Pose2 at = world.base_pose();
-  Pose2 start = at;
-  for (double r = OccupancyMap::kResolution; !footprint.free(start); r += OccupancyMap::kResolution) {
-    if (r > kMaxEscape) {
-      out.reason = "the robot is boxed in: no free space within " + std::to_string(kMaxEscape) + " m";
-      return out;
-    }
-    for (int k = 0; k < 16 && !footprint.free(start); ++k) {
-      start = {at.x + r * std::cos(k * M_PI / 8), at.y + r * std::sin(k * M_PI / 8), at.yaw};
-    }
+  const std::optional<Pose2> escape = free_pose_near(footprint, at);
+  if (!escape) {
+    out.reason = "the robot is boxed in: no free space within " + std::to_string(kMaxEscape) + " m";
+    return out;
   }
+  const Pose2 start = *escape;
   if (!footprint.free(goal)) {
     out.reason = "the goal pose is not in free space";
     return out;

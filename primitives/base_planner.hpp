@@ -28,12 +28,17 @@ class OccupancyMap {
   // Whether free cells join (x0, y0) to (x1, y1), 8-connected: a base path's
   // necessary condition, decided by a flood fill.
   bool connected(double x0, double y0, double x1, double y1) const;
+  // The free cells 8-connected to (x, y), as a map of its own (all occupied
+  // when (x, y) is not free): where the base could go from there.
+  OccupancyMap reachable_from(double x, double y) const;
   double min_x() const { return x0_; }
   double min_y() const { return y0_; }
   double max_x() const { return x0_ + width_ * kResolution; }
   double max_y() const { return y0_ + height_ * kResolution; }
 
  private:
+  // Flood fill from (x, y), stopping early once it reaches the stop cell.
+  OccupancyMap flood(double x, double y, std::optional<double> stop_x, std::optional<double> stop_y) const;
   double x0_ = 0, y0_ = 0;
   int width_ = 0, height_ = 0;
   std::vector<unsigned char> occupied_;
@@ -59,6 +64,11 @@ class Footprint {
   Eigen::Vector2d arm_centre_ = Eigen::Vector2d::Zero();  // robot frame
   std::optional<OccupancyMap> arm_;
 };
+
+// The base's pose, or where it is moved straight out (up to 0.4 m) when it
+// stands inside inflated obstacles (an opened drawer over it); none when it
+// is boxed in.
+std::optional<Pose2> free_pose_near(const Footprint& footprint, const Pose2& at);
 
 struct BasePath {
   bool success = false;

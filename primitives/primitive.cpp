@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <random>
 
 #include "env/world/error.hpp"
 #include "env/world/object_geometry.hpp"
@@ -25,6 +27,12 @@ constexpr double kFingerReach = 0.04;   // m from the hand's centre to the finge
 constexpr double kClearance = 0.10;     // m above a target before descending
 constexpr double kLift = 0.15;          // m raised after grasping or releasing
 constexpr double kContactDepth = 0.05;  // m below an object's top the fingertips may need to reach
+constexpr double kToolHang = 0.05;      // m a tool held for dip or wipe is taken to hang below the hand (a rag: 3.4 cm)
+constexpr double kSoakDepth = 0.04;     // m under a liquid's surface that dip lowers the held object
+// Wipe strokes: kRows rows kRowSpacing apart, the first kFarRow beyond the approach point.
+constexpr int kRows = 4;
+constexpr double kRowSpacing = 0.08, kFarRow = 1.5 * kRowSpacing;
+constexpr double kWipeYawSpread = 0.6;  // rad: a base pose to wipe from faces the dirt within +-0.3
 constexpr double kSlim = 0.08;          // m: objects this narrow fit between the open fingers
 constexpr double kPullFraction = 0.9;   // of a drawer's range, push opens it this far
 constexpr double kApproachSpeed = 0.15; // m/s of the hand towards a contact
@@ -161,31 +169,44 @@ Eigen::Vector3d top_centre(const World& w, int object) {
   return best;
 }
 
-// The densest patch of dirt (most particles within 0.25 m), or the top centre when clean.
-Eigen::Vector3d dirt_centre(const World& w, int object) {
+// Where the dirt on an object lies (world frame).
+std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object) {
   std::vector<Eigen::Vector3d> particles;
   const ObjectStates& states = w.states();
-  if (states.tracked(object)) {
-    const int body = w.scene().objects()[object].body;
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
-    const Eigen::Vector3d origin(w.data()->xpos[3 * body], w.data()->xpos[3 * body + 1], w.data()->xpos[3 * body + 2]);
-    for (const auto& [name, local] : states.state(object).dirt) {
-      for (const Eigen::Vector3d& p : local) particles.push_back(origin + r * p);
-    }
+  if (!states.tracked(object)) return particles;
+  const int body = w.scene().objects()[object].body;
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
+  const Eigen::Vector3d origin(w.data()->xpos[3 * body], w.data()->xpos[3 * body + 1], w.data()->xpos[3 * body + 2]);
+  for (const auto& [name, local] : states.state(object).dirt) {
+    for (const Eigen::Vector3d& p : local) particles.push_back(origin + r * p);
   }
-  if (particles.empty()) return top_centre(w, object);
-  size_t best = 0, best_count = 0;
+  return particles;
+}
+
+// Where to wipe, densest dirt first: particles ordered by how many lie
+// within kPatchRadius of them (the strokes sweep about that far), each kept
+// unless within kPatchSpacing of one kept before. Particles themselves, not
+// the means of their neighbourhoods: a mean can lie beyond reach where every
+// particle does not. The top centre when clean.
+std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
+  constexpr double kPatchRadius = 0.25, kPatchSpacing = 0.15;
+  const std::vector<Eigen::Vector3d> particles = dirt_particles(w, object);
+  if (particles.empty()) return {top_centre(w, object)};
+  std::vector<std::pair<int, size_t>> density;  // (-neighbours, particle): sorted densest first
   for (size_t i = 0; i < particles.size(); ++i) {
-    size_t count = 0;
-    for (const Eigen::Vector3d& q : particles) count += (q - particles[i]).head<2>().norm() < 0.25;
-    if (count > best_count) best = i, best_count = count;
+    int n = 0;
+    for (const Eigen::Vector3d& q : particles) n += (q - particles[i]).head<2>().norm() < kPatchRadius;
+    density.push_back({-n, i});
   }
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  int n = 0;
-  for (const Eigen::Vector3d& q : particles) {
-    if ((q - particles[best]).head<2>().norm() < 0.25) centre += q, ++n;
+  std::sort(density.begin(), density.end());
+  std::vector<Eigen::Vector3d> patches;
+  for (const auto& [count, i] : density) {
+    const bool near_kept = std::any_of(patches.begin(), patches.end(), [&](const Eigen::Vector3d& kept) {
+      return (kept - particles[i]).head<2>().norm() < kPatchSpacing;
+    });
+    if (!near_kept) patches.push_back(particles[i]);
   }
-  return centre / n;
+  return patches;
 }
 
 // Where the hand may act, in order of preference. Picks come from above, or
@@ -195,7 +216,11 @@ std::vector<Approach> approaches(const World& w, PrimitiveType type, int object,
   if (type == PrimitiveType::push) {
     if (const auto a = articulation(w, object)) return {{a->handle, -a->axis, kUp}};
   }
-  if (type == PrimitiveType::wipe) return {{dirt_centre(w, object), kDown, std::nullopt}};
+  if (type == PrimitiveType::wipe) {
+    std::vector<Approach> out;
+    for (const Eigen::Vector3d& patch : dirt_patches(w, object)) out.push_back({patch, kDown, std::nullopt});
+    return out;
+  }
   std::vector<Approach> out = {{top_centre(w, object), kDown, std::nullopt}};
   if (type == PrimitiveType::pick) {
     const Aabb box = object_aabb(w, object);
@@ -218,9 +243,10 @@ double load_below_hand(const World& w) {
   return std::max(0.0, hand - object_aabb(w, held).lo.z());
 }
 
-// The hand's pre-pose: kClearance before the approach point, fingertips (or load) first.
-IkTarget pre_pose(const World& w, const Approach& a) {
-  const double standoff = kClearance + (a.direction.z() < -0.5 ? std::max(kFingerReach, load_below_hand(w)) : kFingerReach);
+// The hand's pre-pose: kClearance before the approach point, fingertips (or
+// a load hanging `load` below the hand) first.
+IkTarget pre_pose(const Approach& a, double load) {
+  const double standoff = kClearance + (a.direction.z() < -0.5 ? std::max(kFingerReach, load) : kFingerReach);
   return {a.point - a.direction * standoff, a.direction, a.closing};
 }
 
@@ -233,33 +259,52 @@ double contact_depth(const World& w, int object, const Approach& a) {
   return std::min(kContactDepth, std::abs(a.direction.dot(box.hi - box.lo)) / 2);
 }
 
+// Where the hand's centre ends the line along an approach from a base at
+// `base`: at contact, fingertips contact_depth() into the object; for dip,
+// where the held object's bottom is kSoakDepth under the liquid's surface;
+// for wipe, at contact where the strokes begin, their farthest row.
+Eigen::Vector3d line_end(const World& w, PrimitiveType type, int object, const Approach& a, const Pose2& base,
+                         double load) {
+  if (type == PrimitiveType::dip) {
+    const Aabb box = object_aabb(w, object);
+    const double surface = box.lo.z() + w.states().state(object).liquid_level * (box.hi.z() - box.lo.z());
+    return {a.point.x(), a.point.y(), surface - kSoakDepth + load};
+  }
+  const Eigen::Vector3d contact = a.point + a.direction * (contact_depth(w, object, a) - kFingerReach);
+  if (type == PrimitiveType::wipe) return contact + Eigen::Vector3d(std::cos(base.yaw), std::sin(base.yaw), 0) * kFarRow;
+  return contact;
+}
+
+bool descends(PrimitiveType type) { return type != PrimitiveType::place && type != PrimitiveType::navigate; }
+
 // A collision-free IK solution for the pre-pose of the first approach that
 // works with the base at `base` (from the untucked arm), from which, when the
-// primitive descends, the hand can follow the approach to the contact point
+// primitive descends, the hand can follow the approach to its line_end()
 // touching nothing but the object itself (a neighbour in the way would stop it).
 struct Reach {
   ArmConfiguration joints;
   Approach approach;
 };
 std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w, int object,
-                           const std::vector<Approach>& candidates, const Pose2& base, bool descends) {
+                           const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type,
+                           double load) {
   for (const Approach& a : candidates) {
     if (std::hypot(a.point.x() - base.x, a.point.y() - base.y) > kArmReachBound) continue;
     IkOptions options;
     options.base = base;
     options.start = kUntuckedConfiguration;
     options.iterations = 100;
-    const IkTarget pre = pre_pose(w, a);
+    const IkTarget pre = pre_pose(a, load);
     const IkResult r = ik.solve(pre, options);
     if (!r.success || checker.collides(r.joints.data(), &base)) continue;
     bool clear = true;
-    if (descends) {
+    if (descends(type)) {
       options.start = r.joints;
       IkTarget along = pre;
-      const Eigen::Vector3d contact = a.point + a.direction * (contact_depth(w, object, a) - kFingerReach);
-      const int steps = std::max(1, static_cast<int>(std::ceil((contact - pre.position).norm() / kCorridorStep)));
+      const Eigen::Vector3d end = line_end(w, type, object, a, base, load);
+      const int steps = std::max(1, static_cast<int>(std::ceil((end - pre.position).norm() / kCorridorStep)));
       for (int i = 1; i <= steps && clear; ++i) {
-        along.position = pre.position + (contact - pre.position) * (static_cast<double>(i) / steps);
+        along.position = pre.position + (end - pre.position) * (static_cast<double>(i) / steps);
         const IkResult c = ik.solve(along, options);
         clear = c.success && !checker.hand_touches(c.joints, &base, object);
         options.start = c.joints;
@@ -270,14 +315,14 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
   return std::nullopt;
 }
 
-bool descends(PrimitiveType type) { return type != PrimitiveType::place && type != PrimitiveType::navigate; }
-
 // Navigation aims at what will be done there: an articulated object's handle
-// (to push it) while the hand is empty, dirt to wipe while holding a tool.
+// (to push it) while the hand is empty; while holding, dirt lying on it to
+// wipe, a liquid to dip into, or a place to put the load.
 PrimitiveType purpose_of_navigation(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
   if (w.grasped_object() < 0 && articulation(w, object) && !is_open(w, object)) return PrimitiveType::push;
-  if (w.grasped_object() >= 0 && ab && ab->covered) return PrimitiveType::wipe;
+  if (w.grasped_object() >= 0 && ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
+  if (w.grasped_object() >= 0 && primitive_applies(w, PrimitiveType::dip, object)) return PrimitiveType::dip;
   return w.grasped_object() >= 0 ? PrimitiveType::place : PrimitiveType::pick;
 }
 
@@ -286,7 +331,80 @@ bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, 
   const std::vector<Approach> a = approaches(w, purpose, object, w.base_pose());
   const Scene& scene = w.scene();
   return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a[0].point.x(), a[0].point.y()) &&
-         reach(ik, checker, w, object, a, w.base_pose(), descends(purpose)).has_value();
+         reach(ik, checker, w, object, a, w.base_pose(), purpose, load_below_hand(w)).has_value();
+}
+
+// Whether the base standing at p can back away along the drawer's axis as
+// far as push will pull it.
+bool room_to_pull(const Footprint& footprint, const Pose2& p, const Articulation& a) {
+  const double pull = (a.high - a.low) * kPullFraction - (a.value - a.low);
+  for (double d = 0; d <= pull; d += OccupancyMap::kResolution) {
+    if (!footprint.body_map().free(p.x + a.axis.x() * d, p.y + a.axis.y() * d)) return false;
+  }
+  return true;
+}
+
+// OmniGibson's base-pose sampler: candidate poses near the object, kept when
+// in the same room, collision-free and within reach (IK). Draws in collision
+// cost a map lookup, so they do not count against the budget of `samples`
+// free candidates (up to kDrawsPerSample times as many draws): an object in a
+// pocket between furniture is still found. Draws go round the points of
+// `around` (the target's approaches); a pose is within reach when reach()
+// finds one of `targets(pose)` with `load` hanging below the hand. `use`
+// gets each pose kept and ends the
+// search by returning true, which is then returned.
+struct BasePoseTally {
+  int blocked = 0, elsewhere = 0, unreachable = 0;
+};
+bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checker, const Footprint& footprint,
+                       PrimitiveType purpose, int object, const std::vector<Approach>& around,
+                       const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t seed,
+                       double load, int samples, BasePoseTally& tally,
+                       const std::function<bool(const Pose2&)>& use) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Aabb box = object_aabb(w, object);
+  const auto articulated = purpose == PrimitiveType::push ? articulation(w, object) : std::nullopt;
+  const Room* room = w.scene().room_at(around[0].point.x(), around[0].point.y());
+  for (int i = 0; i < kDrawsPerSample * samples && i - tally.blocked < samples; ++i) {
+    const Approach& a = around[i % around.size()];
+    Pose2 p;
+    if (articulated) {
+      // In front of the drawer, facing it, far enough to pull it open.
+      const Eigen::Vector3d side = kUp.cross(articulated->axis);
+      const Eigen::Vector3d at = a.point + articulated->axis * (0.5 + 0.4 * unit(rng)) +
+                                 side * (0.7 * unit(rng) - 0.35);
+      p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.8 * unit(rng) - 0.4};
+    } else {
+      // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
+      const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
+      // Leave the object's box along (c, s) from the target point, then stand off.
+      double exit = 1e9;
+      for (const auto& [d, from, lo, hi] : {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()},
+                                            std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
+        if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
+      }
+      // Within the arm's reach of the point (0.6 m at the floor, 1 m at
+      // table height) and clear of the object's box by the body's radius.
+      const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
+      // Biased towards the object: at arm's length, tracking is fragile.
+      const double u = unit(rng), distance = near + (far - near) * u * u;
+      p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
+      // Wipe strokes run across the robot's front: it faces the dirt.
+      const double spread = purpose == PrimitiveType::wipe ? kWipeYawSpread : M_PI;
+      p.yaw = std::atan2(-s, -c) + spread * (unit(rng) - 0.5);
+    }
+    if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated))) {
+      ++tally.blocked;
+    } else if (w.scene().room_at(p.x, p.y) != room) {
+      ++tally.elsewhere;
+    } else if (!reach(ik, checker, w, object, targets(p), p, purpose, load)) {
+      ++tally.unreachable;
+    } else if (use(p)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 class Executor {
@@ -341,11 +459,22 @@ class Executor {
     const Clock::time_point t = Clock::now();
     ArmCollisionChecker checker(w_);
     const auto solution = reach(motion_.ik(), checker, w_, object_, approaches(w_, type_, object_, w_.base_pose()),
-                                w_.base_pose(), descends(type_));
+                                w_.base_pose(), type_, load_below_hand(w_));
     result_.planning_seconds += since(t);
     if (!solution) return fail(PrimitiveStatus::motion_planning_failure, "'" + name() + "' is out of reach from here");
     q = solution->joints;
     approach_ = solution->approach;
+    return true;
+  }
+
+  // The end of a manipulation: tucked (or carrying) where the arm fits. Where
+  // furniture blocks that pose the effect still holds and the arm stays as it
+  // is: navigate tucks before driving, or drives with the arm as it is.
+  bool tuck_where_possible() {
+    if (motion_.tuck()) return true;
+    if (result_.diverged) return false;
+    result_.status = PrimitiveStatus::success;
+    result_.reason.clear();
     return true;
   }
 
@@ -359,16 +488,6 @@ class Executor {
       return false;
     }
     return motion_.arm_to(q);
-  }
-
-  // Whether the base standing at p can back away along the drawer's axis as
-  // far as push will pull it.
-  static bool room_to_pull(const Footprint& footprint, const Pose2& p, const Articulation& a) {
-    const double pull = (a.high - a.low) * kPullFraction - (a.value - a.low);
-    for (double d = 0; d <= pull; d += OccupancyMap::kResolution) {
-      if (!footprint.body_map().free(p.x + a.axis.x() * d, p.y + a.axis.y() * d)) return false;
-    }
-    return true;
   }
 
   // The pre-pose, then the load (which hangs off-centre from the hand) moved
@@ -385,81 +504,43 @@ class Executor {
   bool navigate() {
     // Tucked (or carrying) if it can be; where furniture is in the way the
     // footprint measures the arm as it is.
-    if (!at(w_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !motion_.tuck()) {
-      if (result_.diverged) return false;
-      result_.status = PrimitiveStatus::success;
-      result_.reason.clear();
+    if (!at(w_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !tuck_where_possible()) {
+      return false;
     }
     const Clock::time_point t = Clock::now();
-    const Scene& scene = w_.scene();
     const PrimitiveType purpose = purpose_of_navigation(w_, object_);
     const std::vector<Approach> here = approaches(w_, purpose, object_, w_.base_pose());
-    const Approach& a = here[0];
-    const Room* room = scene.room_at(a.point.x(), a.point.y());
     ArmCollisionChecker checker(w_);
     if (reachable_here(w_, motion_.ik(), checker, object_)) {
       result_.planning_seconds += since(t);
       return fail(PrimitiveStatus::precondition_failure, "already within reach of '" + name() + "'");
     }
-    // OmniGibson's base-pose sampler: candidate poses near the object, kept
-    // when in the same room, collision-free and within reach (IK). Draws in
-    // collision cost a map lookup, so they do not count against the budget of
-    // `base_pose_samples` free candidates (up to kDrawsPerSample times as many
-    // draws): an object in a pocket between furniture is still found.
     const Footprint footprint(w_);
-    std::mt19937_64 rng(motion_.next_seed());
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const Aabb box = object_aabb(w_, object_);
-    const auto articulated = purpose == PrimitiveType::push ? articulation(w_, object_) : std::nullopt;
-    int path_failures = 0, blocked = 0, elsewhere = 0, unreachable = 0;
-    const int draws = kDrawsPerSample * options_.base_pose_samples;
-    for (int i = 0; i < draws && i - blocked < options_.base_pose_samples; ++i) {
-      Pose2 p;
-      if (articulated) {
-        // In front of the drawer, facing it, far enough to pull it open.
-        const Eigen::Vector3d side = kUp.cross(articulated->axis);
-        const Eigen::Vector3d at = a.point + articulated->axis * (0.5 + 0.4 * unit(rng)) +
-                                   side * (0.7 * unit(rng) - 0.35);
-        p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.8 * unit(rng) - 0.4};
-      } else {
-        // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
-        const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
-        // Leave the object's box along (c, s) from the target point, then stand off.
-        double exit = 1e9;
-        for (const auto& [d, from, lo, hi] : {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()},
-                                              std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
-          if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
-        }
-        // Within the arm's reach of the point (0.6 m at the floor, 1 m at
-        // table height) and clear of the object's box by the body's radius.
-        const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
-        // Biased towards the object: at arm's length, tracking is fragile.
-        const double u = unit(rng), distance = near + (far - near) * u * u;
-        p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
-        p.yaw = std::atan2(-s, -c) + M_PI * (unit(rng) - 0.5);
-      }
-      if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated))) {
-        ++blocked;
-      } else if (scene.room_at(p.x, p.y) != room) {
-        ++elsewhere;
-      } else if (!reach(motion_.ik(), checker, w_, object_, approaches(w_, purpose, object_, p), p, descends(purpose))) {
-        ++unreachable;
-      } else {
-        // Reachable with the arm; now the base must get there.
-        result_.planning_seconds += since(t);
-        if (motion_.base_to(p, footprint)) return true;
-        if (result_.diverged || ++path_failures == 3) return false;
-        result_.status = PrimitiveStatus::success;  // try the next candidate
-      }
-    }
-    result_.planning_seconds += since(t);
+    const auto targets = [&](const Pose2& p) { return approaches(w_, purpose, object_, p); };
+    BasePoseTally tally;
+    int path_failures = 0;
+    bool arrived = false;
+    Clock::time_point planning = t;
+    sample_base_poses(w_, motion_.ik(), checker, footprint, purpose, object_, here, targets, motion_.next_seed(),
+                      load_below_hand(w_), options_.base_pose_samples, tally, [&](const Pose2& p) {
+                        // Reachable with the arm; now the base must get there.
+                        result_.planning_seconds += since(planning);
+                        arrived = motion_.base_to(p, footprint);
+                        planning = Clock::now();
+                        if (arrived || result_.diverged || ++path_failures == 3) return true;
+                        result_.status = PrimitiveStatus::success;  // try the next candidate
+                        result_.reason.clear();
+                        return false;
+                      });
+    result_.planning_seconds += since(planning);
+    if (arrived || result_.diverged || path_failures == 3) return arrived;
     return fail(PrimitiveStatus::motion_planning_failure,
                 "no collision-free base pose within reach of '" + name() + "' in its room (" +
-                    std::to_string(blocked) + " samples in collision, then of " +
-                    std::to_string(elsewhere + unreachable + path_failures) + " free ones: " +
-                    std::to_string(elsewhere) + " in another room, " +
-                    std::to_string(unreachable) + " out of the arm's reach, " + std::to_string(path_failures) +
-                    " without a path)");
+                    std::to_string(tally.blocked) + " samples in collision, then of " +
+                    std::to_string(tally.elsewhere + tally.unreachable + path_failures) + " free ones: " +
+                    std::to_string(tally.elsewhere) + " in another room, " +
+                    std::to_string(tally.unreachable) + " out of the arm's reach, " +
+                    std::to_string(path_failures) + " without a path)");
   }
 
   bool pick() {
@@ -488,7 +569,7 @@ class Executor {
                                                       : "the hand closed on nothing");
     }
     motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);  // lift as far as the arm goes; tuck plans the rest
-    if (!motion_.tuck()) return false;
+    if (!tuck_where_possible()) return false;
     if (w_.grasped_object() != object_) return fail(PrimitiveStatus::grasp_failure, "'" + name() + "' slipped out");
     return true;
   }
@@ -500,7 +581,7 @@ class Executor {
     if (!motion_.physical()) settle_kinematically(held);
     motion_.wait(0.3);
     motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
-    if (!motion_.tuck()) return false;
+    if (!tuck_where_possible()) return false;
     if (!inside(w_, held, object_) && !ontop(w_, held, object_)) {
       return fail(PrimitiveStatus::place_failure,
                   "'" + w_.scene().objects()[held].name + "' is neither on nor in '" + name() + "'");
@@ -560,23 +641,21 @@ class Executor {
     }
     motion_.gripper(true);
     motion_.line(a->axis * 0.08, false, kRetreatSpeed, 0.0);  // back off as far as the arm goes
-    if (!motion_.tuck()) return false;
+    if (!tuck_where_possible()) return false;
     if (!is_open(w_, object_)) return fail(PrimitiveStatus::grasp_failure, "the handle slipped: '" + name() + "' stays closed");
     return true;
   }
 
   bool dip() {
     if (!go_to_pre_pose_with_load()) return false;
-    // Down until the held object's bottom is 4 cm under the liquid's surface.
-    const Aabb box = object_aabb(w_, object_);
-    const double surface = box.lo.z() + w_.states().state(object_).liquid_level * (box.hi.z() - box.lo.z());
-    const double held_bottom = motion_.hand_position().z() - load_below_hand(w_);
-    const Eigen::Vector3d down = kDown * std::max(0.0, held_bottom - (surface - 0.04));
+    // Down until the held object's bottom is under the liquid's surface.
+    const double end = line_end(w_, type_, object_, approach_, w_.base_pose(), load_below_hand(w_)).z();
+    const Eigen::Vector3d down = kDown * std::max(0.0, motion_.hand_position().z() - end);
     // Not stopping at contact: a rag's corners brush the rim on the way in.
     if (!motion_.line(down, false, kApproachSpeed)) return false;
     motion_.wait(0.6);  // long enough to soak through (ObjectStates: 0.5 s)
     motion_.line(-down, false, kRetreatSpeed, 0.0);
-    if (!motion_.tuck()) return false;
+    if (!tuck_where_possible()) return false;
     const int held = w_.grasped_object();
     if (held < 0) return fail(PrimitiveStatus::grasp_failure, "dropped what it held");
     const ObjectAbilities* ab = w_.states().abilities(held);
@@ -597,17 +676,16 @@ class Executor {
     // Strokes left-right, row by row towards the robot, pressing 1 cm in.
     const double yaw = w_.base_pose().yaw;
     const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
-    constexpr double kHalfWidth = 0.22, kRow = 0.08;
-    constexpr int kRows = 4;
+    constexpr double kHalfWidth = 0.22;
     // Each stroke goes as far as the arm reaches along it.
-    motion_.line(forward * kRow * 1.5 - left * kHalfWidth + kDown * 0.01, false, 0.25, 0.0);
+    motion_.line(forward * kFarRow - left * kHalfWidth + kDown * 0.01, false, 0.25, 0.0);
     for (int row = 0; row < kRows; ++row) {
       const double side = row % 2 == 0 ? 1.0 : -1.0;
       motion_.line(left * (2 * kHalfWidth * side), false, 0.3, 0.0);
-      if (row + 1 < kRows) motion_.line(-forward * kRow, false, 0.25, 0.0);
+      if (row + 1 < kRows) motion_.line(-forward * kRowSpacing, false, 0.25, 0.0);
     }
     motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
-    if (!motion_.tuck()) return false;
+    if (!tuck_where_possible()) return false;
     if (w_.grasped_object() < 0) return fail(PrimitiveStatus::grasp_failure, "dropped the tool");
     return true;
   }
@@ -649,6 +727,79 @@ bool within_reach(const World& world, int object) {
   IkSolver ik(world);
   ArmCollisionChecker checker(world);
   return reachable_here(world, ik, checker, object);
+}
+
+std::string out_of_reach(const World& w, PrimitiveType type, int object, uint64_t seed,
+                         const PrimitiveOptions& options) {
+  const Footprint footprint(w);
+  const std::optional<Pose2> start = free_pose_near(footprint, w.base_pose());
+  if (!start) return "the robot is boxed in where it stands";
+  const OccupancyMap drivable = footprint.body_map().reachable_from(start->x, start->y);
+  IkSolver ik(w);
+  ArmCollisionChecker checker(w);
+  std::vector<Pose2> kept;  // poses within reach that the base can drive to
+  const auto use = [&](const Pose2& p) {
+    if (!drivable.free(p.x, p.y)) return false;
+    kept.push_back(p);
+    return true;
+  };
+  const std::string name = "'" + w.scene().objects().at(object).name + "'";
+  // dip and wipe act with a tool in hand, which may not be held yet.
+  const bool tool = type == PrimitiveType::dip || type == PrimitiveType::wipe;
+  const double load = tool ? std::max(load_below_hand(w), kToolHang) : load_below_hand(w);
+  BasePoseTally tally;
+  if (type != PrimitiveType::wipe) {
+    const auto targets = [&](const Pose2& p) { return approaches(w, type, object, p); };
+    if (sample_base_poses(w, ik, checker, footprint, type, object, targets(w.base_pose()), targets, seed, load,
+                          options.base_pose_samples, tally, use)) {
+      return "";
+    }
+    return "no base pose the robot can drive to brings " + name + " within reach to " + to_string(type) + " it";
+  }
+  // Dirt: enough of it within reach that wiping all of that leaves the object clean.
+  int missed = 0;
+  for (const Eigen::Vector3d& particle : dirt_particles(w, object)) {
+    const std::vector<Approach> at = {{particle, kDown, std::nullopt}};
+    const bool reached =
+        std::any_of(kept.begin(), kept.end(), [&](const Pose2& p) { return reach(ik, checker, w, object, at, p, type, load).has_value(); }) ||
+        sample_base_poses(w, ik, checker, footprint, type, object, at, [&](const Pose2&) { return at; }, seed++,
+                          load, options.base_pose_samples, tally, use);
+    if (!reached && ++missed == ObjectStates::kCoveredParticles) {
+      return std::to_string(missed) + " dirt particles on " + name +
+             " lie out of reach of every base pose the robot can drive to";
+    }
+  }
+  return "";
+}
+
+ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& types, const std::vector<int>& objects,
+                                uint64_t seed) {
+  if (types.size() != objects.size()) throw Error("first_out_of_reach: as many types as objects are needed");
+  ReachProblem problem;
+  const auto check = [&](size_t i) {
+    problem.reason = out_of_reach(w, types[i], objects[i], seed + i);
+    if (!problem.reason.empty()) problem.index = static_cast<int>(i);
+    return problem.reason.empty();
+  };
+  for (size_t i = 0; i < types.size(); ++i) {
+    if (types[i] == PrimitiveType::push && !check(i)) return problem;
+  }
+  // The rest with the drawers pulled open as push leaves them.
+  std::vector<std::pair<int, double>> saved;  // qpos address, value
+  for (size_t i = 0; i < types.size(); ++i) {
+    const auto a = types[i] == PrimitiveType::push ? articulation(w, objects[i]) : std::nullopt;
+    if (!a) continue;
+    const int adr = w.model()->jnt_qposadr[a->joint];
+    saved.push_back({adr, w.data()->qpos[adr]});
+    w.data()->qpos[adr] = a->low + (a->high - a->low) * kPullFraction;
+  }
+  if (!saved.empty()) mj_forward(w.model(), w.data());
+  for (size_t i = 0; i < types.size(); ++i) {
+    if (types[i] != PrimitiveType::push && !check(i)) break;
+  }
+  for (const auto& [adr, value] : saved) w.data()->qpos[adr] = value;
+  if (!saved.empty()) mj_forward(w.model(), w.data());
+  return problem;
 }
 
 std::string unmet_precondition(const World& w, PrimitiveType type, int object) {

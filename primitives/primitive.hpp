@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "env/world/world.hpp"
 
@@ -74,6 +75,30 @@ PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, 
 // of a closed drawer, a place to put what it holds, dirt to wipe, the object
 // to pick), in the object's room. navigate fails its precondition then.
 bool within_reach(const World& world, int object);
+
+// Why no base pose that the robot could drive to from where it stands brings
+// `object` within the arm's reach for `type` (navigate's base-pose search and
+// reach test, without driving; the free space joined to the base by a flood
+// fill of its occupancy map stands in for base paths), or empty when one
+// does. For wipe, the dirt on `object`: the particles out of reach of every
+// such pose must be too few for the object to count as covered. dip and wipe
+// are checked with a tool hanging 5 cm below the hand (it may not be held
+// yet; a rag hangs 3.4 cm). Instance
+// sampling uses it to refuse activities the robot could not complete.
+std::string out_of_reach(const World& world, PrimitiveType type, int object, uint64_t seed,
+                         const PrimitiveOptions& options = {});
+
+// out_of_reach() of (types[i], objects[i]) for each i, as an activity would
+// be done: pushes first, from the world as it is, then the others with what
+// the pushes open pulled open as push leaves it (the hand holds one thing at
+// a time, so what it picks must be within reach once the drawers are open).
+// The world is left as it was. The first check that fails (index -1: none).
+struct ReachProblem {
+  int index = -1;
+  std::string reason;
+};
+ReachProblem first_out_of_reach(World& world, const std::vector<PrimitiveType>& types,
+                                const std::vector<int>& objects, uint64_t seed);
 
 // Why executing `type` on `object` now would fail its precondition, or empty
 // when it holds: the state checks each primitive starts with (pick and push

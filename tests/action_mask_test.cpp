@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
@@ -31,11 +32,12 @@ std::vector<int> mask_of(const ArrayDict& obs, int row = 0) {
 struct Stepped {
   int status;
   std::vector<int> mask;
+  std::string reason;
 };
 Stepped step(Env& env, int action) {
   const float a = static_cast<float>(action);
   const Env::StepResult r = env.step({&a, 1});
-  return {r.info.primitive_status, mask_of(r.obs)};
+  return {r.info.primitive_status, mask_of(r.obs), env.last_primitive().reason};
 }
 
 constexpr int kPrecondition = static_cast<int>(PrimitiveStatus::precondition_failure);
@@ -51,11 +53,11 @@ TEST(ActionMask, SaysWhichPreconditionsHold) {
   EXPECT_EQ(mask_of(env.reset(1).obs), (std::vector<int>{1, 1, 1, 1, 1, 0, 1}));
   // At the pumpkin, navigating to it again would fail its precondition.
   Stepped s = step(env, kNavPumpkin1);
-  ASSERT_EQ(s.status, 0);
+  ASSERT_EQ(s.status, 0) << s.reason;
   EXPECT_EQ(s.mask, (std::vector<int>{0, 1, 1, 1, 1, 0, 1}));
   // Holding it: no pick (of either pumpkin) and no push; place is allowed.
   s = step(env, kPickPumpkin1);
-  ASSERT_EQ(s.status, 0);
+  ASSERT_EQ(s.status, 0) << s.reason;
   EXPECT_EQ(s.mask[kPickPumpkin1], 0);
   EXPECT_EQ(s.mask[kPickPumpkin2], 0);
   EXPECT_EQ(s.mask[kPushCabinet], 0);

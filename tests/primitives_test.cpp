@@ -239,6 +239,48 @@ TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {
   EXPECT_LT(stains(), static_cast<size_t>(ObjectStates::kCoveredParticles));
 }
 
+// What the robot could not reach from anywhere it can drive to, known cases:
+// a pumpkin whose only base poses within reach lie in the pocket between the
+// sofa, the coffee table and the wall
+// (BasePlanner.AnEnclosedGoalIsRefusedWithoutSearching), and stains in the
+// middle of a restaurant table whose far side is the next table's chairs.
+TEST(Primitives, OutOfReachNamesWhatNoDrivableBasePoseReaches) {
+  EnvConfig sd_config = primitive_config("store_decoration", ExecutionMode::symbolic);
+  sd_config.reachable_instances = false;  // the scene of BasePlanner.AnEnclosedGoalIsRefusedWithoutSearching
+  Env sd(sd_config);
+  sd.reset(6);
+  World& w = sd.world();
+  EXPECT_EQ(out_of_reach(w, PrimitiveType::pick, sd.activity()->object("pumpkin.n.02_1"), 1),
+            "no base pose the robot can drive to brings 'pumpkin_1' within reach to pick it");
+  EXPECT_EQ(out_of_reach(w, PrimitiveType::pick, sd.activity()->object("pumpkin.n.02_2"), 1), "");
+  // navigate agrees: its base poses are all in the pocket.
+  const float navigate_to_pumpkin_1 = 0;
+  sd.step({&navigate_to_pumpkin_1, 1});
+  EXPECT_EQ(sd.last_primitive().reason,
+            "no collision-free base path: the goal is enclosed (no free way on the occupancy map)");
+
+  EnvConfig unchecked = primitive_config("clean_table", ExecutionMode::symbolic);
+  unchecked.reachable_instances = false;
+  Env raw(unchecked);
+  raw.reset(18);  // six of the twenty stains lie 0.45-0.7 m in from the only free side
+  const int table = raw.activity()->object("table.n.02_1");
+  EXPECT_EQ(out_of_reach(raw.world(), PrimitiveType::wipe, table, 1),
+            "5 dirt particles on 'table_1' lie out of reach of every base pose the robot can drive to");
+  const auto stains = [&](const Env& e) { return e.world().states().state(table).dirt.at("stain"); };
+  // Checked (the default): the same seed samples again until all is within reach.
+  Env checked(primitive_config("clean_table", ExecutionMode::symbolic));
+  checked.reset(18);
+  EXPECT_NE(stains(checked), stains(raw));
+  for (const PrimitiveAction& a : checked.primitive_actions()) {
+    if (a.type != PrimitiveType::navigate && a.type != PrimitiveType::place) {
+      EXPECT_EQ(out_of_reach(checked.world(), a.type, a.object, 1), "") << to_string(a);
+    }
+  }
+  bool success = false;
+  run_expert(checked, 18, success);
+  EXPECT_TRUE(success);
+}
+
 // Bit-identical outcomes from one seed, whatever ran before and whatever the thread count.
 TEST(Primitives, OneSeedFixesAPrimitiveEpisodeWhateverTheThreadCount) {
   for (ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
