@@ -115,7 +115,8 @@ expect 2 "already holds a run" -- "$chore" train --activity collect_trash --base
 expect 2 "holds a rl-prim run on collect_trash" -- "$chore" train --resume "$run_dir" --baseline rl-vmc
 # The trained checkpoint evaluates in the env it was trained in; a bad one is an error.
 expect 0 "success rate .* +- " -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --seeds 0-1 --episodes 1 --max-steps 5
-expect 0 "6 frames of" -- "$chore" video --checkpoint "$run_dir/checkpoint.pt" --seed 0 --max-steps 5 --out "$(mktemp -d)/policy.mp4"
+# A frame per step plus the first; the greedy policy may end early (policy failure).
+expect 0 "2 frames of.*; 1 steps\|3 frames of.*; 2 steps\|4 frames of.*; 3 steps\|5 frames of.*; 4 steps\|6 frames of.*; 5 steps" -- "$chore" video --checkpoint "$run_dir/checkpoint.pt" --seed 0 --max-steps 5 --out "$(mktemp -d)/policy.mp4"
 printf 'garbage' > "$run_dir/checkpoint.pt"
 expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
 expect 2 "not a chore checkpoint" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt"
