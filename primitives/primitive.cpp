@@ -300,7 +300,8 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
     bool clear = true;
     if (descends(type)) {
       options.start = r.joints;
-      IkTarget along = pre;
+      // As Motion::line follows it: the approach axis held, the roll free.
+      IkTarget along{pre.position, pre.approach, std::nullopt};
       const Eigen::Vector3d end = line_end(w, type, object, a, base, load);
       const int steps = std::max(1, static_cast<int>(std::ceil((end - pre.position).norm() / kCorridorStep)));
       for (int i = 1; i <= steps && clear; ++i) {

@@ -4,6 +4,8 @@
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
+#include <string>
+
 #include "env/env.hpp"
 #include "env/world/renderer.hpp"
 
@@ -82,6 +84,25 @@ void BM_ActionMask(benchmark::State& state) {
   for (auto _ : state) env.write_state(out, 0);
 }
 BENCHMARK(BM_ActionMask);
+
+// A seeded reset of each activity in the primitive action space (sampling
+// :init, settling, the first observation is not rendered), with the check
+// that every pick, push, dip and wipe is within reach of a drivable base pose
+// (arg 1, the default) or without it (arg 0). Seeds cycle over 0..19.
+void reset_activity(benchmark::State& state, const std::string& activity) {
+  EnvConfig c;
+  c.activity = activity;
+  c.action_space = "primitives";
+  c.primitive_mode = ExecutionMode::symbolic;
+  c.observations = {"is_grasping"};
+  c.reachable_instances = state.range(0) != 0;
+  Env env(c);
+  uint64_t seed = 0;
+  for (auto _ : state) env.reset(seed++ % 20);
+}
+BENCHMARK_CAPTURE(reset_activity, store_decoration, std::string("store_decoration"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(reset_activity, collect_trash, std::string("collect_trash"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // A whole env step (physics x4 + render + state), as `chore bench` times it.
 void BM_EnvStep(benchmark::State& state) {
