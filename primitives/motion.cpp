@@ -22,6 +22,7 @@ constexpr double kArmSpeed = 1.5, kArmAcceleration = 4.0;     // rad/s, rad/s^2 
 constexpr double kBaseSpeed = 0.8, kBaseAcceleration = 1.0;   // m/s, m/s^2 (heading: 2x, rad)
 constexpr double kArmTolerance = 0.03;      // rad: a motion has arrived
 constexpr double kBaseTolerance = 0.04;     // m (and 2x in rad)
+constexpr double kLineTolerance = 0.01;     // rad: a line's last waypoint is reached
 constexpr int kSettleSteps = 30;            // control steps allowed to arrive after a trajectory
 
 using Clock = std::chrono::steady_clock;
@@ -113,6 +114,20 @@ bool Motion::hand_in_contact() const {
   return false;
 }
 
+size_t Motion::settle_arm(const ArmConfiguration& goal, double tolerance) {
+  size_t worst = 0;
+  for (int i = 0; i <= kSettleSteps; ++i) {
+    const ArmConfiguration now = arm_configuration(world_);
+    double error = 0;
+    for (size_t k = 0; k < goal.size(); ++k) {
+      if (std::abs(now[k] - goal[k]) > error) error = std::abs(now[k] - goal[k]), worst = k;
+    }
+    if (error < tolerance) return goal.size();
+    if (i < kSettleSteps) step_physics(1);
+  }
+  return worst;
+}
+
 bool Motion::track_arm(const std::vector<ArmConfiguration>& path, double speed_scale) {
   const Clock::time_point start = Clock::now();
   std::vector<Eigen::VectorXd> points;
@@ -129,17 +144,8 @@ bool Motion::track_arm(const std::vector<ArmConfiguration>& path, double speed_s
     if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
   }
   const ArmConfiguration& goal = path.back();
-  size_t worst = 0;
-  double error = 0;
-  for (int i = 0; i <= kSettleSteps; ++i) {
-    const ArmConfiguration now = arm_configuration(world_);
-    error = 0;
-    for (size_t k = 0; k < goal.size(); ++k) {
-      if (std::abs(now[k] - goal[k]) > error) error = std::abs(now[k] - goal[k]), worst = k;
-    }
-    if (error < kArmTolerance) return true;
-    if (i < kSettleSteps) step_physics(1);
-  }
+  const size_t worst = settle_arm(goal, kArmTolerance);
+  if (worst == goal.size()) return true;
   // Which joint lagged, and by how much, tells a blocked arm from a weak one.
   const char* name = mj_id2name(world_.model(), mjOBJ_JOINT, joints[worst]->joint);
   return fail(PrimitiveStatus::motion_planning_failure,
@@ -314,8 +320,10 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
     // Stop pressing: hold where the arm is.
     const ArmConfiguration now = arm_configuration(world_);
     for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], now[k]);
-  } else {
-    step_physics(3);  // let the controllers catch up with the last waypoint
+  } else if (!result_.diverged) {
+    // The controllers lag the waypoints: let the arm arrive where the line
+    // ends (a grasp closed short of it closes on nothing).
+    settle_arm(path.back(), kLineTolerance);
   }
   return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
          fail(PrimitiveStatus::motion_planning_failure,

@@ -58,6 +58,10 @@ class Motion {
  private:
   void step_physics(int env_steps);  // with divergence bookkeeping
   bool hand_in_contact() const;
+  // Steps until the torso and arm are within `tolerance` (rad) of `goal`, at
+  // most kSettleSteps control steps; goal.size() when they are, else the
+  // joint furthest from it.
+  size_t settle_arm(const ArmConfiguration& goal, double tolerance);
   bool track_arm(const std::vector<ArmConfiguration>& path, double max_speed);
 
   World& world_;
