@@ -7,6 +7,8 @@
 #include <span>
 #include <thread>
 
+#include <mujoco/mujoco.h>
+
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
 #include "env/world/error.hpp"
@@ -187,7 +189,8 @@ nlohmann::json modality_costs(const std::string& scene, const BenchOptions& o) {
 
 // The scripted expert's primitive steps, timed one by one: wall time of the
 // env step (no rendering: the state observation only), and the primitive's own
-// planning and execution time, per primitive type and overall.
+// planning and execution time, and the seconds it simulated, per primitive
+// type and overall.
 nlohmann::json primitive_rates(const std::string& activity, ExecutionMode mode, int episodes) {
   EnvConfig config;
   config.activity = activity;
@@ -199,7 +202,7 @@ nlohmann::json primitive_rates(const std::string& activity, ExecutionMode mode, 
   const ScriptedExpert expert(env);
   struct Sum {
     int n = 0;
-    double wall = 0, planning = 0, execution = 0;
+    double wall = 0, planning = 0, execution = 0, simulated = 0;
   };
   std::vector<Sum> sums(kPrimitiveTypes + 1);  // the last: all primitives
   for (int e = 0; e < episodes; ++e) {
@@ -216,6 +219,7 @@ nlohmann::json primitive_rates(const std::string& activity, ExecutionMode mode, 
         sum->wall += wall;
         sum->planning += env.last_primitive().planning_seconds;
         sum->execution += env.last_primitive().execution_seconds;
+        sum->simulated += static_cast<double>(env.last_primitive().physics_steps) * env.world().model()->opt.timestep;
       }
       done = r.terminated || r.truncated;
     }
@@ -228,7 +232,8 @@ nlohmann::json primitive_rates(const std::string& activity, ExecutionMode mode, 
         {"n", s.n},
         {"steps_per_second", s.n / s.wall},
         {"planning_ms", 1e3 * s.planning / s.n},
-        {"execution_ms", 1e3 * s.execution / s.n}};
+        {"execution_ms", 1e3 * s.execution / s.n},
+        {"simulated_s", s.simulated / s.n}};
   }
   return out;
 }
@@ -375,7 +380,8 @@ std::string format_primitives(const nlohmann::json& r) {
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "\nPrimitive action space: the scripted expert, %d episodes per activity and mode, one thread;\n"
-                "primitive steps per second (state observation, no rendering), planning / execution ms per primitive\n",
+                "primitive steps per second (state observation, no rendering), planning / execution ms per primitive;\n"
+                "physical rows: then the seconds of physics one primitive simulates\n",
                 r["primitive_episodes"].get<int>());
   text += buf;
   std::snprintf(buf, sizeof buf, "%-18s%-10s", "activity", "mode");
@@ -397,6 +403,18 @@ std::string format_primitives(const nlohmann::json& r) {
           const auto& x = rows[c];
           std::snprintf(buf, sizeof buf, "%7.1f/s %5.0f/%-5.0f", x["steps_per_second"].get<double>(),
                         x["planning_ms"].get<double>(), x["execution_ms"].get<double>());
+        }
+        text += buf;
+      }
+      text += "\n";
+      if (mode != to_string(ExecutionMode::physical)) continue;
+      std::snprintf(buf, sizeof buf, "%-18s%-10s", "", "simulated");
+      text += buf;
+      for (const char* c : columns) {
+        if (!rows.contains(c)) {
+          std::snprintf(buf, sizeof buf, "%20s", "-");
+        } else {
+          std::snprintf(buf, sizeof buf, "%18.2fs ", rows[c]["simulated_s"].get<double>());
         }
         text += buf;
       }
