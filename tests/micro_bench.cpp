@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
+#include <chrono>
 #include <string>
 
 #include "env/env.hpp"
@@ -103,6 +104,38 @@ void reset_activity(benchmark::State& state, const std::string& activity) {
 BENCHMARK_CAPTURE(reset_activity, store_decoration, std::string("store_decoration"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(reset_activity, collect_trash, std::string("collect_trash"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// One physics step of an activity's scene at rest after a seeded reset, with
+// MuJoCo's own timers: the shares of collision detection and of the
+// constraint solver in a step, and the contacts per step.
+mjtNum microseconds() {
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+void physics_step_activity(benchmark::State& state, const std::string& activity) {
+  mjcb_time = microseconds;
+  EnvConfig c;
+  c.activity = activity;
+  c.action_space = "primitives";
+  c.observations = {"is_grasping"};
+  Env env(c);
+  env.reset(0);
+  const mjModel* m = env.world().model();
+  mjData* d = env.world().data();
+  for (mjTimerStat& t : d->timer) t = {};
+  double contacts = 0;
+  for (auto _ : state) {
+    mj_step(m, d);
+    contacts += d->ncon;
+  }
+  const double step = d->timer[mjTIMER_STEP].duration;
+  state.counters["collision_share"] = d->timer[mjTIMER_POS_COLLISION].duration / step;
+  state.counters["solver_share"] = d->timer[mjTIMER_CONSTRAINT].duration / step;
+  state.counters["contacts"] = contacts / static_cast<double>(state.iterations());
+  mjcb_time = nullptr;
+}
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"))->Unit(benchmark::kMillisecond);
 
 // A whole env step (physics x4 + render + state), as `chore bench` times it.
 void BM_EnvStep(benchmark::State& state) {
