@@ -23,7 +23,7 @@ ArmCollisionChecker::ArmCollisionChecker(const World& world)
   const mjModel* m = world.model();
   const Robot& r = *world.robot();
   // Which geoms move with the robot: its own, and for the clearance those
-  // below the torso joint, and the load's.
+  // below the torso joint, and the load's (its root body's).
   std::vector<unsigned char> mine(m->ngeom, 0);
   moved_by_arm_.assign(m->ngeom, 0);
   const int torso = m->jnt_bodyid[r.torso.joint];
@@ -36,9 +36,14 @@ ArmCollisionChecker::ArmCollisionChecker(const World& world)
     moved_by_arm_[g] = b == torso;
   }
   for (int g : kinematics_.load_geoms()) {
+    // Of a load of several bodies (a cloth) only the part in the hand: the
+    // rest hangs, drapes over what it meets and gives way.
+    const int b = m->geom_bodyid[g];
+    mine[g] = 1;
+    if (m->body_rootid[b] != b) continue;
     robot_and_load_.push_back(g);
     hand_and_load_.push_back(g);
-    mine[g] = moved_by_arm_[g] = 1;
+    moved_by_arm_[g] = 1;
   }
   mju_copy(data_->geom_xpos, world.data()->geom_xpos, 3 * m->ngeom);
   mju_copy(data_->geom_xmat, world.data()->geom_xmat, 9 * m->ngeom);

@@ -25,7 +25,8 @@ struct ArmPath {
 // geoms (primitives/kinematics.hpp), MuJoCo's narrow-phase functions test them
 // against the geoms whose boxes they reach. The world's scratch data holds the
 // geom poses; the world itself is never touched. Contacts within the
-// robot (and with its load) do not count.
+// robot (and with its load) do not count; of a cloth load only the part in
+// the hand counts (the rest drapes and gives way).
 class ArmCollisionChecker {
  public:
   explicit ArmCollisionChecker(const World& world);
