@@ -218,14 +218,15 @@ Footprint::Footprint(const World& world)
   const Robot& r = *world.robot();
   const Pose2 base = world.base_pose();
   // The hand and its load: the rest of the arm stays over the base in the
-  // tucked and carry poses (and the body disk covers it).
+  // tucked and carry poses (and the body disk covers it). Of a cloth only
+  // the part in the hand: the rest hangs and gives way.
   const int hand = r.gripper_body;
   const int held = world.carried_object() >= 0 ? world.scene().objects()[world.carried_object()].body : -2;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
   double bottom = 1e9;
   for (int g = 0; g < m->ngeom; ++g) {
     const int b = m->geom_bodyid[g];
-    if (!descends_from(m, b, hand) && m->body_rootid[b] != held) continue;
+    if (!descends_from(m, b, hand) && b != held) continue;
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
     grow_robot_frame(world, g, base, lo, hi);
     bottom = std::min(bottom, geom_aabb(world, g).lo.z());
