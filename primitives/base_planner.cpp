@@ -245,6 +245,41 @@ bool Footprint::free(const Pose2& p) const {
   return arm_->free(p.x + c * arm_centre_.x() - s * arm_centre_.y(), p.y + s * arm_centre_.x() + c * arm_centre_.y());
 }
 
+namespace {
+
+// The base is holonomic: its heading need not follow the planner's random
+// samples (a 5 m path turned up to 5 rad). Where the footprint allows, the
+// heading turns the short way from start to goal in proportion to the
+// distance driven.
+void straighten_headings(const Footprint& footprint, std::vector<Pose2>& path) {
+  if (path.size() < 2) return;
+  std::vector<double> along(path.size(), 0.0);
+  for (size_t k = 1; k < path.size(); ++k) {
+    along[k] = along[k - 1] + std::hypot(path[k].x - path[k - 1].x, path[k].y - path[k - 1].y);
+  }
+  const double turn = std::remainder(path.back().yaw - path.front().yaw, 2 * M_PI);
+  std::vector<Pose2> straight = path;
+  for (size_t k = 0; k < path.size(); ++k) {
+    const double f = along.back() > 0 ? along[k] / along.back() : static_cast<double>(k) / (path.size() - 1);
+    straight[k].yaw = wrap(path.front().yaw + f * turn);
+  }
+  straight.back().yaw = path.back().yaw;
+  constexpr double kYawStep = 0.05;  // rad: the hand, ~0.7 m out, moves a cell
+  for (size_t k = 1; k < straight.size(); ++k) {
+    const Pose2& a = straight[k - 1];
+    const double dyaw = std::remainder(straight[k].yaw - a.yaw, 2 * M_PI);
+    const int n = 1 + static_cast<int>(std::max(along[k] - along[k - 1], 0.0) / OccupancyMap::kResolution +
+                                       std::abs(dyaw) / kYawStep);
+    for (int i = 1; i <= n; ++i) {
+      const double f = static_cast<double>(i) / n;
+      if (!footprint.free({a.x + f * (straight[k].x - a.x), a.y + f * (straight[k].y - a.y), a.yaw + f * dyaw})) return;
+    }
+  }
+  path = std::move(straight);
+}
+
+}  // namespace
+
 BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal,
                         uint64_t seed, unsigned iterations) {
   namespace ob = ompl::base;
@@ -297,6 +332,7 @@ BasePath plan_base_path(const World& world, const Footprint& footprint, const Po
     const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
     out.waypoints.push_back({se2->getX(), se2->getY(), se2->getYaw()});
   }
+  straighten_headings(footprint, out.waypoints);
   out.success = true;
   return out;
 }

@@ -19,7 +19,7 @@ constexpr int kSubsteps = 4;                // physics steps per control step, a
 constexpr double kControlDt = kSubsteps / 120.0;
 constexpr double kLineSpacing = 0.01;       // m between IK waypoints of a line
 constexpr double kArmSpeed = 1.5, kArmAcceleration = 4.0;     // rad/s, rad/s^2 (torso: m/s, a tenth)
-constexpr double kBaseSpeed = 0.8, kBaseAcceleration = 1.0;   // m/s, m/s^2 (heading: 2x, rad)
+constexpr double kBaseSpeed = 1.0, kBaseAcceleration = 1.0;   // m/s (the Tiago's top speed), m/s^2 (heading: 2x, rad)
 constexpr double kArmTolerance = 0.03;      // rad: a motion has arrived
 constexpr double kBaseTolerance = 0.04;     // m (and 2x in rad)
 constexpr double kLineTolerance = 0.01;     // rad: a line's last waypoint is reached
@@ -33,28 +33,25 @@ Eigen::VectorXd to_vector(const ArmConfiguration& q) {
 }
 
 
-// Each joint's speed limit is also what its actuator sustains against the
-// joint's damping (forcerange / damping, with a margin for gravity and
-// acceleration): faster plans leave the shoulder lagging by a tenth of a radian
-// after a long move (0.67 rad/s is all arm_1's 40 N m drive against 60 N m s).
-TrajectoryLimits arm_limits(const World& world, double speed_scale) {
-  constexpr double kDriveMargin = 0.8;
-  const mjModel* m = world.model();
-  const auto joints = world.robot()->torso_and_arm();
+// The drives feed forward the damping force at the commanded velocity
+// (World::command_position), so the speed limit is the robot's, not what a
+// servo sustains against the joint's damping (0.67 rad/s for arm_1).
+TrajectoryLimits arm_limits(double speed_scale) {
   TrajectoryLimits limits;
   limits.max_velocity = Eigen::VectorXd::Constant(1 + Robot::kArmJoints, kArmSpeed * speed_scale);
   limits.max_acceleration = Eigen::VectorXd::Constant(1 + Robot::kArmJoints, kArmAcceleration);
   limits.max_velocity[0] *= 0.1;  // the torso lifts in metres
   limits.max_acceleration[0] *= 0.1;
-  for (size_t k = 1; k < joints.size(); ++k) {
-    const double damping = m->dof_damping[joints[k]->dof];
-    const double force = m->actuator_forcelimited[joints[k]->actuator] ? m->actuator_forcerange[2 * joints[k]->actuator + 1] : 0;
-    if (damping > 0 && force > 0) {
-      const auto i = static_cast<Eigen::Index>(k);
-      limits.max_velocity[i] = std::min(limits.max_velocity[i], kDriveMargin * force / damping);
-    }
-  }
   return limits;
+}
+
+// Commands the torso and arm to `q`, reached from `previous` in `seconds`.
+void command_arm(World& world, const Eigen::VectorXd& q, const Eigen::VectorXd& previous, double seconds) {
+  const auto joints = world.robot()->torso_and_arm();
+  for (size_t k = 0; k < joints.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    world.command_position(*joints[k], q[i], (q[i] - previous[i]) / seconds);
+  }
 }
 
 }  // namespace
@@ -134,16 +131,17 @@ bool Motion::track_arm(const std::vector<ArmConfiguration>& path, double speed_s
   for (const ArmConfiguration& q : path) points.push_back(to_vector(q));
   ArmCollisionChecker checker(world_);
   const Trajectory trajectory = make_trajectory(
-      points, arm_limits(world_, speed_scale), kControlDt, 0.05,
+      points, arm_limits(speed_scale), kControlDt, 0.05,
       [&checker](const Eigen::VectorXd& q) { return !checker.collides(q.data()); });
   result_.planning_seconds += since(start);
   const auto joints = world_.robot()->torso_and_arm();
-  for (const Eigen::VectorXd& q : trajectory.samples) {
-    for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], q[static_cast<Eigen::Index>(k)]);
+  for (size_t i = 0; i < trajectory.samples.size(); ++i) {
+    command_arm(world_, trajectory.samples[i], trajectory.samples[i > 0 ? i - 1 : 0], kControlDt);
     step_physics(1);
     if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
   }
   const ArmConfiguration& goal = path.back();
+  for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], goal[k]);  // hold still
   const size_t worst = settle_arm(goal, kArmTolerance);
   if (worst == goal.size()) return true;
   // Which joint lagged, and by how much, tells a blocked arm from a weak one.
@@ -307,7 +305,7 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   for (size_t i = 1; i < path.size() && !touched_; ++i) {
     // Several waypoints per control step when fast, several steps per waypoint when slow.
     for (int s = 0; s < per_waypoint; ++s) {
-      for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], path[i][k]);
+      command_arm(world_, to_vector(path[i]), to_vector(path[i - 1]), per_waypoint * kControlDt);
       step_physics(1);
       if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
       if (until_contact && hand_in_contact()) {
@@ -323,6 +321,7 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   } else if (!result_.diverged) {
     // The controllers lag the waypoints: let the arm arrive where the line
     // ends (a grasp closed short of it closes on nothing).
+    for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], path.back()[k]);
     settle_arm(path.back(), kLineTolerance);
   }
   return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||

@@ -852,6 +852,12 @@ PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, 
   if (object < 0 || object >= static_cast<int>(world.scene().objects().size())) {
     throw Error("primitives: no object " + std::to_string(object) + " in scene '" + world.scene().name() + "'");
   }
+  struct Wake {
+    World& world;
+    bool on;
+    ~Wake() { if (on) world.set_sleeping(false); }
+  } wake{world, options.mode == ExecutionMode::physical && options.sleeping && !world.sleeping()};
+  if (wake.on) world.set_sleeping(true);
   return Executor(world, type, object, seed, options).run();
 }
 

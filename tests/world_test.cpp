@@ -119,6 +119,78 @@ TEST(World, ObjectsOverTheMassLimitAreRefused) {
   EXPECT_LT(w.grasped_object(), 0);
 }
 
+// The free joint's position of an object: x, y, z, then the quaternion.
+const double* object_qpos(const World& w, const char* name) {
+  const mjModel* m = w.model();
+  return w.data()->qpos + m->jnt_qposadr[m->body_jntadr[w.scene().find_object(name)->body]];
+}
+
+int object_index(const World& w, const char* name) {
+  return static_cast<int>(w.scene().find_object(name) - w.scene().objects().data());
+}
+
+bool in_contact_list(const World& w, const char* name) {
+  const mjModel* m = w.model();
+  const int body = w.scene().find_object(name)->body;
+  for (int c = 0; c < w.data()->ncon; ++c) {
+    if (m->geom_bodyid[w.data()->contact[c].geom1] == body || m->geom_bodyid[w.data()->contact[c].geom2] == body) return true;
+  }
+  return false;
+}
+
+TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndWakeWithTheirContacts) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.world();
+  // A block 0.45 m in front of the robot (within its reach) and one 2.8 m away.
+  double* near = w.data()->qpos + (object_qpos(w, "heavy_block_1") - w.data()->qpos);
+  near[0] = 0.45, near[1] = 0;
+  mj_forward(w.model(), w.data());
+  w.step(60);  // both come to rest on the floor
+  const std::vector<double> far_rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
+  ASSERT_TRUE(in_contact_list(w, "small_block_1"));
+
+  w.set_sleeping(true);
+  w.step(120);
+  EXPECT_TRUE(w.asleep(object_index(w, "small_block_1")));
+  EXPECT_TRUE(w.asleep(object_index(w, "red_panel_1")));  // furniture nothing moves near
+  EXPECT_FALSE(w.asleep(object_index(w, "heavy_block_1")));  // within the robot's region
+  EXPECT_EQ(w.sleepers(), 3);
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(object_qpos(w, "small_block_1")[k], far_rest[k]) << k;  // held exactly
+  EXPECT_FALSE(in_contact_list(w, "small_block_1"));  // out of collision detection
+  EXPECT_TRUE(in_contact_list(w, "heavy_block_1"));
+
+  w.set_sleeping(false);  // everyone awake, every contact back
+  EXPECT_EQ(w.sleepers(), 0);
+  EXPECT_TRUE(in_contact_list(w, "small_block_1"));
+}
+
+TEST(Sleeping, AMovingObjectWakesWhatItWouldHit) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.world();
+  w.step(60);
+  w.set_sleeping(true);
+  w.step(4);
+  ASSERT_TRUE(w.asleep(object_index(w, "heavy_block_1")));  // at (-2, 2), 25 kg
+  // Slide the small block along the floor at it, 15 cm between their faces.
+  w.set_sleeping(false);
+  const mjModel* m = w.model();
+  const int small = w.scene().find_object("small_block_1")->body;
+  double* q = w.data()->qpos + m->jnt_qposadr[m->body_jntadr[small]];
+  q[0] = -2.0, q[1] = 1.8;
+  w.data()->qvel[m->jnt_dofadr[m->body_jntadr[small]] + 1] = 2.0;
+  mj_forward(w.model(), w.data());
+  w.set_sleeping(true);
+  w.step(2);
+  EXPECT_FALSE(w.asleep(object_index(w, "heavy_block_1")));  // woken before the blocks meet
+  w.step(58);
+  // The blocks met: the small one stopped at the heavy one's face (5 cm
+  // cubes, centres 5 cm apart) instead of passing through it.
+  EXPECT_LT(object_qpos(w, "small_block_1")[1], object_qpos(w, "heavy_block_1")[1] - 0.045);
+  EXPECT_GT(object_qpos(w, "small_block_1")[1], 1.85);
+}
+
 TEST(World, ZeroActionHoldsTheRobotStill) {
   Env env(box_room_config());
   auto start = env.reset(0);

@@ -377,7 +377,7 @@ std::string format_vector_env(const nlohmann::json& r) {
 
 std::string format_primitives(const nlohmann::json& r) {
   std::string text;
-  char buf[256];
+  char buf[512];
   std::snprintf(buf, sizeof buf,
                 "\nPrimitive action space: the scripted expert, %d episodes per activity and mode, one thread;\n"
                 "primitive steps per second (state observation, no rendering), planning / execution ms per primitive;\n"

@@ -35,9 +35,12 @@ mjData* World::scratch() const {
 
 void World::reset(const Pose2& base) {
   release();
+  if (sleeping_) sleeping_->wake_all();
+  sleeping_on_ = false;
   states_.reset();
   mj_resetData(model_, data_);
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
+  velocity_command_.assign(model_->nu, 0.0);
   if (robot_) {
     const Robot& r = *robot_;
     data_->qpos[r.base_x.qpos] = base.x;
@@ -75,8 +78,9 @@ void World::command_base_velocity(double forward, double left, double turn) {
   base_command_[2] = turn;
 }
 
-void World::command_position(const RobotJoint& joint, double target) {
+void World::command_position(const RobotJoint& joint, double target, double velocity) {
   data_->ctrl[joint.actuator] = std::clamp(target, joint.low, joint.high);
+  velocity_command_[joint.actuator] = velocity;
 }
 
 double World::commanded_position(const RobotJoint& joint) const {
@@ -104,7 +108,9 @@ World::StepReport World::step(int substeps) {
       // servos only correct tracking errors instead of also carrying the arm,
       // so trajectories are followed closely rather than lagging (and arrive
       // within the primitives' settling time). qfrc_bias is from the last step.
-      for (const RobotJoint* j : robot_->torso_and_arm()) data_->qfrc_applied[j->dof] = data_->qfrc_bias[j->dof];
+      for (const RobotJoint* j : robot_->torso_and_arm()) {
+        data_->qfrc_applied[j->dof] = data_->qfrc_bias[j->dof] + model_->dof_damping[j->dof] * velocity_command_[j->actuator];
+      }
       // And the carried load's weight, a known payload, at its centre of mass.
       if (const int load = carried_object(); load >= 0) {
         const int body = scene_->objects()[load].body;
@@ -121,7 +127,9 @@ World::StepReport World::step(int substeps) {
              data_->warning[mjWARN_BADQACC].number;
     };
     const int bad_before = bad_state_count();
+    if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
     mj_step(model_, data_);
+    if (sleeping_on_) sleeping_->unmask(model_, data_);
     if (bad_state_count() != bad_before) {
       // MuJoCo has already reset the state; the episode cannot go on.
       report.diverged = true;
@@ -133,6 +141,17 @@ World::StepReport World::step(int substeps) {
   }
   if (state_updates_) states_.after_env_step(*this, substeps * model_->opt.timestep);
   return report;
+}
+
+void World::set_sleeping(bool enabled) {
+  if (enabled == sleeping_on_) return;
+  sleeping_on_ = enabled;
+  if (enabled) {
+    if (!sleeping_) sleeping_.emplace(*scene_, model_, robot_ ? model_->body_rootid[robot_->gripper_body] : -1);
+    return;
+  }
+  sleeping_->wake_all();
+  mj_forward(model_, data_);
 }
 
 void World::update_grasp(StepReport& report) {
@@ -253,6 +272,7 @@ void World::set_robot_configuration(const Pose2& base, const double* torso_and_a
   for (size_t k = 0; k < joints.size(); ++k) {
     data_->qpos[joints[k]->qpos] = torso_and_arm[k];
     data_->ctrl[joints[k]->actuator] = torso_and_arm[k];
+    velocity_command_[joints[k]->actuator] = 0;
   }
   for (const RobotJoint* j : {&r.base_x, &r.base_y, &r.base_yaw}) data_->qvel[j->dof] = 0;
   for (const RobotJoint* j : joints) data_->qvel[j->dof] = 0;

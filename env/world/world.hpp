@@ -12,6 +12,7 @@
 #include "env/world/object_states.hpp"
 #include "env/world/robot.hpp"
 #include "env/world/scene.hpp"
+#include "env/world/sleeping.hpp"
 
 struct mjData_;
 
@@ -49,8 +50,12 @@ class World {
   // Robot commands, held until changed. Base velocity is in the robot frame
   // (m/s, m/s, rad/s) and is re-projected to the world every physics step.
   void command_base_velocity(double forward, double left, double turn);
-  // Position target of an actuated joint, clamped to its range.
-  void command_position(const RobotJoint& joint, double target);
+  // Position target of an actuated joint, clamped to its range, and the
+  // velocity it is moving at (torso and arm): the drive feeds forward the
+  // force the joint's damping takes at that velocity, as it does gravity, so
+  // the servo corrects only the tracking error (a trajectory's speed is not
+  // capped at force limit / damping). 0: holding still.
+  void command_position(const RobotJoint& joint, double target, double velocity = 0);
   double commanded_position(const RobotJoint& joint) const;
 
   struct StepReport {
@@ -71,6 +76,17 @@ class World {
   // Off: states stay as they are (Table A.10's "- Object State Update" row).
   void set_state_updates(bool enabled) { state_updates_ = enabled; }
   bool state_updates() const { return state_updates_; }
+
+  // Sleeping (env/world/sleeping.hpp): on, physics skips the collisions of
+  // objects at rest away from the robot and holds them still; only physics
+  // may move objects then. Turning it off
+  // wakes them all and recomputes the contacts (mj_forward), so that contact
+  // predicates read every contact again. reset() turns it off.
+  void set_sleeping(bool enabled);
+  bool sleeping() const { return sleeping_on_; }
+  // Objects asleep after the last step.
+  int sleepers() const { return sleeping_ ? sleeping_->sleepers() : 0; }
+  bool asleep(int object) const { return sleeping_on_ && sleeping_->asleep(object); }
 
   // Index into scene().objects() of the object held by the gripper, or -1.
   // A drawer or door held by its handle counts as grasping its object.
@@ -111,9 +127,12 @@ class World {
   int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
+  std::optional<Sleeping> sleeping_;  // made on first use
+  bool sleeping_on_ = false;
   int texture_version_ = 0;
   mutable mjData_* scratch_ = nullptr;
-  std::vector<double> payload_jacobian_;  // 3 x nv, for the load's gravity compensation
+  std::vector<double> payload_jacobian_;
+  std::vector<double> velocity_command_;  // per actuator, m/s or rad/s  // 3 x nv, for the load's gravity compensation
 };
 
 }  // namespace chore
