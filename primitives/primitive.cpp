@@ -856,7 +856,7 @@ PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, 
     World& world;
     bool on;
     ~Wake() { if (on) world.set_sleeping(false); }
-  } wake{world, options.mode == ExecutionMode::physical && options.sleeping && !world.sleeping()};
+  } wake{world, options.sleeping && !world.sleeping()};
   if (wake.on) world.set_sleeping(true);
   return Executor(world, type, object, seed, options).run();
 }

@@ -279,7 +279,9 @@ void World::set_robot_configuration(const Pose2& base, const double* torso_and_a
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
   mj_kinematics(model_, data_);
   carry_grasped(data_);
+  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
   mj_forward(model_, data_);
+  if (sleeping_on_) sleeping_->unmask(model_, data_);
 }
 
 }  // namespace chore

@@ -100,7 +100,8 @@ class World {
 
   // Kinematic move (symbolic primitives): the base, torso and arm jump to the
   // given joint values, their controllers hold them there, velocities are zero,
-  // and a held object moves with the gripper. Contacts are recomputed.
+  // and a held object moves with the gripper. Contacts are recomputed (those
+  // of the awake objects while sleeping is on).
   void set_robot_configuration(const Pose2& base, const double* torso_and_arm);
   // Moves the held free object, in `d` after mj_kinematics, to where the grasp
   // holds it relative to the gripper (then kinematics must run again).
