@@ -111,7 +111,10 @@ BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))->Arg(
 mjtNum microseconds() {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-void physics_step_activity(benchmark::State& state, const std::string& activity) {
+// One physics step of an activity's scene at rest after reset 0 (World::step:
+// mj_step with the robot's controllers, grasp and state rules), with objects
+// asleep as during a primitive (env/world/sleeping.hpp) or not.
+void physics_step_activity(benchmark::State& state, const std::string& activity, bool sleeping) {
   mjcb_time = microseconds;
   EnvConfig c;
   c.activity = activity;
@@ -119,23 +122,30 @@ void physics_step_activity(benchmark::State& state, const std::string& activity)
   c.observations = {"is_grasping"};
   Env env(c);
   env.reset(0);
-  const mjModel* m = env.world().model();
-  mjData* d = env.world().data();
+  World& w = env.world();
+  w.set_sleeping(sleeping);
+  w.step(1);
+  mjData* d = w.data();
   for (mjTimerStat& t : d->timer) t = {};
   double contacts = 0;
   for (auto _ : state) {
-    mj_step(m, d);
+    w.step(1);
     contacts += d->ncon;
   }
   const double step = d->timer[mjTIMER_STEP].duration;
   state.counters["collision_share"] = d->timer[mjTIMER_POS_COLLISION].duration / step;
   state.counters["solver_share"] = d->timer[mjTIMER_CONSTRAINT].duration / step;
   state.counters["contacts"] = contacts / static_cast<double>(state.iterations());
+  state.counters["asleep"] = w.sleepers();
+  state.counters["objects"] = static_cast<double>(w.scene().objects().size());
   mjcb_time = nullptr;
 }
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"), false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"), false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"), false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping, std::string("store_decoration"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash_sleeping, std::string("collect_trash"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping, std::string("clean_table"), true)->Unit(benchmark::kMillisecond);
 
 // A whole env step (physics x4 + render + state), as `chore bench` times it.
 void BM_EnvStep(benchmark::State& state) {
