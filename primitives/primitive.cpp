@@ -185,9 +185,11 @@ std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object) {
 
 // Where to wipe, densest dirt first: particles ordered by how many lie
 // within kPatchRadius of them (the strokes sweep about that far), each kept
-// unless within kPatchSpacing of one kept before. Particles themselves, not
-// the means of their neighbourhoods: a mean can lie beyond reach where every
-// particle does not. The top centre when clean.
+// unless within kPatchSpacing of one kept before; then the particles passed
+// over, so that a last reachable one beside an unreachable patch is still
+// aimed at. Particles themselves, not the means of their neighbourhoods: a
+// mean can lie beyond reach where every particle does not. The top centre
+// when clean.
 std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
   constexpr double kPatchRadius = 0.25, kPatchSpacing = 0.15;
   const std::vector<Eigen::Vector3d> particles = dirt_particles(w, object);
@@ -199,13 +201,14 @@ std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
     density.push_back({-n, i});
   }
   std::sort(density.begin(), density.end());
-  std::vector<Eigen::Vector3d> patches;
+  std::vector<Eigen::Vector3d> patches, passed;
   for (const auto& [count, i] : density) {
     const bool near_kept = std::any_of(patches.begin(), patches.end(), [&](const Eigen::Vector3d& kept) {
       return (kept - particles[i]).head<2>().norm() < kPatchSpacing;
     });
-    if (!near_kept) patches.push_back(particles[i]);
+    (near_kept ? passed : patches).push_back(particles[i]);
   }
+  patches.insert(patches.end(), passed.begin(), passed.end());
   return patches;
 }
 

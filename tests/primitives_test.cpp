@@ -239,6 +239,42 @@ TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {
   EXPECT_LT(stains(), static_cast<size_t>(ObjectStates::kCoveredParticles));
 }
 
+// Navigate aims at every dirt particle, the densest patches first: a
+// particle within reach beside a patch no base pose reaches (the last stains
+// mid-table after the strokes took the rest) is still found. Here the patch
+// is a particle 2 m above the table, 5 cm to the side of one within reach.
+TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) {
+  Env env(primitive_config("clean_table", ExecutionMode::symbolic));
+  const PrimitiveOptions symbolic{.mode = ExecutionMode::symbolic};
+  const auto navigate_with_stains = [&](const std::vector<Eigen::Vector3d>& particles) {
+    env.reset(3);
+    act(env, "navigate(rag.n.01_1)");
+    act(env, "pick(rag.n.01_1)");  // a tool in hand: navigate's purpose is wiping
+    World& w = env.world();
+    const int table = env.activity()->object("table.n.02_1");
+    EXPECT_GE(w.grasped_object(), 0);
+    w.states().state(table).dirt.at("stain") = particles;
+    return execute_primitive(w, PrimitiveType::navigate, table, 5, symbolic);
+  };
+  env.reset(3);
+  const std::vector<Eigen::Vector3d> all =
+      env.world().states().state(env.activity()->object("table.n.02_1")).dirt.at("stain");
+  std::optional<Eigen::Vector3d> reachable;
+  for (const Eigen::Vector3d& p : all) {
+    if (navigate_with_stains({p}).ok()) {
+      reachable = p;
+      break;
+    }
+  }
+  ASSERT_TRUE(reachable.has_value());
+  const Eigen::Vector3d above = *reachable + Eigen::Vector3d(0.05, 0, 2.0);
+  const PrimitiveResult alone = navigate_with_stains({above});
+  EXPECT_EQ(alone.status, PrimitiveStatus::motion_planning_failure) << alone.reason;
+  // Equally dense, the one above comes first (the patch), the other is passed over.
+  const PrimitiveResult both = navigate_with_stains({above, *reachable});
+  EXPECT_TRUE(both.ok()) << both.reason;
+}
+
 // What the robot could not reach from anywhere it can drive to, known cases:
 // a pumpkin whose only base poses within reach lie in the pocket between the
 // sofa, the coffee table and the wall
