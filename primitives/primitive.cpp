@@ -370,6 +370,7 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
   const Aabb box = object_aabb(w, object);
   const auto articulated = purpose == PrimitiveType::push ? articulation(w, object) : std::nullopt;
   const Room* room = w.scene().room_at(around[0].point.x(), around[0].point.y());
+  const ArmConfiguration& travel = w.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration;
   for (int i = 0; i < kDrawsPerSample * samples && i - tally.blocked < samples; ++i) {
     const Approach& a = around[i % around.size()];
     Pose2 p;
@@ -398,7 +399,11 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
       const double spread = purpose == PrimitiveType::wipe ? kWipeYawSpread : M_PI;
       p.yaw = std::atan2(-s, -c) + spread * (unit(rng) - 0.5);
     }
-    if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated))) {
+    // The arm arrives as it drives (tucked, or carrying): where that pose
+    // already touches a wall, the footprint's disks missed the elbow, and the
+    // arm has no room to swing to its work (a dip beside the wall).
+    if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated)) ||
+        checker.collides(travel.data(), &p)) {
       ++tally.blocked;
     } else if (w.scene().room_at(p.x, p.y) != room) {
       ++tally.elsewhere;

@@ -9,6 +9,8 @@
 #include "env/vector_env.hpp"
 #include "env/world/predicates.hpp"
 #include "policies/expert.hpp"
+#include "primitives/arm_planner.hpp"
+#include "primitives/motion.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -273,6 +275,20 @@ TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) 
   // Equally dense, the one above comes first (the patch), the other is passed over.
   const PrimitiveResult both = navigate_with_stains({above, *reachable});
   EXPECT_TRUE(both.ok()) << both.reason;
+}
+
+// navigate keeps base poses where the arm, as it drives, touches nothing: the
+// footprint's disks missed the elbow, and beside the wall by the bucket the
+// carry pose had no room (seed 60: the dip that followed found no arm path).
+TEST(Primitives, NavigateArrivesWhereTheArmItDrivesWithIsFree) {
+  for (uint64_t seed : {60, 68}) {
+    Env env(primitive_config("clean_table", ExecutionMode::symbolic));
+    env.reset(seed);
+    ASSERT_EQ(act(env, "navigate(rag.n.01_1)").info.primitive_status, 0);
+    ASSERT_EQ(act(env, "pick(rag.n.01_1)").info.primitive_status, 0);
+    ASSERT_EQ(act(env, "navigate(bucket.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_FALSE(arm_in_collision(env.world(), kCarryConfiguration)) << "seed " << seed;
+  }
 }
 
 // What the robot could not reach from anywhere it can drive to, known cases:
