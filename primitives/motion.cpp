@@ -54,6 +54,12 @@ void command_arm(World& world, const Eigen::VectorXd& q, const Eigen::VectorXd& 
   }
 }
 
+// Holds the torso and arm at `q`, still.
+void hold_arm(World& world, const ArmConfiguration& q) {
+  const auto joints = world.robot()->torso_and_arm();
+  for (size_t k = 0; k < joints.size(); ++k) world.command_position(*joints[k], q[k]);
+}
+
 }  // namespace
 
 // Tucked: Robot::kTuckedArm. Untucked: the hand 0.6 m ahead at 0.8 m, pointing
@@ -134,18 +140,17 @@ bool Motion::track_arm(const std::vector<ArmConfiguration>& path, double speed_s
       points, arm_limits(speed_scale), kControlDt, 0.05,
       [&checker](const Eigen::VectorXd& q) { return !checker.collides(q.data()); });
   result_.planning_seconds += since(start);
-  const auto joints = world_.robot()->torso_and_arm();
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     command_arm(world_, trajectory.samples[i], trajectory.samples[i > 0 ? i - 1 : 0], kControlDt);
     step_physics(1);
     if (result_.diverged) return fail(PrimitiveStatus::motion_planning_failure, "physics diverged");
   }
   const ArmConfiguration& goal = path.back();
-  for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], goal[k]);  // hold still
+  hold_arm(world_, goal);
   const size_t worst = settle_arm(goal, kArmTolerance);
   if (worst == goal.size()) return true;
   // Which joint lagged, and by how much, tells a blocked arm from a weak one.
-  const char* name = mj_id2name(world_.model(), mjOBJ_JOINT, joints[worst]->joint);
+  const char* name = mj_id2name(world_.model(), mjOBJ_JOINT, world_.robot()->torso_and_arm()[worst]->joint);
   return fail(PrimitiveStatus::motion_planning_failure,
               "the arm did not reach its goal (blocked): " + std::string(name ? name : "?") + " " +
                   std::to_string(goal[worst] - arm_configuration(world_)[worst]) + " rad short");
@@ -300,7 +305,6 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   }
   // Each waypoint is kLineSpacing apart: reached in kLineSpacing / speed seconds.
   const double waypoint_time = kLineSpacing / speed;
-  const auto joints = world_.robot()->torso_and_arm();
   const int per_waypoint = std::max(1, static_cast<int>(std::round(waypoint_time / kControlDt)));
   for (size_t i = 1; i < path.size() && !touched_; ++i) {
     // Several waypoints per control step when fast, several steps per waypoint when slow.
@@ -316,12 +320,11 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   }
   if (touched_) {
     // Stop pressing: hold where the arm is.
-    const ArmConfiguration now = arm_configuration(world_);
-    for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], now[k]);
+    hold_arm(world_, arm_configuration(world_));
   } else if (!result_.diverged) {
     // The controllers lag the waypoints: let the arm arrive where the line
     // ends (a grasp closed short of it closes on nothing).
-    for (size_t k = 0; k < joints.size(); ++k) world_.command_position(*joints[k], path.back()[k]);
+    hold_arm(world_, path.back());
     settle_arm(path.back(), kLineTolerance);
   }
   return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||

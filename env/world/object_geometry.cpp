@@ -7,12 +7,6 @@
 
 namespace chore {
 
-double Aabb::gap(const Aabb& a, const Aabb& b) {
-  const Eigen::Vector3d d =
-      (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Eigen::Vector3d::Zero());
-  return d.norm();
-}
-
 Aabb geom_aabb(const World& world, int g) {
   const mjModel* m = world.model();
   const mjData* d = world.data();

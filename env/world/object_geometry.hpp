@@ -7,25 +7,10 @@
 
 #include <vector>
 
+#include "env/world/aabb.hpp"
 #include "env/world/world.hpp"
 
 namespace chore {
-
-struct Aabb {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
-
-  Eigen::Vector3d center() const { return (lo + hi) / 2; }
-  Eigen::Vector3d extent() const { return hi - lo; }
-  bool contains(const Eigen::Vector3d& p) const {
-    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
-  }
-  void grow(const Aabb& other) {
-    lo = lo.cwiseMin(other.lo);
-    hi = hi.cwiseMax(other.hi);
-  }
-  // Euclidean distance between the closest points of two boxes (0 if they overlap).
-  static double gap(const Aabb& a, const Aabb& b);
-};
 
 // World-frame box of one geom (primitive shapes; meshes by their bounding sphere).
 Aabb geom_aabb(const World& world, int geom);

@@ -22,10 +22,6 @@ Eigen::Vector3d to_world(const World& w, int object, const Eigen::Vector3d& loca
   return Eigen::Vector3d(x[0], x[1], x[2]) + r * local;
 }
 
-bool overlaps(const Aabb& a, const Aabb& b) {
-  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
-}
-
 }  // namespace
 
 void ObjectStates::configure(int object, const ObjectAbilities& abilities) {
@@ -64,7 +60,7 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
     water.hi.z() = water.lo.z() + level * (water.hi.z() - water.lo.z());
     for (const auto& [object, oa] : abilities_) {
       if (object == container || !oa.soakable) continue;
-      if (overlaps(object_aabb(w, object), water)) {
+      if (object_aabb(w, object).overlaps(water)) {
         double& soaked = states_[object].soaked[liquid];
         soaked = std::min(1.0, soaked + dt / kSoakSeconds);
       }

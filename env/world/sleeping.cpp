@@ -5,31 +5,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "env/world/object_geometry.hpp"
 #include "env/world/scene.hpp"
 
 namespace chore {
 namespace {
 
-struct Box {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  void add_geom(const mjModel* m, const mjData* d, int g) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], d->geom_xpos[3 * g + k] - m->geom_rbound[g]);
-      hi[k] = std::max(hi[k], d->geom_xpos[3 * g + k] + m->geom_rbound[g]);
-    }
-  }
-  Box grown(double margin) const {
-    Box b = *this;
-    for (int k = 0; k < 3; ++k) b.lo[k] -= margin, b.hi[k] += margin;
-    return b;
-  }
-  bool overlaps(const Box& o) const {
-    for (int k = 0; k < 3; ++k) {
-      if (hi[k] < o.lo[k] || o.hi[k] < lo[k]) return false;
-    }
-    return true;
-  }
-};
+// A geom's box from its bounding sphere: cheap enough for every geom at every step.
+void add_geom(Aabb& box, const mjModel* m, const mjData* d, int g) {
+  Aabb sphere;
+  sphere.lo = sphere.hi = Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+  box.grow(sphere.grown(m->geom_rbound[g]));
+}
 
 }  // namespace
 
@@ -59,27 +46,26 @@ Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
 
 void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   const size_t n = objects_.size();
-  std::vector<Box> boxes(n);
-  std::vector<char> awake(n, 0);
-  std::vector<Box> regions;
+  // Scratch kept between steps: this runs before every physics step.
+  boxes_.assign(n, Aabb{});
+  awake_.assign(n, 0);
+  regions_.clear();
   if (!robot_geoms_.empty()) {
-    Box robot;
-    for (int g : robot_geoms_) robot.add_geom(m, d, g);
-    regions.push_back(robot.grown(kRobotMargin));
+    Aabb robot;
+    for (int g : robot_geoms_) add_geom(robot, m, d, g);
+    regions_.push_back(robot.grown(kRobotMargin));
   }
   for (size_t i = 0; i < n; ++i) {
-    Object& o = objects_[i];
-    for (int g : o.geoms) boxes[i].add_geom(m, d, g);
+    const Object& o = objects_[i];
+    for (int g : o.geoms) add_geom(boxes_[i], m, d, g);
     if (o.never || o.geoms.empty()) {
-      awake[i] = 1;
-      if (!o.geoms.empty()) regions.push_back(boxes[i].grown(kTouchMargin));
+      awake_[i] = 1;
+      if (!o.geoms.empty()) regions_.push_back(boxes_[i].grown(kTouchMargin));
       continue;
     }
-    bool held = false;
-    for (int b : o.bodies) held |= b == held_body;
-    if (held) {
-      awake[i] = 1;  // moves with the robot: part of its region
-      regions.push_back(boxes[i].grown(kRobotMargin));
+    if (std::find(o.bodies.begin(), o.bodies.end(), held_body) != o.bodies.end()) {
+      awake_[i] = 1;  // moves with the robot: part of its region
+      regions_.push_back(boxes_[i].grown(kRobotMargin));
       continue;
     }
     if (!o.asleep) {
@@ -90,8 +76,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
         speed = std::max(speed, std::abs(d->qvel[o.dofs[k]]) / (angular ? 10.0 : 1.0));
       }
       if (speed > kRestSpeed) {
-        awake[i] = 1;
-        regions.push_back(boxes[i].grown(kMovingMargin));
+        awake_[i] = 1;
+        regions_.push_back(boxes_[i].grown(kMovingMargin));
       }
     }
   }
@@ -100,28 +86,27 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   for (bool changed = true; changed;) {
     changed = false;
     for (size_t i = 0; i < n; ++i) {
-      if (awake[i]) continue;
-      for (const Box& r : regions) {
-        if (!boxes[i].overlaps(r)) continue;
-        awake[i] = 1;
+      if (awake_[i]) continue;
+      for (const Aabb& r : regions_) {
+        if (!boxes_[i].overlaps(r)) continue;
+        awake_[i] = 1;
         changed = true;
         // Furniture does not move: it wakes nothing more than its neighbours already did.
-        if (objects_[i].free) regions.push_back(boxes[i].grown(kTouchMargin));
+        if (objects_[i].free) regions_.push_back(boxes_[i].grown(kTouchMargin));
         break;
       }
     }
   }
   for (size_t i = 0; i < n; ++i) {
     Object& o = objects_[i];
-    if (!awake[i] && !o.asleep) {
-      o.asleep = true;
+    const bool falls_asleep = !awake_[i] && !o.asleep;
+    o.asleep = !awake_[i];
+    if (!o.asleep) continue;
+    if (falls_asleep) {
       o.rest_qpos.resize(o.qpos.size());
       for (size_t k = 0; k < o.qpos.size(); ++k) o.rest_qpos[k] = d->qpos[o.qpos[k]];
     }
-    o.asleep = !awake[i];
-    if (o.asleep) {
-      for (int b : o.bodies) m->body_geomnum[b] = 0;
-    }
+    for (int b : o.bodies) m->body_geomnum[b] = 0;
   }
 }
 

@@ -18,6 +18,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "env/world/aabb.hpp"
+
 struct mjModel_;
 struct mjData_;
 
@@ -61,6 +63,8 @@ class Sleeping {
   std::vector<Object> objects_;
   std::vector<int> robot_geoms_;
   std::vector<int> body_geomnum_;  // the model's own counts
+  std::vector<Aabb> boxes_, regions_;  // mask()'s scratch: objects' boxes, awake regions
+  std::vector<char> awake_;
 };
 
 }  // namespace chore
