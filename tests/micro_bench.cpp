@@ -105,16 +105,30 @@ BENCHMARK_CAPTURE(reset_activity, store_decoration, std::string("store_decoratio
 BENCHMARK_CAPTURE(reset_activity, collect_trash, std::string("collect_trash"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// One physics step of an activity's scene at rest after a seeded reset, with
-// MuJoCo's own timers: the shares of collision detection and of the
-// constraint solver in a step, and the contacts per step.
+// MuJoCo's timer clock (mjcb_time).
 mjtNum microseconds() {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+// Fills the benchmark's counters from MuJoCo's timers of the steps run since
+// they were cleared: microseconds per step of collision detection and of the
+// constraint solver, contacts per step, and the model's size.
+void report_step_timers(benchmark::State& state, const World& w, double contacts) {
+  const mjData* d = w.data();
+  const double steps = d->timer[mjTIMER_STEP].number;
+  state.counters["collision_us"] = d->timer[mjTIMER_POS_COLLISION].duration / steps;
+  state.counters["solver_us"] = d->timer[mjTIMER_CONSTRAINT].duration / steps;
+  state.counters["contacts"] = contacts / static_cast<double>(state.iterations());
+  state.counters["dofs"] = w.model()->nv;
+  state.counters["bodies"] = w.model()->nbody;
+  state.counters["asleep"] = w.sleepers();
+  state.counters["objects"] = static_cast<double>(w.scene().objects().size());
+}
+
 // One physics step of an activity's scene at rest after reset 0 (World::step:
 // mj_step with the robot's controllers, grasp and state rules), with objects
-// asleep as during a primitive (env/world/sleeping.hpp) or not.
-void physics_step_activity(benchmark::State& state, const std::string& activity, bool sleeping) {
+// asleep as during a primitive (env/world/sleeping.hpp) or not, with the
+// scene's Newton solver or MuJoCo's conjugate-gradient one.
+void physics_step_activity(benchmark::State& state, const std::string& activity, bool sleeping, mjtSolver solver) {
   mjcb_time = microseconds;
   EnvConfig c;
   c.activity = activity;
@@ -123,6 +137,7 @@ void physics_step_activity(benchmark::State& state, const std::string& activity,
   Env env(c);
   env.reset(0);
   World& w = env.world();
+  w.model()->opt.solver = solver;
   w.set_sleeping(sleeping);
   w.step(1);
   mjData* d = w.data();
@@ -132,20 +147,36 @@ void physics_step_activity(benchmark::State& state, const std::string& activity,
     w.step(1);
     contacts += d->ncon;
   }
-  const double step = d->timer[mjTIMER_STEP].duration;
-  state.counters["collision_share"] = d->timer[mjTIMER_POS_COLLISION].duration / step;
-  state.counters["solver_share"] = d->timer[mjTIMER_CONSTRAINT].duration / step;
-  state.counters["contacts"] = contacts / static_cast<double>(state.iterations());
-  state.counters["asleep"] = w.sleepers();
-  state.counters["objects"] = static_cast<double>(w.scene().objects().size());
+  report_step_timers(state, w, contacts);
   mjcb_time = nullptr;
 }
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping, std::string("store_decoration"), true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, collect_trash_sleeping, std::string("collect_trash"), true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping, std::string("clean_table"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping, std::string("store_decoration"), true, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash_sleeping, std::string("collect_trash"), true, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping, std::string("clean_table"), true, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_cg, std::string("store_decoration"), false, mjSOL_CG)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping_cg, std::string("store_decoration"), true, mjSOL_CG)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping_cg, std::string("clean_table"), true, mjSOL_CG)->Unit(benchmark::kMillisecond);
+
+// The floor under a physical primitive's step: the robot alone in the
+// studio's rooms (walls and floors, no object), one physics step.
+void physics_step_robot_alone(benchmark::State& state) {
+  mjcb_time = microseconds;
+  World w(Scene::load(std::string(CHORE_TEST_DATA) + "/scenes/robot_only.json"));
+  w.step(1);
+  mjData* d = w.data();
+  for (mjTimerStat& t : d->timer) t = {};
+  double contacts = 0;
+  for (auto _ : state) {
+    w.step(1);
+    contacts += d->ncon;
+  }
+  report_step_timers(state, w, contacts);
+  mjcb_time = nullptr;
+}
+BENCHMARK(physics_step_robot_alone)->Unit(benchmark::kMicrosecond);
 
 // A whole env step (physics x4 + render + state), as `chore bench` times it.
 void BM_EnvStep(benchmark::State& state) {
