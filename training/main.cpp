@@ -1,5 +1,5 @@
-// The `chore` command line: bench, activity check/sample, expert, eval, video, observe, plot;
-// train joins with the trainers. Bad arguments and bad input files
+// The `chore` command line: bench, activity check/sample, expert, eval, video, observe, plot,
+// reproduce; train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
 
@@ -16,6 +16,7 @@
 #include "training/expert_command.hpp"
 #include "training/observe_command.hpp"
 #include "training/plot.hpp"
+#include "training/reproduce.hpp"
 #include "training/train_command.hpp"
 #include "training/video.hpp"
 
@@ -220,6 +221,26 @@ int main(int argc, char** argv) {
   train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
       ->check(CLI::PositiveNumber)->capture_default_str();
 
+  chore::ReproduceOptions reproduce;
+  std::string generalisation_seeds = "100-119";
+  CLI::App* reproduce_cmd = app.add_subcommand(
+      "reproduce", "The paper's baseline table (A.13) through train and eval: resumable, to OUT/baselines.{json,md}");
+  reproduce_cmd->add_option("--activities", reproduce.activities, "Activities")->capture_default_str();
+  reproduce_cmd->add_option("--methods", reproduce.methods, "Methods: rl-vmc, rl-prim, rl-prim-hist")
+      ->check(CLI::IsMember({"rl-vmc", "rl-prim", "rl-prim-hist"}))->capture_default_str();
+  reproduce_cmd->add_option("--seeds", reproduce.seeds, "Training seeds")->capture_default_str();
+  reproduce_cmd->add_option("--steps", reproduce.steps, "Training env steps per run")->check(CLI::PositiveNumber)->capture_default_str();
+  reproduce_cmd->add_option("--mode", reproduce.mode, "Primitive execution: physical (the paper's) or symbolic")
+      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
+  reproduce_cmd->add_option("--jobs", reproduce.jobs, "Runs at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
+  reproduce_cmd->add_option("--eval-episodes", reproduce.eval_episodes, "Episodes at evaluation seed 0")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  reproduce_cmd->add_option("--generalisation-seeds", generalisation_seeds, "Seeds A-B of fresh instances, one episode each")
+      ->capture_default_str();
+  reproduce_cmd->add_option("--out", reproduce.out, "Results folder (runs/ inside)")->capture_default_str();
+  reproduce_cmd->add_flag("!--no-videos", reproduce.videos, "Skip the best policies' videos");
+  reproduce_cmd->add_flag("--report-only", reproduce.report_only, "Train and evaluate nothing: report the runs done");
+
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -290,6 +311,13 @@ int main(int argc, char** argv) {
     if (*train_cmd) {
       if (*train_steps_option) train.steps = train_steps;
       chore::run_train(train, std::cerr);
+    }
+    if (*reproduce_cmd) {
+      std::tie(reproduce.generalisation_first, reproduce.generalisation_last) =
+          seed_range(generalisation_seeds, "--generalisation-seeds");
+      reproduce.command_line = "scripts/reproduce";
+      for (int i = 2; i < argc; ++i) reproduce.command_line += std::string(" ") + argv[i];
+      chore::reproduce(reproduce, std::cerr);
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);

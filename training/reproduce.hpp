@@ -1,0 +1,57 @@
+// `chore reproduce` (scripts/reproduce): the BEHAVIOR-1K appendix's baseline
+// experiment (Table A.13) through `chore train` and `chore eval`.
+//
+// Every (activity, method, training seed) cell is one run folder,
+//   OUT/runs/MODE/ACTIVITY/METHOD_seedS/
+// holding what `chore train` writes (metrics.csv, checkpoints), train.log, the
+// evaluations' JSON (eval_seed0.json: the paper's evaluation seed;
+// eval_generalisation.json: fresh instances, seeds 100-119) and cell.json, its
+// summary, written last. A cell whose cell.json matches the options is done and
+// skipped; one with a checkpoint resumes from it (`chore train --resume`), so
+// the whole table may be stopped at any moment and run again. Cells run as
+// child processes of this executable, `jobs` at a time, one thread each.
+//
+// At the end (and with --report-only, from whatever cells are done) it writes
+// OUT/baselines.json and OUT/baselines.md (the table beside the paper's, the
+// failure breakdown, wall-clock per run, the machine and the commit),
+// OUT/curves/ACTIVITY.png (Q over training steps, mean and spread over seeds
+// per method) and OUT/videos/ACTIVITY.mp4 (the best policy's episode at
+// evaluation seed 0).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace chore {
+
+struct ReproduceOptions {
+  std::vector<std::string> activities = {"store_decoration", "collect_trash", "clean_table"};
+  std::vector<std::string> methods = {"rl-vmc", "rl-prim", "rl-prim-hist"};
+  std::vector<uint64_t> seeds = {0, 1, 2};
+  int64_t steps = 30000;            // training env steps per run (the paper's)
+  std::string mode = "physical";    // primitive execution (the paper's)
+  int jobs = 2;                     // runs at once
+  int eval_episodes = 10;           // episodes at evaluation seed 0
+  uint64_t generalisation_first = 100, generalisation_last = 119;  // one episode each
+  std::string out = "results";
+  bool videos = true;
+  bool report_only = false;         // no training or evaluation: report the cells done
+  std::string command_line;         // as typed, for the report
+};
+
+// Runs the cells not done yet, then writes the report; returns baselines.json's
+// content. chore::Error for bad options; a failed run is reported (its log's
+// last lines) and left out of the table, not thrown.
+nlohmann::json reproduce(const ReproduceOptions& options, std::ostream& log);
+
+// The paper's Table A.13 (success score Q, mean and std over training seeds).
+struct PaperQ {
+  double mean, std;
+};
+PaperQ paper_q(const std::string& method, const std::string& activity);
+
+}  // namespace chore
