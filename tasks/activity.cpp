@@ -39,6 +39,12 @@ const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturate
 // "stain.n.01" -> "stain": the name dirt and liquids are kept under.
 std::string lemma(const std::string& synset) { return synset.substr(0, synset.find('.')); }
 
+bool room_matches(const Room& room, const std::string& bddl_room) {
+  return room.type == bddl_room || room.name == bddl_room;
+}
+
+}  // namespace
+
 std::string resolve_activity_path(const std::string& name) {
   if (name.ends_with(".bddl") || name.find('/') != std::string::npos) {
     if (!fs::exists(name)) throw Error("activity file '" + name + "' does not exist");
@@ -56,12 +62,6 @@ std::string resolve_activity_path(const std::string& name) {
   throw Error("unknown activity '" + name + "' (no " + path.string() + "); known activities: " +
               (known.empty() ? "none" : known));
 }
-
-bool room_matches(const Room& room, const std::string& bddl_room) {
-  return room.type == bddl_room || room.name == bddl_room;
-}
-
-}  // namespace
 
 namespace {
 

@@ -37,6 +37,9 @@ struct Binding {
 // it names none; and the first activity set in a scene, or "".
 std::string activity_scene(const std::string& activity);
 std::string scene_activity(const std::string& scene);
+// The .bddl file of an activity name (<tasks>/activities/<name>.bddl) or path;
+// chore::Error listing the known activities when there is none.
+std::string resolve_activity_path(const std::string& name);
 
 class Activity {
  public:

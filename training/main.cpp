@@ -2,6 +2,7 @@
 // reproduce; train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
 #include <CLI/CLI.hpp>
+#include <malloc.h>
 
 #include <iostream>
 #include <regex>
@@ -105,6 +106,13 @@ std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::
 }  // namespace
 
 int main(int argc, char** argv) {
+  // glibc hands large freed blocks (image batches, tensors) back to the kernel
+  // and maps them again at the next use; each new page is a fault, and faults
+  // are dear on a VM: a StoreDecoration PPO minibatch update took 143-160 ms,
+  // 33-40 ms with the memory kept (docs/benchmarks.md#training). Keep it.
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  mallopt(M_TOP_PAD, 64 << 20);
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
   app.require_subcommand(1);
 
@@ -317,7 +325,11 @@ int main(int argc, char** argv) {
           seed_range(generalisation_seeds, "--generalisation-seeds");
       reproduce.command_line = "scripts/reproduce";
       for (int i = 2; i < argc; ++i) reproduce.command_line += std::string(" ") + argv[i];
-      chore::reproduce(reproduce, std::cerr);
+      const nlohmann::json r = chore::reproduce(reproduce, std::cerr);
+      if (!r["failures"].empty()) {
+        std::cerr << "chore: " << r["failures"].size() << " run(s) failed; the rest are reported" << std::endl;
+        return 1;
+      }
     }
     if (*bench_cmd) {
       const nlohmann::json results = chore::run_bench(bench, std::cerr);

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "env/world/error.hpp"
+#include "tasks/activity.hpp"
 #include "training/plot.hpp"
 
 extern char** environ;
@@ -274,6 +275,7 @@ void validate(const ReproduceOptions& o) {
     if (a.empty() || a.find('/') != std::string::npos || a.ends_with(".bddl")) {
       throw Error("reproduce: '" + a + "': give activities by name (a run folder is named after it)");
     }
+    resolve_activity_path(a);  // throws naming the known ones
   }
   if (o.mode != "physical" && o.mode != "symbolic") throw Error("reproduce: --mode is physical or symbolic");
   if (o.steps < 1) throw Error("reproduce: --steps must be at least 1");

@@ -1,0 +1,120 @@
+// `chore reproduce`: a small table (one activity, one method, two seeds,
+// symbolic primitives) run through the real chore executable, its report
+// checked against the runs' own evaluations, then resumed after parts of it
+// are lost and broken.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "training/reproduce.hpp"
+
+namespace chore {
+namespace {
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
+
+// Runs `chore reproduce` on the small table; returns its exit status, its log in `log`.
+int reproduce_small_table(const fs::path& out, std::string& log) {
+  const fs::path log_file = out.string() + ".log";
+  const std::string command = std::string(CHORE_BINARY) +
+                              " reproduce --activities collect_trash --methods rl-prim --seeds 0 1 --steps 60"
+                              " --mode symbolic --eval-episodes 2 --generalisation-seeds 100-101 --no-videos --out " +
+                              out.string() + " 2> " + log_file.string();
+  const int status = std::system(command.c_str());
+  log = read_text(log_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(Reproduce, PaperTableA13) {
+  EXPECT_DOUBLE_EQ(paper_q("rl-prim", "collect_trash").mean, 0.49);
+  EXPECT_DOUBLE_EQ(paper_q("rl-prim-hist", "clean_table").mean, 0.88);
+  EXPECT_DOUBLE_EQ(paper_q("rl-prim-hist", "clean_table").std, 0.02);
+  EXPECT_DOUBLE_EQ(paper_q("rl-vmc", "store_decoration").mean, 0.0);
+  EXPECT_TRUE(std::isnan(paper_q("rl-prim", "some_other_activity").mean));
+}
+
+TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
+  const fs::path out = fs::path(CHORE_TEST_OUTPUT) / ("reproduce_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  std::string log;
+  ASSERT_EQ(reproduce_small_table(out, log), 0) << log;
+
+  const fs::path runs = out / "runs" / "symbolic" / "collect_trash";
+  const nlohmann::json table = read_json(out / "baselines.json");
+  ASSERT_EQ(table["runs"].size(), 2u);
+  ASSERT_EQ(table["rows"].size(), 1u);
+  EXPECT_TRUE(table["missing"].empty());
+  EXPECT_TRUE(table["failures"].empty());
+
+  // Each run's numbers are its own evaluation's; the row is their mean and
+  // population std over the training seeds.
+  double q[2];
+  for (int s = 0; s < 2; ++s) {
+    const nlohmann::json& run = table["runs"][s];
+    EXPECT_EQ(run["seed"], s);
+    const nlohmann::json eval = read_json(runs / ("rl-prim_seed" + std::to_string(s)) / "eval_seed0.json")[0];
+    EXPECT_EQ(eval["episodes_per_seed"], 2);
+    EXPECT_EQ(eval["per_episode"].size(), 2u);
+    q[s] = eval["q"]["mean"].get<double>();
+    EXPECT_DOUBLE_EQ(run["q_seed0"].get<double>(), q[s]);
+    const nlohmann::json fresh = read_json(runs / ("rl-prim_seed" + std::to_string(s)) / "eval_generalisation.json")[0];
+    EXPECT_EQ(fresh["per_seed"].size(), 2u);  // seeds 100 and 101, one episode each
+    EXPECT_DOUBLE_EQ(run["q_generalisation"].get<double>(), fresh["q"]["mean"].get<double>());
+  }
+  const nlohmann::json& row = table["rows"][0];
+  EXPECT_EQ(row["runs"], 2);
+  EXPECT_NEAR(row["q_seed0"]["mean"].get<double>(), (q[0] + q[1]) / 2, 1e-12);
+  EXPECT_NEAR(row["q_seed0"]["std"].get<double>(), std::abs(q[0] - q[1]) / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(row["paper_q"]["mean"].get<double>(), 0.49);
+  const std::string md = read_text(out / "baselines.md");
+  EXPECT_NE(md.find("(paper 0.49 ± 0.04)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| RL-Prim. |"), std::string::npos) << md;
+  EXPECT_GT(fs::file_size(out / "curves" / "collect_trash.png"), 1000u);
+
+  // Seed 1 loses its evaluations (a stop before they ended): the next
+  // invocation leaves seed 0 alone and evaluates seed 1's trained policy again,
+  // from its checkpoint, without training it again.
+  const fs::path seed0 = runs / "rl-prim_seed0", seed1 = runs / "rl-prim_seed1";
+  const auto seed0_written = fs::last_write_time(seed0 / "cell.json");
+  const std::string metrics = read_text(seed1 / "metrics.csv");
+  fs::remove(seed1 / "cell.json");
+  fs::remove(seed1 / "eval_seed0.json");
+  ASSERT_EQ(reproduce_small_table(out, log), 0) << log;
+  EXPECT_NE(log.find("collect_trash rl-prim seed 0: done already"), std::string::npos) << log;
+  EXPECT_NE(log.find("collect_trash rl-prim seed 1: training"), std::string::npos) << log;
+  EXPECT_EQ(fs::last_write_time(seed0 / "cell.json"), seed0_written);
+  EXPECT_EQ(read_text(seed1 / "metrics.csv"), metrics);  // resumed at its end: nothing trained
+  EXPECT_DOUBLE_EQ(read_json(out / "baselines.json")["runs"][1]["q_seed0"].get<double>(), q[1]);
+
+  // A run that cannot go on (its checkpoint broken) is reported and left out;
+  // the exit status says so, the other run is still in the table.
+  fs::remove(seed1 / "cell.json");
+  std::ofstream(seed1 / "checkpoint.pt", std::ios::trunc) << "garbage";
+  EXPECT_EQ(reproduce_small_table(out, log), 1) << log;
+  EXPECT_NE(log.find("seed 1: FAILED"), std::string::npos) << log;
+  EXPECT_NE(log.find("not a chore checkpoint"), std::string::npos) << log;
+  const nlohmann::json partial = read_json(out / "baselines.json");
+  EXPECT_EQ(partial["runs"].size(), 1u);
+  EXPECT_EQ(partial["missing"][0], "collect_trash rl-prim seed 1");
+  EXPECT_EQ(partial["failures"].size(), 1u);
+  EXPECT_NE(read_text(out / "baselines.md").find("(1 of 2 seeds)"), std::string::npos);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace chore
