@@ -122,5 +122,15 @@ expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
 expect 2 "not a chore checkpoint" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt"
 expect 2 "excludes" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --expert
 
+# chore reproduce: bad arguments exit 2 before any run starts (the table itself
+# is tested in tests/reproduce_test.cpp).
+reproduce_out="$(mktemp -d)"
+expect 2 "unknown activity 'nope'" -- "$chore" reproduce --activities nope --out "$reproduce_out"
+expect 2 "give activities by name" -- "$chore" reproduce --activities "$data/bddl/collect_one_bottle.bddl" --out "$reproduce_out"
+expect 2 "methods" -- "$chore" reproduce --methods rl-magic --out "$reproduce_out"
+expect 2 "steps" -- "$chore" reproduce --steps 0 --out "$reproduce_out"
+expect 2 "--generalisation-seeds '5-1': B is below A" -- "$chore" reproduce --generalisation-seeds 5-1 --out "$reproduce_out"
+if [[ -n "$(ls -A "$reproduce_out")" ]]; then echo "FAIL: a refused reproduce wrote to $reproduce_out"; failures=$((failures + 1)); fi
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]

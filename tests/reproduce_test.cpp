@@ -51,6 +51,7 @@ TEST(Reproduce, PaperTableA13) {
 TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   const fs::path out = fs::path(CHORE_TEST_OUTPUT) / ("reproduce_" + std::to_string(getpid()));
   fs::remove_all(out);
+  fs::create_directories(out.parent_path());
   std::string log;
   ASSERT_EQ(reproduce_small_table(out, log), 0) << log;
 
