@@ -109,11 +109,19 @@ BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))->Arg(
 mjtNum microseconds() {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-// Fills the benchmark's counters from MuJoCo's timers of the steps run since
-// they were cleared: microseconds per step of collision detection and of the
-// constraint solver, contacts per step, and the model's size.
-void report_step_timers(benchmark::State& state, const World& w, double contacts) {
-  const mjData* d = w.data();
+// Times World::step(1) with MuJoCo's timers on: the benchmark's counters are
+// microseconds per step of collision detection and of the constraint solver,
+// contacts per step, and the model's size.
+void time_physics_steps(benchmark::State& state, World& w) {
+  mjcb_time = microseconds;
+  w.step(1);
+  mjData* d = w.data();
+  for (mjTimerStat& t : d->timer) t = {};
+  double contacts = 0;
+  for (auto _ : state) {
+    w.step(1);
+    contacts += d->ncon;
+  }
   const double steps = d->timer[mjTIMER_STEP].number;
   state.counters["collision_us"] = d->timer[mjTIMER_POS_COLLISION].duration / steps;
   state.counters["solver_us"] = d->timer[mjTIMER_CONSTRAINT].duration / steps;
@@ -122,6 +130,7 @@ void report_step_timers(benchmark::State& state, const World& w, double contacts
   state.counters["bodies"] = w.model()->nbody;
   state.counters["asleep"] = w.sleepers();
   state.counters["objects"] = static_cast<double>(w.scene().objects().size());
+  mjcb_time = nullptr;
 }
 
 // One physics step of an activity's scene at rest after reset 0 (World::step:
@@ -129,7 +138,6 @@ void report_step_timers(benchmark::State& state, const World& w, double contacts
 // asleep as during a primitive (env/world/sleeping.hpp) or not, with the
 // scene's Newton solver or MuJoCo's conjugate-gradient one.
 void physics_step_activity(benchmark::State& state, const std::string& activity, bool sleeping, mjtSolver solver) {
-  mjcb_time = microseconds;
   EnvConfig c;
   c.activity = activity;
   c.action_space = "primitives";
@@ -139,16 +147,7 @@ void physics_step_activity(benchmark::State& state, const std::string& activity,
   World& w = env.world();
   w.model()->opt.solver = solver;
   w.set_sleeping(sleeping);
-  w.step(1);
-  mjData* d = w.data();
-  for (mjTimerStat& t : d->timer) t = {};
-  double contacts = 0;
-  for (auto _ : state) {
-    w.step(1);
-    contacts += d->ncon;
-  }
-  report_step_timers(state, w, contacts);
-  mjcb_time = nullptr;
+  time_physics_steps(state, w);
 }
 BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
@@ -163,18 +162,8 @@ BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping_cg, std::string("c
 // The floor under a physical primitive's step: the robot alone in the
 // studio's rooms (walls and floors, no object), one physics step.
 void physics_step_robot_alone(benchmark::State& state) {
-  mjcb_time = microseconds;
   World w(Scene::load(std::string(CHORE_TEST_DATA) + "/scenes/robot_only.json"));
-  w.step(1);
-  mjData* d = w.data();
-  for (mjTimerStat& t : d->timer) t = {};
-  double contacts = 0;
-  for (auto _ : state) {
-    w.step(1);
-    contacts += d->ncon;
-  }
-  report_step_timers(state, w, contacts);
-  mjcb_time = nullptr;
+  time_physics_steps(state, w);
 }
 BENCHMARK(physics_step_robot_alone)->Unit(benchmark::kMicrosecond);
 
