@@ -168,6 +168,7 @@ void Env::close() {
 Info Env::make_info(const Score* score) const {
   Info info;
   info.elapsed_steps = elapsed_;
+  info.episode_seed = episode_seed_;
   info.diverged = diverged_;
   info.is_grasping = world_->grasped_object() >= 0;
   info.primitive_status = last_primitive_status_;
@@ -184,6 +185,7 @@ Info Env::make_info(const Score* score) const {
 Info Env::reset_state(std::optional<uint64_t> seed) {
   check_open();
   if (seed) rng_.seed(*seed);
+  episode_seed_ = seed ? *seed : episode_seed_ + 1;
   Pose2 start = scene_->robot_start();
   start.x += config_.start_jitter * uniform(rng_, -1, 1);
   start.y += config_.start_jitter * uniform(rng_, -1, 1);

@@ -78,6 +78,10 @@ struct EnvConfig {
 struct Info {
   int env_id = 0;
   int64_t elapsed_steps = 0;
+  // The seed of this episode's reset; an unseeded reset counts on from the
+  // last (+1). A policy that draws random numbers can seed them from it, so
+  // that an episode's draws do not depend on which env or thread plays it.
+  uint64_t episode_seed = 0;
   bool diverged = false;       // MuJoCo became unstable; the episode was truncated
   bool grasp_refused = false;  // the gripper closed on an object over the mass limit
   bool is_grasping = false;
@@ -196,6 +200,7 @@ class Env {
   std::array<int, kPrimitiveStatuses> primitive_counts_{};
   int last_primitive_status_ = -1, last_invalid_action_ = -1, invalid_repeats_ = 0;
   int64_t elapsed_ = 0;
+  uint64_t episode_seed_ = 0;
   bool episode_over_ = true, closed_ = false, diverged_ = false;
 };
 

@@ -279,10 +279,32 @@ std::pair<torch::Tensor, torch::Tensor> SacCriticImpl::q(const torch::Tensor& fe
 
 namespace {
 
+// One generator per env row for sampled acting (ActingMode), seeded afresh
+// at each episode's first step from its episode seed: an episode's draws are
+// the same whichever env row or thread plays it.
+class RowGenerators {
+ public:
+  explicit RowGenerators(ActingMode mode) : mode_(mode) {}
+  bool sample() const { return mode_.sample; }
+  at::Generator& of(int row, const Info& info) {
+    if (static_cast<int>(generators_.size()) <= row) generators_.resize(static_cast<size_t>(row) + 1);
+    at::Generator& g = generators_[static_cast<size_t>(row)];
+    if (!g.defined() || info.elapsed_steps == 0) {
+      g = at::detail::createCPUGenerator(mode_.seed ^ (info.episode_seed * 0x9E3779B97F4A7C15ull));
+    }
+    return g;
+  }
+
+ private:
+  ActingMode mode_;
+  std::vector<at::Generator> generators_;
+};
+
 class PpoPolicy : public Policy {
  public:
-  PpoPolicy(ActorCritic net, const NetworkSpec& spec)
-      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.feature_size, spec.num_actions) {
+  PpoPolicy(ActorCritic net, const NetworkSpec& spec, ActingMode mode)
+      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.feature_size, spec.num_actions),
+        generators_(mode) {
     net_->eval();
   }
 
@@ -291,7 +313,13 @@ class PpoPolicy : public Policy {
     const ObsTensors obs = obs_tensors(*batch.obs, spec_);
     const torch::Tensor history = spec_.history > 0 ? history_.rows(batch.env_ids) : torch::Tensor();
     const ActorCriticOutput out = net_->forward(obs, history);
-    const torch::Tensor chosen = out.logits.argmax(1);
+    torch::Tensor chosen = out.logits.argmax(1);
+    if (generators_.sample()) {
+      const torch::Tensor probs = torch::softmax(out.logits, 1);
+      for (int64_t i = 0; i < probs.size(0); ++i) {
+        chosen[i] = torch::multinomial(probs[i], 1, false, generators_.of(batch.env_ids[i], batch.infos[i]))[0];
+      }
+    }
     if (spec_.history > 0) history_.push(batch.env_ids, out.feature, chosen);
     for (int64_t i = 0; i < chosen.size(0); ++i) actions[i] = static_cast<float>(chosen[i].item<int64_t>());
   }
@@ -302,20 +330,30 @@ class PpoPolicy : public Policy {
   ActorCritic net_;
   NetworkSpec spec_;
   History history_;
+  RowGenerators generators_;
 };
 
 class SacPolicy : public Policy {
  public:
-  SacPolicy(SacCritic critic, SacActor actor, const NetworkSpec& spec)
-      : critic_(std::move(critic)), actor_(std::move(actor)), spec_(spec) {
+  SacPolicy(SacCritic critic, SacActor actor, const NetworkSpec& spec, ActingMode mode)
+      : critic_(std::move(critic)), actor_(std::move(actor)), spec_(spec), generators_(mode) {
     critic_->eval();
     actor_->eval();
   }
 
   void act(const Batch& batch, std::span<float> actions) override {
     torch::NoGradGuard no_grad;
-    const torch::Tensor a =
-        actor_->deterministic(critic_->encoder->forward(obs_tensors(*batch.obs, spec_))).contiguous();
+    const torch::Tensor feature = critic_->encoder->forward(obs_tensors(*batch.obs, spec_));
+    torch::Tensor a;
+    if (generators_.sample()) {
+      std::vector<torch::Tensor> rows;
+      for (int64_t i = 0; i < feature.size(0); ++i) {
+        rows.push_back(actor_->sample(feature.narrow(0, i, 1), generators_.of(batch.env_ids[i], batch.infos[i])).action);
+      }
+      a = torch::cat(rows).contiguous();
+    } else {
+      a = actor_->deterministic(feature).contiguous();
+    }
     std::copy_n(a.data_ptr<float>(), a.numel(), actions.begin());
   }
 
@@ -323,16 +361,17 @@ class SacPolicy : public Policy {
   SacCritic critic_;
   SacActor actor_;
   NetworkSpec spec_;
+  RowGenerators generators_;
 };
 
 }  // namespace
 
-std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec) {
-  return std::make_unique<PpoPolicy>(std::move(net), spec);
+std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec, ActingMode mode) {
+  return std::make_unique<PpoPolicy>(std::move(net), spec, mode);
 }
 
-std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec) {
-  return std::make_unique<SacPolicy>(std::move(critic), std::move(actor), spec);
+std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec, ActingMode mode) {
+  return std::make_unique<SacPolicy>(std::move(critic), std::move(actor), spec, mode);
 }
 
 std::vector<float> flat_parameters(const torch::nn::Module& module) {

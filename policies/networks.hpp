@@ -148,10 +148,19 @@ class SacCriticImpl : public torch::nn::Module {
 };
 TORCH_MODULE(SacCritic);
 
-// Greedy policies over trained networks (chore eval/video): PPO takes the
-// argmax action, SAC tanh(mean). Not thread-safe; they run without gradients.
-std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec);
-std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec);
+// How a trained network acts in chore eval/video: greedy (PPO's argmax
+// action, SAC's tanh(mean)) or sampled from its distribution as in training.
+// Sampling draws from one generator per env row, seeded from `seed` and the
+// episode's seed (Info::episode_seed) at its first step, so an episode's draws
+// depend only on its own steps (not on the env row, the rows sharing a batch,
+// nor the thread count).
+struct ActingMode {
+  bool sample = false;
+  uint64_t seed = 0;
+};
+// Not thread-safe; they run without gradients.
+std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec, ActingMode mode = {});
+std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec, ActingMode mode = {});
 
 // Every parameter and buffer of `module`, flattened in registration order
 // (determinism tests compare these).

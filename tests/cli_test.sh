@@ -121,6 +121,7 @@ printf 'garbage' > "$run_dir/checkpoint.pt"
 expect 2 "not a chore checkpoint" -- "$chore" train --resume "$run_dir"
 expect 2 "not a chore checkpoint" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt"
 expect 2 "excludes" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --expert
+expect 2 "sample requires --checkpoint" -- "$chore" eval --expert --activity store_decoration --sample
 
 # chore reproduce: bad arguments exit 2 before any run starts (the table itself
 # is tested in tests/reproduce_test.cpp).

@@ -10,12 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <thread>
 
 #include "policies/networks.hpp"
 #include "test_util.hpp"
 #include "training/checkpoint.hpp"
+#include "training/evaluate.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -209,6 +211,44 @@ TEST(Checkpoint, ResumesTheRunAndLoadsAGreedyPolicy) {
     }
     loaded.policy->reset(ended);
   }
+}
+
+// A sampled policy draws anew at every step of an episode (greedy repeats
+// itself on the same observation), and its draws are seeded by the episode:
+// evaluation gives the same episodes on one thread and on two.
+TEST(Checkpoint, SampledPolicyDrawsAndIsSeededByTheEpisode) {
+  const fs::path dir = test::scratch_dir("checkpoint_sampled");
+  const std::string path = (dir / "checkpoint.pt").string();
+  auto trainer = make_trainer(collect_trash_config());
+  train(*trainer, 300);
+  trainer->save(path);
+
+  auto distinct_actions = [&](bool sample) {
+    LoadedPolicy loaded = load_policy(path, sample);
+    VectorEnv env({.env = loaded.env, .num_envs = 1});
+    Batch batch = env.reset(3);
+    std::vector<float> action(1), first(1);
+    loaded.policy->act(batch, first);
+    loaded.policy->act(batch, action);
+    EXPECT_EQ(action, first) << "an episode's first step draws from its own seed";
+    batch = env.step(action);
+    std::set<float> seen;
+    for (int i = 0; i < 50; ++i) {
+      loaded.policy->act(batch, action);  // the same observation, mid-episode
+      seen.insert(action[0]);
+    }
+    return seen.size();
+  };
+  EXPECT_EQ(distinct_actions(false), 1u);
+  EXPECT_GE(distinct_actions(true), 3u);  // an untrained policy is near uniform over 16 actions
+
+  auto episodes = [&](int threads) {
+    auto loaded = std::make_shared<LoadedPolicy>(load_policy(path, true));
+    const PolicySource source{"sampled", loaded->env, [loaded](const VectorEnv&) { return std::move(loaded->policy); }};
+    std::ostringstream log;
+    return evaluate(source, {.first_seed = 0, .last_seed = 1, .episodes = 3, .threads = threads}, log)["per_episode"];
+  };
+  EXPECT_EQ(episodes(1), episodes(2));
 }
 
 TEST(Checkpoint, EnvConfigKeepsSensorSettingsAndOlderFilesGetDefaults) {

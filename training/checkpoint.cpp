@@ -189,7 +189,7 @@ void set_policy_threads(int threads) {
   torch::set_num_threads(threads);
 }
 
-LoadedPolicy load_policy(const std::string& checkpoint_path) {
+LoadedPolicy load_policy(const std::string& checkpoint_path, bool sample) {
   const CheckpointFile file = read_checkpoint(checkpoint_path);
   const std::string what = "checkpoint " + checkpoint_path;
   LoadedPolicy loaded;
@@ -212,11 +212,11 @@ LoadedPolicy load_policy(const std::string& checkpoint_path) {
     SacActor actor(spec);
     load_module(*critic, archive, "critic", what);
     load_module(*actor, archive, "actor", what);
-    loaded.policy = make_sac_policy(critic, actor, spec);
+    loaded.policy = make_sac_policy(critic, actor, spec, {.sample = sample});
   } else {
     ActorCritic net(spec);
     load_module(*net, archive, "net", what);
-    loaded.policy = make_ppo_policy(net, spec);
+    loaded.policy = make_ppo_policy(net, spec, {.sample = sample});
   }
   return loaded;
 }

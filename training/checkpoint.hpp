@@ -36,15 +36,17 @@ struct CheckpointFile {
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint);
 CheckpointFile read_checkpoint(const std::string& path);
 
-// A trained policy for chore eval/video: PPO acts by argmax, SAC by tanh(mean);
-// `env` rebuilds the env it was trained in.
+// A trained policy for chore eval/video: PPO acts by argmax, SAC by tanh(mean),
+// or, with `sample`, both draw from their distributions as in training (seeded
+// by each episode's seed: policies/networks.hpp's ActingMode); `env` rebuilds
+// the env it was trained in.
 struct LoadedPolicy {
   std::unique_ptr<chore::Policy> policy;
   chore::EnvConfig env;
   std::string baseline;
   int64_t steps = 0;
 };
-LoadedPolicy load_policy(const std::string& checkpoint_path);  // throws chore::Error
+LoadedPolicy load_policy(const std::string& checkpoint_path, bool sample = false);  // throws chore::Error
 // Pins torch's intra-op threads (process-wide) for loaded policies: its OpenMP
 // pool competes with the VectorEnv's workers and the renderer for the cores.
 void set_policy_threads(int threads);

@@ -45,6 +45,7 @@ struct PolicyArgs {
   std::vector<std::string> observations;
   int max_steps = 0;
   bool expert = false;
+  bool sample = false;  // checkpoints: act by sampling, not greedily
 };
 
 void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
@@ -53,6 +54,8 @@ void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
   auto* expert = cmd->add_flag("--expert", a.expert, "The scripted expert (primitive action space)");
   plugin->excludes(expert);
   checkpoint->excludes(plugin)->excludes(expert);
+  cmd->add_flag("--sample", a.sample, "Checkpoints: sample actions from the policy's distribution (default: greedy)")
+      ->needs(checkpoint);
   cmd->add_option("--policy-options", a.plugin_options, "Text handed to the plugin's factory")->needs(plugin);
   cmd->add_option("--activity", a.activity, "Activity name or .bddl path (a checkpoint's own by default)");
   cmd->add_option("--action-space", a.action_space, "primitives or low_level (plugins)")
@@ -72,7 +75,7 @@ std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::
     chore::set_policy_threads(1);
     std::vector<chore::PolicySource> sources;
     for (const std::string& path : a.checkpoints) {
-      auto loaded = std::make_shared<chore::LoadedPolicy>(chore::load_policy(path));
+      auto loaded = std::make_shared<chore::LoadedPolicy>(chore::load_policy(path, a.sample));
       chore::EnvConfig env = loaded->env;
       if (!a.activity.empty()) env.activity = a.activity;
       if (!a.mode.empty()) env.primitive_mode = chore::parse_execution_mode(a.mode);

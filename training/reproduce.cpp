@@ -133,7 +133,7 @@ struct Cell {
 // What a finished cell must match to be skipped.
 nlohmann::json cell_spec(const Cell& c, const ReproduceOptions& o) {
   return {{"activity", c.activity}, {"method", c.method}, {"seed", c.seed}, {"steps", o.steps},
-          {"mode", o.mode}, {"eval_episodes", o.eval_episodes},
+          {"mode", o.mode}, {"eval_episodes", o.eval_episodes}, {"eval_policy", "sampled"},
           {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
 }
 
@@ -216,15 +216,15 @@ class CellRun {
       case 1:
         what = "evaluating at seed 0";
         eval_started_ = Clock::now();
-        pid_ = spawn({"eval", "--checkpoint", checkpoint, "--seeds", "0-0", "--episodes",
+        pid_ = spawn({"eval", "--checkpoint", checkpoint, "--sample", "--seeds", "0-0", "--episodes",
                       std::to_string(o_.eval_episodes), "--threads", "1", "--json"},
                      cell_.dir / "eval_seed0.json.part", cell_.dir / "eval.log");
         return true;
       case 2:
         what = "evaluating on seeds " + range;
         fs::rename(cell_.dir / "eval_seed0.json.part", cell_.dir / "eval_seed0.json");
-        pid_ = spawn({"eval", "--checkpoint", checkpoint, "--seeds", range, "--episodes", "1", "--threads", "1",
-                      "--json"},
+        pid_ = spawn({"eval", "--checkpoint", checkpoint, "--sample", "--seeds", range, "--episodes", "1",
+                      "--threads", "1", "--json"},
                      cell_.dir / "eval_generalisation.json.part", cell_.dir / "eval.log");
         return true;
       case 3: {
@@ -454,8 +454,8 @@ nlohmann::json report(const std::vector<Cell>& cells, const ReproduceOptions& o,
       if (!best) continue;
       const fs::path video = out / "videos" / (a + ".mp4");
       const fs::path dir = (*best)["dir"].get<std::string>();
-      const pid_t pid = spawn({"video", "--checkpoint", (dir / "checkpoint.pt").string(), "--seed", "0", "--out",
-                               video.string()},
+      const pid_t pid = spawn({"video", "--checkpoint", (dir / "checkpoint.pt").string(), "--sample", "--seed", "0",
+                               "--out", video.string()},
                               "/dev/null", dir / "video.log");
       int status = 0;
       waitpid(pid, &status, 0);
@@ -473,6 +473,7 @@ nlohmann::json report(const std::vector<Cell>& cells, const ReproduceOptions& o,
   nlohmann::json result = {
       {"protocol", {{"activities", o.activities}, {"methods", o.methods}, {"training_seeds", o.seeds},
                     {"steps", o.steps}, {"mode", o.mode}, {"eval_seed", 0}, {"eval_episodes", o.eval_episodes},
+                    {"eval_policy", "sampled"},
                     {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
                     {"generalisation_episodes_per_seed", 1}}},
       {"command", o.command_line},
@@ -505,7 +506,8 @@ std::string markdown(const nlohmann::json& r, const ReproduceOptions& o) {
   for (uint64_t s : o.seeds) md << " " << s;
   md << "; " << o.mode << " primitive execution; evaluation at seed 0 (" << o.eval_episodes
      << " episodes) and over seeds " << o.generalisation_first << "-" << o.generalisation_last
-     << " (one episode each, instances never trained on). Mean ± std over the training seeds.\n"
+     << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as in "
+        "training. Mean ± std over the training seeds.\n"
      << "- Wall-clock: training " << hours(r["train_wall_s"].get<double>()) << " and evaluation "
      << hours(r["eval_wall_s"].get<double>()) << " summed over runs (one core each, " << o.jobs
      << " at a time)\n\n";
