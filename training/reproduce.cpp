@@ -198,13 +198,12 @@ class CellRun {
   bool start_next(std::string& what) {
     const fs::path log = cell_.dir / "train.log";
     const std::string range = std::to_string(o_.generalisation_first) + "-" + std::to_string(o_.generalisation_last);
-    const std::string checkpoint = (cell_.dir / "checkpoint.pt").string();
     const std::string steps = std::to_string(o_.steps);
     switch (stage_++) {
       case 0:
         what = "training (" + log.string() + ")";
         started_ = Clock::now();
-        if (fs::exists(checkpoint)) {
+        if (fs::exists(cell_.dir / "checkpoint.pt")) {
           pid_ = spawn({"train", "--resume", cell_.dir.string(), "--steps", steps}, "/dev/null", log);
         } else {
           pid_ = spawn({"train", "--activity", cell_.activity, "--baseline", cell_.method, "--seed",
@@ -216,33 +215,27 @@ class CellRun {
       case 1:
         what = "evaluating at seed 0";
         eval_started_ = Clock::now();
-        pid_ = spawn({"eval", "--checkpoint", checkpoint, "--sample", "--seeds", "0-0", "--episodes",
-                      std::to_string(o_.eval_episodes), "--threads", "1", "--json"},
-                     cell_.dir / "eval_seed0.json.part", cell_.dir / "eval.log");
+        evaluate("0-0", o_.eval_episodes, "eval_seed0.json");
         return true;
       case 2:
         what = "evaluating on seeds " + range;
         fs::rename(cell_.dir / "eval_seed0.json.part", cell_.dir / "eval_seed0.json");
-        pid_ = spawn({"eval", "--checkpoint", checkpoint, "--sample", "--seeds", range, "--episodes", "1",
-                      "--threads", "1", "--json"},
-                     cell_.dir / "eval_generalisation.json.part", cell_.dir / "eval.log");
+        evaluate(range, 1, "eval_generalisation.json");
         return true;
       case 3: {
         fs::rename(cell_.dir / "eval_generalisation.json.part", cell_.dir / "eval_generalisation.json");
-        const double eval_s = std::chrono::duration<double>(Clock::now() - eval_started_).count();
-        const nlohmann::json summary = {
+        nlohmann::json summary = {
             {"spec", cell_spec(cell_, o_)},
             {"train_wall_s", last_metric(cell_.dir / "metrics.csv", "wall_s", 0.0)},
-            {"eval_wall_s", eval_s},
+            {"eval_wall_s", std::chrono::duration<double>(Clock::now() - eval_started_).count()},
             {"seed0", read_json(cell_.dir / "eval_seed0.json").at(0)},
             {"generalisation", read_json(cell_.dir / "eval_generalisation.json").at(0)}};
         // The per-episode lists stay in the eval files; the summary keeps the totals.
-        nlohmann::json lean = summary;
         for (const char* key : {"seed0", "generalisation"}) {
-          lean[key].erase("per_episode");
-          lean[key].erase("per_seed");
+          summary[key].erase("per_episode");
+          summary[key].erase("per_seed");
         }
-        write_text(cell_.dir / "cell.json", lean.dump(2) + "\n");
+        write_text(cell_.dir / "cell.json", summary.dump(2) + "\n");
         return false;
       }
       default:
@@ -255,6 +248,13 @@ class CellRun {
   double seconds() const { return std::chrono::duration<double>(Clock::now() - started_).count(); }
 
  private:
+  // `chore eval` of the run's checkpoint, sampling, its JSON to `file`.part.
+  void evaluate(const std::string& seeds, int episodes, const std::string& file) {
+    pid_ = spawn({"eval", "--checkpoint", (cell_.dir / "checkpoint.pt").string(), "--sample", "--seeds", seeds,
+                  "--episodes", std::to_string(episodes), "--threads", "1", "--json"},
+                 cell_.dir / (file + ".part"), cell_.dir / "eval.log");
+  }
+
   Cell cell_;
   const ReproduceOptions& o_;
   int stage_ = 0;
