@@ -69,8 +69,8 @@ const ArmConfiguration kTuckedConfiguration = {Robot::kHomeTorso, 0.12, -1.45, -
 const ArmConfiguration kUntuckedConfiguration = {0.15, 0.74, -0.61, -0.28, 2.06, -0.63, -1.29, -0.07};
 const ArmConfiguration kCarryConfiguration = {0.35, 0.85, 0.20, -0.08, 2.19, 1.69, -1.39, -0.07};
 
-Motion::Motion(World& world, const PrimitiveOptions& options, uint64_t seed, PrimitiveResult& result)
-    : world_(world), options_(options), seeds_(seed), result_(result), ik_(world) {}
+Motion::Motion(World& world, const PrimitiveOptions& options, uint64_t seed, int look_at, PrimitiveResult& result)
+    : world_(world), options_(options), seeds_(seed), result_(result), ik_(world), look_at_(look_at) {}
 
 bool Motion::fail(PrimitiveStatus status, const std::string& reason) {
   result_.status = status;
@@ -81,12 +81,32 @@ bool Motion::fail(PrimitiveStatus status, const std::string& reason) {
 void Motion::step_physics(int env_steps) {
   const Clock::time_point start = Clock::now();
   for (int i = 0; i < env_steps && !result_.diverged; ++i) {
+    look_at_object();
     const World::StepReport report = world_.step(kSubsteps);
     result_.physics_steps += kSubsteps;
     result_.diverged |= report.diverged;
     result_.grasp_refused |= report.grasp_refused;
   }
   result_.execution_seconds += since(start);
+}
+
+void Motion::look_at_object() {
+  const Robot& r = *world_.robot();
+  const mjModel* m = world_.model();
+  const mjData* d = world_.data();
+  const Eigen::Vector3d target = object_aabb(world_, look_at_).center();
+  const double* pan_axis = d->xpos + 3 * m->jnt_bodyid[r.head_pan.joint];
+  const double* tilt_axis = d->xpos + 3 * m->jnt_bodyid[r.head_tilt.joint];
+  const double yaw = world_.base_pose().yaw, dx = target.x() - pan_axis[0], dy = target.y() - pan_axis[1];
+  const double forward = std::cos(yaw) * dx + std::sin(yaw) * dy, left = std::cos(yaw) * dy - std::sin(yaw) * dx;
+  const double pan = std::atan2(left, forward);
+  const double tilt = std::atan2(target.z() - tilt_axis[2], std::hypot(forward, left));  // up is positive
+  if (physical()) {
+    world_.command_position(r.head_pan, pan);
+    world_.command_position(r.head_tilt, tilt);
+  } else {
+    world_.set_head(pan, tilt);
+  }
 }
 
 Eigen::Vector3d Motion::hand_position() const {

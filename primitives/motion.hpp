@@ -15,7 +15,8 @@ namespace chore {
 
 class Motion {
  public:
-  Motion(World& world, const PrimitiveOptions& options, uint64_t seed, PrimitiveResult& result);
+  // `look_at`: the object the primitive acts on, which the head's camera follows.
+  Motion(World& world, const PrimitiveOptions& options, uint64_t seed, int look_at, PrimitiveResult& result);
 
   World& world() { return world_; }
   bool physical() const { return options_.mode == ExecutionMode::physical; }
@@ -49,6 +50,11 @@ class Motion {
   void wait(double seconds);
   // Tucked arm when the hand is empty; the carry pose while it holds something.
   bool tuck();
+  // Points the head's camera at the object, as OmniGibson's Tiago primitives
+  // track theirs, so that the robot sees what it acts on: physical motions
+  // command the head at every control step (its servos follow); a symbolic
+  // primitive calls this once at its end, and the head is set there.
+  void look_at_object();
 
   // The hand's centre and axes now.
   Eigen::Vector3d hand_position() const;
@@ -69,6 +75,7 @@ class Motion {
   std::mt19937_64 seeds_;
   PrimitiveResult& result_;
   IkSolver ik_;
+  int look_at_;
   bool touched_ = false;
 };
 

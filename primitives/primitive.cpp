@@ -419,7 +419,7 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
 class Executor {
  public:
   Executor(World& w, PrimitiveType type, int object, uint64_t seed, const PrimitiveOptions& options)
-      : w_(w), type_(type), object_(object), options_(options), motion_(w, options, seed, result_) {
+      : w_(w), type_(type), object_(object), options_(options), motion_(w, options, seed, object, result_) {
     result_.mode = options.mode;
   }
 
@@ -438,6 +438,7 @@ class Executor {
       result_.execution_seconds = execution;
       result_.physics_steps = steps;
     }
+    if (!motion_.physical()) motion_.look_at_object();  // physical motions turned the head as they went
     return result_;
   }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "env/env.hpp"
@@ -206,6 +207,32 @@ TEST(Primitives, PhysicalModeTracksThePlansInPhysics) {
                        << env.last_primitive().reason;
   EXPECT_EQ(env.last_primitive().mode, ExecutionMode::physical);
   EXPECT_GT(env.last_primitive().physics_steps, 100);  // simulated, not teleported
+}
+
+// The head follows the primitive's object, so the image shows what the robot
+// acts on: a pumpkin on the floor is below a level camera's view.
+TEST(Primitives, TheCameraLooksAtWhatThePrimitiveActsOn) {
+  for (ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    EnvConfig c = primitive_config("store_decoration", mode);
+    c.observations = {"seg_instance"};
+    Env env(c);
+    const Env::ResetResult first = env.reset(1);
+    const int pixels = static_cast<int>(first.obs["seg_instance"].item_bytes() / sizeof(int32_t));
+    const auto share_of = [&](const ArrayDict& obs, int object) {
+      const int32_t* ids = obs["seg_instance"].data<int32_t>();
+      const int32_t id = env.segmentation().instance_of_object(object);
+      return static_cast<double>(std::count(ids, ids + pixels, id)) / pixels;
+    };
+    const int pumpkin = env.primitive_actions()[index_of(env, "pick(pumpkin.n.02_1)")].object;
+    EXPECT_EQ(share_of(first.obs, pumpkin), 0.0) << to_string(mode);
+    for (const char* action : {"navigate(pumpkin.n.02_1)", "pick(pumpkin.n.02_1)", "navigate(cabinet.n.01_1)"}) {
+      const float a = static_cast<float>(index_of(env, action));
+      const Env::StepResult r = env.step({&a, 1});
+      ASSERT_TRUE(env.last_primitive().ok()) << action << ": " << env.last_primitive().reason;
+      const int object = env.primitive_actions()[index_of(env, action)].object;
+      EXPECT_GT(share_of(r.obs, object), 0.02) << to_string(mode) << " " << action;
+    }
+  }
 }
 
 TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {

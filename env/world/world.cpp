@@ -284,4 +284,17 @@ void World::set_robot_configuration(const Pose2& base, const double* torso_and_a
   if (sleeping_on_) sleeping_->unmask(model_, data_);
 }
 
+void World::set_head(double pan, double tilt) {
+  const Robot& r = *robot_;
+  for (auto [joint, angle] : {std::pair{&r.head_pan, pan}, {&r.head_tilt, tilt}}) {
+    const double q = std::clamp(angle, joint->low, joint->high);
+    data_->qpos[joint->qpos] = q;
+    data_->ctrl[joint->actuator] = q;
+    data_->qvel[joint->dof] = 0;
+    velocity_command_[joint->actuator] = 0;
+  }
+  mj_kinematics(model_, data_);
+  mj_camlight(model_, data_);
+}
+
 }  // namespace chore

@@ -103,6 +103,10 @@ class World {
   // and a held object moves with the gripper. Contacts are recomputed (those
   // of the awake objects while sleeping is on).
   void set_robot_configuration(const Pose2& base, const double* torso_and_arm);
+  // Kinematic head turn (symbolic primitives), clamped to the joints' ranges:
+  // its controllers hold it there. The head touches nothing: only the poses
+  // of bodies and cameras are recomputed.
+  void set_head(double pan, double tilt);
   // Moves the held free object, in `d` after mj_kinematics, to where the grasp
   // holds it relative to the gripper (then kinematics must run again).
   void carry_grasped(mjData_* d) const;
