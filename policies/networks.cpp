@@ -30,9 +30,6 @@ nn::Sequential mlp(int64_t in, int64_t hidden, int64_t out) {
                         nn::Linear(hidden, out));
 }
 
-int history_width(const NetworkSpec& s) {
-  return s.history * (s.feature_size + static_cast<int>(s.num_actions));
-}
 
 }  // namespace
 
@@ -179,7 +176,7 @@ ActorCriticImpl::ActorCriticImpl(const NetworkSpec& spec) {
   encoder = register_module("encoder", Encoder(spec));
   if (spec.history > 0) {
     history_net_ = register_module(
-        "history_net", nn::Sequential(nn::Linear(history_width(spec), spec.feature_size), nn::ReLU()));
+        "history_net", nn::Sequential(nn::Linear(History::width(spec.history, spec.num_actions), spec.feature_size), nn::ReLU()));
     combine_ = register_module(
         "combine", nn::Sequential(nn::Linear(2 * spec.feature_size, spec.feature_size), nn::ReLU()));
   }
@@ -196,17 +193,18 @@ ActorCriticOutput ActorCriticImpl::forward(const ObsTensors& obs, const torch::T
   const torch::Tensor feature = encoder->forward(obs);
   torch::Tensor x = feature;
   if (history_net_) x = combine_->forward(torch::cat({feature, history_net_->forward(history)}, 1));
-  return {policy_head_->forward(x), value_head_->forward(x).squeeze(1), feature};
+  return {policy_head_->forward(x), value_head_->forward(x).squeeze(1)};
 }
 
-History::History(int steps, int feature_size, int64_t num_actions)
-    : steps_(steps), feature_size_(feature_size), num_actions_(num_actions),
-      memory_(torch::zeros({0, steps, feature_size + num_actions})) {}
+History::History(int steps, int64_t num_actions)
+    : steps_(steps), num_actions_(num_actions),
+      memory_(torch::zeros({0, steps, num_actions + kPrimitiveStatuses})) {}
+
+int64_t History::width(int steps, int64_t num_actions) { return steps * (num_actions + kPrimitiveStatuses); }
 
 void History::ensure(int env_id) {
   if (env_id < memory_.size(0)) return;
-  memory_ = torch::cat({memory_, torch::zeros({env_id + 1 - memory_.size(0), steps_,
-                                               feature_size_ + num_actions_})});
+  memory_ = torch::cat({memory_, torch::zeros({env_id + 1 - memory_.size(0), steps_, memory_.size(2)})});
 }
 
 torch::Tensor History::rows(std::span<const int> env_ids) {
@@ -215,15 +213,16 @@ torch::Tensor History::rows(std::span<const int> env_ids) {
   return memory_.index_select(0, ids).reshape({ids.size(0), -1});
 }
 
-void History::push(std::span<const int> env_ids, const torch::Tensor& features,
-                   const torch::Tensor& actions) {
-  const torch::Tensor entry =
-      torch::cat({features.detach(), torch::one_hot(actions.to(torch::kInt64), num_actions_).to(torch::kFloat32)}, 1);
+void History::push(std::span<const int> env_ids, const torch::Tensor& actions, std::span<const Info> results) {
+  const auto action = actions.to(torch::kInt64).contiguous();
   for (size_t i = 0; i < env_ids.size(); ++i) {
     ensure(env_ids[i]);
     torch::Tensor m = memory_[env_ids[i]];
     if (steps_ > 1) m.narrow(0, 1, steps_ - 1).copy_(m.narrow(0, 0, steps_ - 1).clone());
-    m[0].copy_(entry[static_cast<int64_t>(i)]);
+    m[0].zero_();
+    m[0][action[static_cast<int64_t>(i)].item<int64_t>()] = 1.0f;
+    const int status = results[i].primitive_status;
+    if (status >= 0) m[0][num_actions_ + status] = 1.0f;
   }
 }
 
@@ -303,7 +302,7 @@ class RowGenerators {
 class PpoPolicy : public Policy {
  public:
   PpoPolicy(ActorCritic net, const NetworkSpec& spec, ActingMode mode)
-      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.feature_size, spec.num_actions),
+      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.num_actions),
         generators_(mode) {
     net_->eval();
   }
@@ -311,6 +310,7 @@ class PpoPolicy : public Policy {
   void act(const Batch& batch, std::span<float> actions) override {
     torch::NoGradGuard no_grad;
     const ObsTensors obs = obs_tensors(*batch.obs, spec_);
+    if (spec_.history > 0) remember_results(batch);
     const torch::Tensor history = spec_.history > 0 ? history_.rows(batch.env_ids) : torch::Tensor();
     const ActorCriticOutput out = net_->forward(obs, history);
     torch::Tensor chosen = out.logits.argmax(1);
@@ -320,16 +320,43 @@ class PpoPolicy : public Policy {
         chosen[i] = torch::multinomial(probs[i], 1, false, generators_.of(batch.env_ids[i], batch.infos[i]))[0];
       }
     }
-    if (spec_.history > 0) history_.push(batch.env_ids, out.feature, chosen);
-    for (int64_t i = 0; i < chosen.size(0); ++i) actions[i] = static_cast<float>(chosen[i].item<int64_t>());
+    for (int64_t i = 0; i < chosen.size(0); ++i) {
+      actions[i] = static_cast<float>(chosen[i].item<int64_t>());
+      pending(batch.env_ids[i]) = chosen[i].item<int64_t>();
+    }
   }
 
-  void reset(std::span<const int> env_ids) override { history_.reset(env_ids); }
+  void reset(std::span<const int> env_ids) override {
+    history_.reset(env_ids);
+    for (int id : env_ids) pending(id) = -1;
+  }
 
  private:
+  // An env's action not yet in its history: its result comes with the next
+  // batch (the info of the step it ran in); -1 when none.
+  int64_t& pending(int env_id) {
+    if (static_cast<int>(pending_.size()) <= env_id) pending_.resize(static_cast<size_t>(env_id) + 1, -1);
+    return pending_[static_cast<size_t>(env_id)];
+  }
+
+  // Each row's info is the result of this env's pending action, or the start
+  // of a new episode.
+  void remember_results(const Batch& batch) {
+    for (int i = 0; i < batch.size(); ++i) {
+      const int id[] = {batch.env_ids[i]};
+      if (batch.infos[i].elapsed_steps == 0) {
+        history_.reset(id);
+      } else if (pending(id[0]) >= 0) {
+        history_.push(id, torch::tensor({pending(id[0])}), batch.infos.subspan(i, 1));
+      }
+      pending(id[0]) = -1;
+    }
+  }
+
   ActorCritic net_;
   NetworkSpec spec_;
   History history_;
+  std::vector<int64_t> pending_;
   RowGenerators generators_;
 };
 

@@ -7,8 +7,8 @@
 //                -> Conv-ReLU-MaxPool x3 -> Flatten;  state (is_grasping,
 //                proprio), normalised per dimension, -> Linear-ReLU;  both
 //                -> Linear-ReLU to a 128-d feature.
-//   ActorCritic  (PPO) feature [+ history of K past (feature, action)]
-//                -> action logits over primitives, value.
+//   ActorCritic  (PPO) feature [+ history of the K past primitives and how
+//                each ended] -> action logits over primitives, value.
 //   SacActor     feature -> tanh-squashed Gaussian over the low-level action.
 //   SacCritic    its own Encoder + twin Q heads on (feature, action).
 #pragma once
@@ -83,14 +83,13 @@ int64_t trunk_output_size(int height, int width);
 
 struct ActorCriticOutput {
   torch::Tensor logits, value;  // (B, num_actions), (B)
-  torch::Tensor feature;        // (B, feature_size): what the history keeps
 };
 
 class ActorCriticImpl : public torch::nn::Module {
  public:
   explicit ActorCriticImpl(const NetworkSpec& spec);
-  // `history` is (B, K * (feature_size + num_actions)), from History::rows;
-  // undefined without history.
+  // `history` is (B, K * (num_actions + kPrimitiveStatuses)), from
+  // History::rows; undefined without history.
   ActorCriticOutput forward(const ObsTensors& obs, const torch::Tensor& history);
   Encoder encoder{nullptr};
 
@@ -100,21 +99,27 @@ class ActorCriticImpl : public torch::nn::Module {
 };
 TORCH_MODULE(ActorCritic);
 
-// RL-Prim.Hist.'s memory: per env, the last K steps' features (as computed
-// when acting, no gradient flows into them) and one-hot actions, newest first;
-// zeros before an episode's first step.
+// RL-Prim.Hist.'s memory: per env, its last K primitives (one-hot) and how
+// each ended (one-hot PrimitiveStatus), newest first; zeros before an
+// episode's first step. What a policy without it cannot know is its own
+// recent failures: the image after a failed primitive looks as before it, and
+// the paper's RL-Prim. "tends to get stuck in a repetitive action loop because
+// the agent is unaware of its action history" (appendix G, on the real robot).
 class History {
  public:
-  History(int steps, int feature_size, int64_t num_actions);
-  torch::Tensor rows(std::span<const int> env_ids);  // (B, K * (F + A))
-  void push(std::span<const int> env_ids, const torch::Tensor& features, const torch::Tensor& actions);
+  History(int steps, int64_t num_actions);
+  static int64_t width(int steps, int64_t num_actions);  // K * (A + kPrimitiveStatuses)
+  torch::Tensor rows(std::span<const int> env_ids);        // (B, width)
+  // Row i: env env_ids[i] took actions[i], and results[i] is the info of the
+  // step it ran in (its primitive_status).
+  void push(std::span<const int> env_ids, const torch::Tensor& actions, std::span<const Info> results);
   void reset(std::span<const int> env_ids);
 
  private:
   void ensure(int env_id);
-  int steps_, feature_size_;
+  int steps_;
   int64_t num_actions_;
-  torch::Tensor memory_;  // (envs, K, F + A)
+  torch::Tensor memory_;  // (envs, K, A + kPrimitiveStatuses)
 };
 
 struct SacSample {

@@ -158,14 +158,19 @@ TEST(Training, SacWithImagesIsDeterministicOnOneThread) {
   expect_deterministic(config, 300);
 }
 
-TEST(Training, HistoryKeepsTheLastKStepsNewestFirst) {
-  History history(2, 3, 4);
+TEST(Training, HistoryKeepsTheLastKPrimitivesAndResultsNewestFirst) {
+  History history(2, 4);  // K = 2 steps of 4 actions + 5 statuses
   const int ids[] = {1};
-  history.push(ids, torch::full({1, 3}, 1.0f), torch::tensor({2}));
-  history.push(ids, torch::full({1, 3}, 5.0f), torch::tensor({0}));
+  Info result;
+  result.primitive_status = static_cast<int>(PrimitiveStatus::success);
+  history.push(ids, torch::tensor({2}), std::span(&result, 1));
+  result.primitive_status = static_cast<int>(PrimitiveStatus::precondition_failure);
+  history.push(ids, torch::tensor({0}), std::span(&result, 1));
   const torch::Tensor row = history.rows(ids)[0];
-  const std::vector<float> expected = {5, 5, 5, 1, 0, 0, 0, 1, 1, 1, 0, 0, 1, 0};
+  const std::vector<float> expected = {1, 0, 0, 0, /* status */ 0, 0, 0, 0, 1,   // newest
+                                       0, 0, 1, 0, /* status */ 1, 0, 0, 0, 0};  // before
   EXPECT_TRUE(torch::equal(row, torch::tensor(expected)));
+  EXPECT_EQ(History::width(2, 4), 18);
   const int env0[] = {0};
   EXPECT_EQ(history.rows(env0).abs().sum().item<float>(), 0.0f);  // untouched env: zeros
   history.reset(ids);

@@ -53,7 +53,7 @@ class PpoTrainer : public Trainer {
     generator_ = seed_torch(config_.seed, config_.threads);
     net_ = ActorCritic(spec_);
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
-    if (spec_.history > 0) history_.emplace(spec_.history, spec_.feature_size, spec_.num_actions);
+    if (spec_.history > 0) history_.emplace(spec_.history, spec_.num_actions);
     steps_per_rollout_ = (p.buffer + config_.num_envs - 1) / config_.num_envs;
     if (resume) load(*resume);
     // A resumed run restarts its envs; seed + steps keeps it reproducible.
@@ -112,6 +112,16 @@ class PpoTrainer : public Trainer {
     wall_s_ = progress.wall_s;
   }
 
+  // The info of the step each row ran: an ended row's infos hold its next
+  // episode's start, its final_infos the step.
+  static std::vector<Info> step_results(const Batch& batch) {
+    std::vector<Info> results(batch.infos.begin(), batch.infos.end());
+    for (int i = 0; i < batch.size(); ++i) {
+      if (batch.terminated[i] || batch.truncated[i]) results[i] = batch.final_infos[i];
+    }
+    return results;
+  }
+
   torch::Tensor history_rows(std::span<const int> env_ids) {
     return history_ ? history_->rows(env_ids) : torch::Tensor();
   }
@@ -134,10 +144,12 @@ class PpoTrainer : public Trainer {
       rollout_.actions.push_back(actions);
       rollout_.log_probs.push_back(log_probs.gather(1, actions.unsqueeze(1)).squeeze(1));
       rollout_.values.push_back(out.value);
-      if (history_) history_->push(ids, out.feature, actions);
 
       for (int i = 0; i < n; ++i) action_values[i] = static_cast<float>(actions[i].item<int64_t>());
       const Batch batch = env_.step(action_values);
+      // Rows are in env order; an ended row's history is cleared below, after
+      // its bootstrap value has seen it.
+      if (history_) history_->push(batch.env_ids, actions, step_results(batch));
       torch::Tensor rewards = torch::from_blob(const_cast<float*>(batch.rewards.data()), {n}).clone();
       torch::Tensor dones = torch::zeros({n});
       std::vector<int> ended;
