@@ -360,7 +360,7 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     const std::string liquid = liquid_of(l);
     value = p == "soaked" ? soaked(w, a, liquid) : p == "saturated" ? saturated(w, a, liquid) : filled(w, a, liquid);
   } else if (p == "dusty" || p == "stained") {
-    value = covered(w, object_arg(0), p == "dusty" ? "dust" : "stain");
+    value = dirty(w, object_arg(0), p == "dusty" ? "dust" : "stain");
   } else {
     static const std::map<std::string, bool (*)(const World&, int)> unary = {
         {"open", is_open},     {"cooked", cooked},   {"burnt", burnt},       {"frozen", frozen},

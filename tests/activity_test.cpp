@@ -110,7 +110,12 @@ TEST(Activity, CleanTableIsMetWhenTheStainsAreGone) {
   EXPECT_TRUE(covered(world, table, "stain"));
   EXPECT_TRUE(filled(world, activity->object("bucket.n.01_1")));
   EXPECT_FALSE(activity->score(world).success);
-  world.states().state(table).dirt["stain"].clear();
+  // BEHAVIOR-100's stained (iGibson): clean once at most half of the stains remain.
+  std::vector<Eigen::Vector3d>& stains = world.states().state(table).dirt["stain"];
+  const size_t sampled = stains.size();
+  stains.resize(sampled / 2 + 1);
+  EXPECT_FALSE(activity->score(world).success);
+  stains.resize(sampled / 2);
   EXPECT_TRUE(activity->score(world).success);
 }
 

@@ -132,6 +132,29 @@ TEST_F(ObjectStatesTest, ASoakedCleaningToolWipesStainsOffAndADryOneDoesNot) {
   EXPECT_FALSE(covered(world_, table, "stain"));
 }
 
+// iGibson's stained/dusty: dirty while more than half of the particles sampled
+// remain; OmniGibson's covered: while at least five do.
+TEST_F(ObjectStatesTest, StainedClearsAtHalfTheParticlesCoveredAtFewerThanFive) {
+  const int table = object("table_1");
+  ObjectAbilities surface;
+  surface.covered = true;
+  world_.states().configure(table, surface);
+  Rng rng(2);
+  ASSERT_TRUE(sample_covered(world_, table, "stain", true, rng));
+  std::vector<Eigen::Vector3d>& dirt = world_.states().state(table).dirt["stain"];
+  ASSERT_EQ(dirt.size(), 20u);
+  dirt.resize(11);
+  EXPECT_TRUE(dirty(world_, table, "stain"));
+  dirt.resize(10);
+  EXPECT_FALSE(dirty(world_, table, "stain"));
+  EXPECT_TRUE(covered(world_, table, "stain"));
+  dirt.resize(4);
+  EXPECT_FALSE(covered(world_, table, "stain"));
+  // Sampling clean leaves nothing dirty, whatever was sampled before.
+  sample_covered(world_, table, "stain", false, rng);
+  EXPECT_FALSE(dirty(world_, table, "stain"));
+}
+
 TEST_F(ObjectStatesTest, HardImpactsBreakAndAPressedSlicerSlices) {
   const int apple = object("apple_1"), cup = object("cup_1");
   ObjectAbilities fragile;

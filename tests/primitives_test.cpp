@@ -265,7 +265,7 @@ TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {
   }
   EXPECT_TRUE(dipped);
   EXPECT_TRUE(cleaned);
-  EXPECT_LT(stains(), static_cast<size_t>(ObjectStates::kCoveredParticles));
+  EXPECT_LE(stains(), before / 2);  // stained (iGibson): clean at half the stains gone
 }
 
 // Navigate aims at every dirt particle, the densest patches first: a

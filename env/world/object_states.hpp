@@ -61,6 +61,7 @@ struct ObjectState {
   std::string liquid;       // what a container holds (holds_liquid) ...
   double liquid_level = 0;  // ... up to this fraction of its inner height
   std::map<std::string, std::vector<Eigen::Vector3d>> dirt;  // particles in the object's frame
+  std::map<std::string, int> dirt_sampled;  // how many particles each substance was sampled with
   bool toggled = false;
   int toggle_steps = 0;     // consecutive env steps the hand is at the toggle point
   bool sliced = false, broken = false;
@@ -69,7 +70,8 @@ struct ObjectState {
 class ObjectStates {
  public:
   // Thresholds of the predicates on these states.
-  static constexpr int kCoveredParticles = 5;  // covered while at least this many remain
+  static constexpr int kCoveredParticles = 5;  // covered (OmniGibson) while at least this many remain
+  static constexpr double kDirtyFraction = 0.5;  // stained/dusty (iGibson) while more than this share of the sampled remain
   static constexpr double kSoakedLevel = 0.5;
   static constexpr double kToggleDistance = 0.1;  // m from the toggle point
   static constexpr int kToggleSteps = 5;

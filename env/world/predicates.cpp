@@ -179,6 +179,18 @@ bool state_test(const World& w, int a, Test test) {
   return ab && test(*ab, w.states().state(a));
 }
 
+// The particles of `substance` left on a against those sampled, for an object
+// that keeps dirt.
+template <class Test>
+bool dirt_test(const World& w, int a, const std::string& substance, Test test) {
+  return state_test(w, a, [&](const auto& ab, const auto& s) {
+    const auto left = s.dirt.find(substance);
+    const auto sampled = s.dirt_sampled.find(substance);
+    return ab.covered && left != s.dirt.end() &&
+           test(static_cast<int>(left->second.size()), sampled == s.dirt_sampled.end() ? 0 : sampled->second);
+  });
+}
+
 }  // namespace
 
 bool cooked(const World& w, int a) {
@@ -221,11 +233,11 @@ bool soaked(const World& w, int a, const std::string& liquid) {
 }
 bool saturated(const World& w, int a, const std::string& liquid) { return absorbed(w, a, liquid) >= 1.0; }
 bool covered(const World& w, int a, const std::string& substance) {
-  return state_test(w, a, [&](const auto& ab, const auto& s) {
-    const auto it = s.dirt.find(substance);
-    return ab.covered && it != s.dirt.end() &&
-           static_cast<int>(it->second.size()) >= ObjectStates::kCoveredParticles;
-  });
+  return dirt_test(w, a, substance, [](int left, int) { return left >= ObjectStates::kCoveredParticles; });
+}
+bool dirty(const World& w, int a, const std::string& substance) {
+  return dirt_test(w, a, substance,
+                   [](int left, int sampled) { return left > ObjectStates::kDirtyFraction * sampled; });
 }
 bool filled(const World& w, int a, const std::string& liquid) {
   return state_test(w, a, [&](const auto& ab, const auto& s) {

@@ -51,6 +51,9 @@ bool on_fire(const World& world, int a);  // temperature >= ignition temperature
 bool soaked(const World& world, int a, const std::string& liquid = "water");
 bool saturated(const World& world, int a, const std::string& liquid = "water");
 bool covered(const World& world, int a, const std::string& substance);
+// BEHAVIOR-100's stained and dusty, as iGibson computes them: dirty while more
+// than half of the particles sampled remain (covered asks for all but four gone).
+bool dirty(const World& world, int a, const std::string& substance);
 bool filled(const World& world, int a, const std::string& liquid = "water");
 bool toggled_on(const World& world, int a);
 bool sliced(const World& world, int a);

@@ -256,7 +256,9 @@ bool sample_covered(World& w, int a, const std::string& substance, bool value, R
     throw Error("sampling: object '" + w.scene().objects()[a].name + "' does not keep CoveredLevel");
   }
   std::vector<Eigen::Vector3d>& dirt = w.states().state(a).dirt[substance];
+  int& sampled = w.states().state(a).dirt_sampled[substance];
   dirt.clear();
+  sampled = 0;
   if (!value) return true;
   const Aabb box = object_aabb(w, a);
   const std::vector<int> all = geoms_except(w, -1);
@@ -271,6 +273,7 @@ bool sample_covered(World& w, int a, const std::string& substance, bool value, R
     if (to_a < 0 || ray_to_geoms(w, all, start, kDown, 10) < to_a - 1e-9) continue;
     dirt.push_back(r.transpose() * (start + kDown * to_a - origin));
   }
+  sampled = static_cast<int>(dirt.size());
   return static_cast<int>(dirt.size()) == particles;
 }
 
