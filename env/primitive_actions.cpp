@@ -48,6 +48,14 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   const Problem& problem = activity.problem();
   const std::set<std::string> supports = arguments_of(problem, {"ontop", "inside"}, 1);
   const std::set<std::string> dirty = arguments_of(problem, {"stained", "dusty", "covered"}, 0);
+  // Placing and opening serve goals that put something somewhere: with none
+  // (CleanTable), place and push would only undo a pick or open a drawer for
+  // nothing, and the paper's action space there has neither (appendix F.2).
+  std::set<std::string> goal_supports;
+  std::vector<const Variable*> scope;
+  arguments_of(problem.goal, {"ontop", "inside"}, 1, goal_supports, scope);
+  std::set<std::string> openable = arguments_of(problem, {"open"}, 0);
+  openable.insert(goal_supports.begin(), goal_supports.end());
 
   std::vector<PrimitiveAction> actions;
   for (const ObjectDecl& decl : problem.objects) {
@@ -59,7 +67,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
     for (int t = 0; t < kPrimitiveTypes; ++t) {
       const auto type = static_cast<PrimitiveType>(t);
       bool applies = primitive_applies(world, type, b.index);
-      if (type == PrimitiveType::place) applies = named(supports);
+      if (type == PrimitiveType::place) applies = !goal_supports.empty() && named(supports);
+      if (type == PrimitiveType::push) applies = applies && named(openable);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
       if (applies) actions.push_back({type, b.index, decl.name});
     }

@@ -4,8 +4,10 @@
 //   navigate  every object the activity declares (its relevant locations)
 //   pick      those the gripper can lift (free, under the mass limit)
 //   place     the supports and containers: second arguments of ontop/inside
-//             in :init or :goal (a quantified variable: every object of its type)
-//   push      articulated ones (drawers)
+//             in :init or :goal (a quantified variable: every object of its
+//             type), when the :goal has such a literal at all
+//   push      articulated ones (drawers) that an open literal names or the
+//             :goal puts something on or in
 //   dip       liquid containers and sources
 //   wipe      those a stained/dusty/covered literal names (and dirt can lie on)
 // Objects in :objects order, primitives in that order for each.
