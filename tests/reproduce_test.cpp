@@ -29,12 +29,12 @@ std::string read_text(const fs::path& path) {
 nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
 
 // Runs `chore reproduce` on the small table; returns its exit status, its log in `log`.
-int reproduce_small_table(const fs::path& out, std::string& log) {
+int reproduce_small_table(const fs::path& out, std::string& log, bool videos = false) {
   const fs::path log_file = out.string() + ".log";
   const std::string command = std::string(CHORE_BINARY) +
                               " reproduce --activities collect_trash --methods rl-prim --seeds 0 1 --steps 60"
-                              " --mode symbolic --eval-episodes 2 --generalisation-seeds 100-101 --no-videos --out " +
-                              out.string() + " 2> " + log_file.string();
+                              " --mode symbolic --eval-episodes 2 --generalisation-seeds 100-101" +
+                              (videos ? "" : " --no-videos") + " --out " + out.string() + " 2> " + log_file.string();
   const int status = std::system(command.c_str());
   log = read_text(log_file);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -114,6 +114,18 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   EXPECT_EQ(partial["missing"][0], "collect_trash rl-prim seed 1");
   EXPECT_EQ(partial["failures"].size(), 1u);
   EXPECT_NE(read_text(out / "baselines.md").find("(1 of 2 seeds)"), std::string::npos);
+
+  // With videos: the run left (seed 0) gets collect_trash's; the video an
+  // earlier invocation made of another activity stays in the report.
+  nlohmann::json with_other = partial;
+  with_other["videos"] = {{"store_decoration", {{"file", "videos/store_decoration.mp4"}, {"method", "rl-prim-hist"},
+                                                {"run", "elsewhere"}, {"seed", 2}}}};
+  std::ofstream(out / "baselines.json", std::ios::trunc) << with_other.dump();
+  EXPECT_EQ(reproduce_small_table(out, log, true), 1) << log;
+  nlohmann::json videos = read_json(out / "baselines.json")["videos"];
+  EXPECT_EQ(videos["store_decoration"]["seed"], 2);
+  EXPECT_EQ(videos["collect_trash"]["run"], seed0.string());
+  EXPECT_GT(fs::file_size(out / "videos" / "collect_trash.mp4"), 1000u);
   fs::remove_all(out);
 }
 

@@ -440,8 +440,11 @@ nlohmann::json report(const std::vector<Cell>& cells, const ReproduceOptions& o,
     }
   }
 
-  // Videos: per activity, the run with the best Q at seed 0 whose checkpoint is here.
-  nlohmann::json videos = nlohmann::json::object();
+  // Videos: per activity, the run with the best Q at seed 0 whose checkpoint is here;
+  // the other activities keep the videos an earlier invocation made.
+  nlohmann::json videos = fs::exists(out / "baselines.json")
+                              ? read_json(out / "baselines.json").value("videos", nlohmann::json::object())
+                              : nlohmann::json::object();
   if (o.videos && !o.report_only) {
     fs::create_directories(out / "videos");
     for (const std::string& a : o.activities) {
@@ -462,11 +465,10 @@ nlohmann::json report(const std::vector<Cell>& cells, const ReproduceOptions& o,
         videos[a] = {{"file", video.string()}, {"run", dir.string()}, {"method", (*best)["method"]},
                      {"seed", (*best)["seed"]}};
       } else {
+        videos.erase(a);
         log << "reproduce: no video for " << a << " (see " << (dir / "video.log").string() << ")\n";
       }
     }
-  } else if (fs::exists(out / "baselines.json")) {
-    videos = read_json(out / "baselines.json").value("videos", nlohmann::json::object());
   }
 
   nlohmann::json result = {
