@@ -41,7 +41,9 @@ TEST(Evaluate, TheExpertPolicyPlaysTheEpisodesOfChoreExpert) {
       EXPECT_EQ(e["env_seed"].get<uint64_t>(), expert.seed + j);
       EXPECT_EQ(e["success"], r["success"]) << "seed " << seed << " episode " << j;
       EXPECT_DOUBLE_EQ(e["q"].get<double>(), r["q"].get<double>()) << "seed " << seed << " episode " << j;
-      if (r["success"].get<bool>()) EXPECT_EQ(e["length"], r["steps"]);
+      if (r["success"].get<bool>()) {
+        EXPECT_EQ(e["length"], r["steps"]);
+      }
     }
   }
   // Mean and population std over the two seeds' success rates.

@@ -262,7 +262,9 @@ TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {
       EXPECT_GE(soaked(), ObjectStates::kSoakedLevel);
       dipped = true;
     }
-    if (action.type == PrimitiveType::wipe) EXPECT_TRUE(dipped) << "wiped before soaking";
+    if (action.type == PrimitiveType::wipe) {
+      EXPECT_TRUE(dipped) << "wiped before soaking";
+    }
     cleaned = r.info.success;
   }
   EXPECT_TRUE(dipped);

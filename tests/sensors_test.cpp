@@ -23,7 +23,7 @@ constexpr int kSize = 128;
 std::array<int, 2> pixel_of(const Env& env, const double p[3]) {
   const int cam = env.world().scene().camera();
   const Pinhole pinhole = Pinhole::of(env.world().model(), cam, kSize, kSize);
-  double local[3], u, v;
+  double local[3], u = -1, v = -1;  // outside the image if project() fails
   CameraPose::of(env.world().data(), cam).to_camera(p, local);
   EXPECT_TRUE(pinhole.project(local, u, v));
   const int col = std::clamp(static_cast<int>(std::floor(u)), 0, kSize - 1);
