@@ -107,7 +107,12 @@ expect 2 "unknown activity 'nope'" -- "$chore" train --activity nope --baseline 
 expect 2 "unknown observation 'smell'" -- "$chore" train --activity collect_trash --baseline rl-prim --observations smell --out "$run_dir"
 expect 2 "--history is for rl-prim-hist" -- "$chore" train --activity collect_trash --baseline rl-prim --history 2 --out "$run_dir"
 expect 2 "no checkpoint.pt there" -- "$chore" train --resume "$run_dir"
-expect 0 "300 steps done" -- "$chore" train --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 300 --out "$run_dir"
+expect 2 "--set ppo.nope: no such setting" -- "$chore" train --activity collect_trash --baseline rl-prim --set ppo.nope=1 --out "$run_dir"
+expect 2 "--set ppo.epochs: 'many' is not a number" -- "$chore" train --activity collect_trash --baseline rl-prim --set ppo.epochs=many --out "$run_dir"
+if [[ -e "$run_dir/config.json" ]]; then echo "FAIL: a refused train wrote $run_dir/config.json"; failures=$((failures + 1)); fi
+expect 0 "300 steps done" -- "$chore" train --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 300 --set ppo.epochs=3 --out "$run_dir"
+if ! grep -q '"epochs": 3' "$run_dir/config.json"; then echo "FAIL: $run_dir/config.json lacks --set's epochs"; failures=$((failures + 1)); fi
+expect 2 "--set changes a new run" -- "$chore" train --resume "$run_dir" --set ppo.epochs=4
 if [[ "$(head -1 "$run_dir/metrics.csv" | cut -d, -f1-7)" != "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length" ]]; then
   echo "FAIL: $run_dir/metrics.csv header"; failures=$((failures + 1))
 fi

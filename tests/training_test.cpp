@@ -148,6 +148,54 @@ TEST(Training, PpoWithHistoryIsDeterministicOnOneThread) {
   expect_deterministic(collect_trash_config("rl-prim-hist"), 600);
 }
 
+// --set's overrides: one field by its JSON path, of the field's own type.
+TEST(Training, SettingReplacesOneFieldOfItsType) {
+  const TrainConfig base = collect_trash_config();
+  EXPECT_TRUE(base.ppo.normalize_advantage);  // SB3's and CleanRL's default
+  TrainConfig c = with_setting(base, "ppo.entropy_coef=0.01");
+  c = with_setting(c, "ppo.normalize_advantage=false");
+  c = with_setting(c, "ppo.epochs=4");
+  c = with_setting(c, "env.max_episode_steps=30");
+  EXPECT_EQ(c.ppo.entropy_coef, 0.01);
+  EXPECT_FALSE(c.ppo.normalize_advantage);
+  EXPECT_EQ(c.ppo.epochs, 4);
+  EXPECT_EQ(c.env.max_episode_steps, 30);
+  EXPECT_EQ(with_setting(base, "sac.lr=1").sac.lr, 1.0);  // an integer is a number
+  EXPECT_EQ(with_setting(base, "baseline=rl-prim-hist").baseline, "rl-prim-hist");
+  // Everything else as it was.
+  nlohmann::json expected = to_json(base);
+  expected["ppo"]["entropy_coef"] = 0.01;
+  expected["ppo"]["normalize_advantage"] = false;
+  expected["ppo"]["epochs"] = 4;
+  expected["env"]["max_episode_steps"] = 30;
+  EXPECT_EQ(to_json(c), expected);
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"ppo.epochs", "expected KEY=VALUE"},
+           {"ppo.nope=1", "ppo.nope: no such setting"},
+           {"ppo.lr.x=1", "ppo.lr.x: no such setting"},
+           {"ppo=1", "a group of settings"},
+           {"ppo.epochs=1.5", "'1.5' is not a number like 10"},
+           {"ppo.normalize_advantage=1", "is not a boolean"},
+           {"seed=-1", "is not a number"}}) {
+    EXPECT_NE(test::error_of([&] { with_setting(base, bad); }).find(message), std::string::npos) << bad;
+  }
+  // A run saved before the field existed normalised its advantages.
+  nlohmann::json old = to_json(c);
+  old["ppo"].erase("normalize_advantage");
+  EXPECT_TRUE(train_config_from_json(old).ppo.normalize_advantage);
+}
+
+// Without the normalisation the same rollout gives another update.
+TEST(Training, PpoAdvantageNormalisationChangesTheUpdate) {
+  TrainConfig config = collect_trash_config();
+  auto normalised = make_trainer(config);
+  config.ppo.normalize_advantage = false;
+  auto raw = make_trainer(config);
+  const std::vector<MetricsRow> a = train(*normalised, 300), b = train(*raw, 300);
+  EXPECT_EQ(a.front().mean_return, b.front().mean_return);  // the same first rollout
+  EXPECT_NE(normalised->parameters(), raw->parameters());
+}
+
 // With 32x32 RGB: the conv trunk and the image normaliser.
 TEST(Training, SacWithImagesIsDeterministicOnOneThread) {
   TrainConfig config = reach_config();

@@ -231,6 +231,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
       ->check(CLI::PositiveNumber)->capture_default_str();
+  train_cmd->add_option("--set", train.settings,
+                        "KEY=VALUE: a config field of the new run, as named in the run folder's config.json, e.g. ppo.entropy_coef=0.01");
 
   chore::ReproduceOptions reproduce;
   std::string generalisation_seeds = "100-119";

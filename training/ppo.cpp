@@ -221,7 +221,7 @@ class PpoTrainer : public Trainer {
         const torch::Tensor log_ratio = log_probs - old_log_probs.index_select(0, idx);
         const torch::Tensor ratio = log_ratio.exp();
         torch::Tensor adv = advantages.index_select(0, idx);
-        if (adv.size(0) > 1) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
+        if (p.normalize_advantage && adv.size(0) > 1) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
         const torch::Tensor policy_loss =
             torch::max(-adv * ratio, -adv * torch::clamp(ratio, 1 - p.clip, 1 + p.clip)).mean();
         const torch::Tensor value_loss = 0.5 * (out.value - returns.index_select(0, idx)).pow(2).mean();

@@ -70,6 +70,7 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     if (!fs::exists(checkpoint)) throw Error("train: --resume " + o.resume + ": no checkpoint.pt there");
     trainer = resume_trainer(checkpoint.string());
     // The run's own config holds; only --steps may change (extend) it.
+    if (!o.settings.empty()) throw Error("train: --set changes a new run; --resume continues one as it was");
     const TrainConfig& saved = trainer->config();
     if ((!o.activity.empty() && o.activity != saved.env.activity) ||
         (!o.baseline.empty() && o.baseline != saved.baseline)) {
@@ -97,8 +98,13 @@ void run_train(const TrainOptions& o, std::ostream& log) {
       if (config.baseline != "rl-prim-hist") throw Error("train: --history is for rl-prim-hist");
       config.ppo.history = o.history;
     }
+    for (const std::string& setting : o.settings) config = with_setting(config, setting);
     fs::create_directories(dir);
     trainer = make_trainer(config);
+    // The run's settings, readable without the checkpoint (the names --set takes).
+    std::ofstream config_file(fs::path(dir) / "config.json");
+    config_file << to_json(config).dump(2) << "\n";
+    if (!config_file) throw Error("train: cannot write " + (fs::path(dir) / "config.json").string());
   }
   TrainConfig config = trainer->config();
   const int64_t total = o.steps.value_or(config.total_steps);

@@ -23,6 +23,7 @@ struct TrainOptions {
   int episode_steps = 0;                  // 0: the baseline's
   int history = 0;                        // rl-prim-hist's K; 0: PpoConfig's default
   int64_t checkpoint_every = 3000;        // env steps
+  std::vector<std::string> settings;      // KEY=VALUE overrides of the config (with_setting)
 };
 
 // Runs (or resumes) the training; throws chore::Error for bad options or files.

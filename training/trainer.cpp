@@ -122,7 +122,8 @@ nlohmann::json to_json(const TrainConfig& c) {
           {"ppo", {{"lr", p.lr}, {"buffer", p.buffer}, {"batch", p.batch}, {"epochs", p.epochs},
                    {"gamma", p.gamma}, {"gae_lambda", p.gae_lambda}, {"clip", p.clip},
                    {"entropy_coef", p.entropy_coef}, {"value_coef", p.value_coef},
-                   {"max_grad_norm", p.max_grad_norm}, {"history", p.history}}},
+                   {"max_grad_norm", p.max_grad_norm}, {"history", p.history},
+                   {"normalize_advantage", p.normalize_advantage}}},
           {"sac", {{"lr", s.lr}, {"buffer", s.buffer}, {"batch", s.batch}, {"gamma", s.gamma},
                    {"tau", s.tau}, {"learning_starts", s.learning_starts},
                    {"initial_alpha", s.initial_alpha}, {"hidden", s.hidden},
@@ -143,7 +144,9 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
              p.at("epochs").get<int>(), p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(),
              p.at("clip").get<double>(), p.at("entropy_coef").get<double>(),
              p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
-             p.at("history").get<int>()};
+             p.at("history").get<int>(),
+             // Runs saved before the field existed normalised.
+             p.value("normalize_advantage", true)};
     const nlohmann::json& s = j.at("sac");
     c.sac = {s.at("lr").get<double>(), s.at("buffer").get<int>(), s.at("batch").get<int>(),
              s.at("gamma").get<double>(), s.at("tau").get<double>(),
@@ -153,6 +156,34 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
   } catch (const nlohmann::json::exception& e) {
     throw Error(std::string("train config: ") + e.what());
   }
+}
+
+TrainConfig with_setting(const TrainConfig& config, const std::string& key_equals_value) {
+  const size_t eq = key_equals_value.find('=');
+  if (eq == std::string::npos) throw Error("--set " + key_equals_value + ": expected KEY=VALUE");
+  const std::string key = key_equals_value.substr(0, eq);
+  const std::string text = key_equals_value.substr(eq + 1);
+  nlohmann::json tree = to_json(config);
+  nlohmann::json* field = &tree;
+  for (size_t begin = 0; begin <= key.size();) {
+    const size_t end = std::min(key.find('.', begin), key.size());
+    const std::string name = key.substr(begin, end - begin);
+    if (!field->is_object() || !field->contains(name)) throw Error("--set " + key + ": no such setting");
+    field = &(*field)[name];
+    begin = end + 1;
+  }
+  if (field->is_object()) throw Error("--set " + key + ": a group of settings; name one inside it");
+  nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded() && field->is_string()) value = text;  // a bare word for a string
+  const bool same_type = value.type() == field->type() ||
+                         (field->is_number_float() && value.is_number()) ||
+                         (field->is_number_unsigned() && value.is_number_integer() && value.get<int64_t>() >= 0) ||
+                         (field->is_number_integer() && value.is_number_unsigned());
+  if (!same_type) {
+    throw Error("--set " + key + ": '" + text + "' is not a " + field->type_name() + " like " + field->dump());
+  }
+  *field = value;
+  return train_config_from_json(tree);
 }
 
 void EpisodeStats::record(const Batch& batch) {

@@ -34,6 +34,8 @@ struct PpoConfig {
   double gamma = 0.99, gae_lambda = 0.99, clip = 0.2;
   double entropy_coef = 0.0, value_coef = 0.5, max_grad_norm = 0.5;
   int history = 4;  // rl-prim-hist: past steps the policy sees (K)
+  // Advantages scaled to mean 0, std 1 per minibatch (SB3's and CleanRL's default).
+  bool normalize_advantage = true;
 };
 
 // Table A.11 (RL-VMC); the rest from SB3/CleanRL's defaults.
@@ -66,6 +68,10 @@ bool uses_sac(const std::string& baseline);
 
 nlohmann::json to_json(const TrainConfig& config);
 TrainConfig train_config_from_json(const nlohmann::json& j);  // throws chore::Error
+// `config` with one field replaced: KEY is its path in to_json's tree
+// (ppo.entropy_coef, sac.lr, env.max_episode_steps), VALUE JSON of the same
+// type ("0.01", "false", "\"rgb\""); throws chore::Error naming what is wrong.
+TrainConfig with_setting(const TrainConfig& config, const std::string& key_equals_value);
 nlohmann::json to_json(const EnvConfig& config);
 EnvConfig env_config_from_json(const nlohmann::json& j);  // throws chore::Error
 
