@@ -136,6 +136,7 @@ expect 2 "give activities by name" -- "$chore" reproduce --activities "$data/bdd
 expect 2 "methods" -- "$chore" reproduce --methods rl-magic --out "$reproduce_out"
 expect 2 "steps" -- "$chore" reproduce --steps 0 --out "$reproduce_out"
 expect 2 "--generalisation-seeds '5-1': B is below A" -- "$chore" reproduce --generalisation-seeds 5-1 --out "$reproduce_out"
+expect 2 "--set ppo.nope: no such setting" -- "$chore" reproduce --set ppo.nope=1 --out "$reproduce_out"
 if [[ -n "$(ls -A "$reproduce_out")" ]]; then echo "FAIL: a refused reproduce wrote to $reproduce_out"; failures=$((failures + 1)); fi
 
 echo "$((checks - failures)) passed, $failures failed"

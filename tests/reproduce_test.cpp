@@ -29,12 +29,13 @@ std::string read_text(const fs::path& path) {
 nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
 
 // Runs `chore reproduce` on the small table; returns its exit status, its log in `log`.
-int reproduce_small_table(const fs::path& out, std::string& log, bool videos = false) {
+int reproduce_small_table(const fs::path& out, std::string& log, bool videos = false, const std::string& extra = "") {
   const fs::path log_file = out.string() + ".log";
   const std::string command = std::string(CHORE_BINARY) +
                               " reproduce --activities collect_trash --methods rl-prim --seeds 0 1 --steps 60"
                               " --mode symbolic --eval-episodes 2 --generalisation-seeds 100-101" +
-                              (videos ? "" : " --no-videos") + " --out " + out.string() + " 2> " + log_file.string();
+                              (videos ? "" : " --no-videos") + extra + " --out " + out.string() + " 2> " +
+                              log_file.string();
   const int status = std::system(command.c_str());
   log = read_text(log_file);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -126,6 +127,40 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   EXPECT_EQ(videos["store_decoration"]["seed"], 2);
   EXPECT_EQ(videos["collect_trash"]["run"], seed0.string());
   EXPECT_GT(fs::file_size(out / "videos" / "collect_trash.mp4"), 1000u);
+  fs::remove_all(out);
+}
+
+// --set reaches the new runs of the methods it is for (ppo.* the PPO ones),
+// is part of what a done cell must match, and a checkpoint trained with other
+// settings is not resumed as if it were this table's.
+TEST(Reproduce, SettingsReachTheirMethodsRunsAndGuardResuming) {
+  const fs::path out = fs::path(CHORE_TEST_OUTPUT) / ("reproduce_settings_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out.parent_path());
+  const std::string settings = " --set ppo.epochs=2 --set sac.lr=0.001";
+  std::string log;
+  ASSERT_EQ(reproduce_small_table(out, log, false, settings), 0) << log;
+  const fs::path seed1 = out / "runs" / "symbolic" / "collect_trash" / "rl-prim_seed1";
+  const nlohmann::json config = read_json(seed1 / "config.json");
+  EXPECT_EQ(config["ppo"]["epochs"], 2);
+  EXPECT_DOUBLE_EQ(config["sac"]["lr"].get<double>(), 3e-4);  // SAC's setting is not RL-Prim.'s
+  EXPECT_EQ(read_json(seed1 / "cell.json")["spec"]["settings"], nlohmann::json({"ppo.epochs=2"}));
+  EXPECT_EQ(read_json(out / "baselines.json")["protocol"]["settings"],
+            nlohmann::json({"ppo.epochs=2", "sac.lr=0.001"}));
+  EXPECT_NE(read_text(out / "baselines.md").find("`ppo.epochs=2`"), std::string::npos);
+
+  // Without the settings the cells are not done, and their checkpoints are
+  // other runs than the ones asked for: refused, exit 2, nothing run.
+  fs::remove(seed1 / "cell.json");
+  const std::string metrics = read_text(seed1 / "metrics.csv");
+  EXPECT_EQ(reproduce_small_table(out, log), 2) << log;
+  EXPECT_NE(log.find("rl-prim_seed0/checkpoint.pt is a run with other settings (ppo/epochs)"), std::string::npos)
+      << log;
+  EXPECT_EQ(read_text(seed1 / "metrics.csv"), metrics);
+  // With them seed 1 is resumed (nothing left to train) and evaluated again.
+  ASSERT_EQ(reproduce_small_table(out, log, false, settings), 0) << log;
+  EXPECT_EQ(read_text(seed1 / "metrics.csv"), metrics);
+  EXPECT_TRUE(fs::exists(seed1 / "cell.json"));
   fs::remove_all(out);
 }
 

@@ -253,6 +253,8 @@ int main(int argc, char** argv) {
   reproduce_cmd->add_option("--out", reproduce.out, "Results folder (runs/ inside)")->capture_default_str();
   reproduce_cmd->add_flag("!--no-videos", reproduce.videos, "Skip the best policies' videos");
   reproduce_cmd->add_flag("--report-only", reproduce.report_only, "Train and evaluate nothing: report the runs done");
+  reproduce_cmd->add_option("--set", reproduce.settings,
+                            "KEY=VALUE for every new run's chore train --set (ppo.* for the PPO methods, sac.* for SAC)");
 
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {

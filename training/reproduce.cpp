@@ -19,7 +19,10 @@
 
 #include "env/world/error.hpp"
 #include "tasks/activity.hpp"
+#include "training/checkpoint.hpp"
 #include "training/plot.hpp"
+#include "training/train_command.hpp"
+#include "training/trainer.hpp"
 
 extern char** environ;
 
@@ -129,11 +132,60 @@ struct Cell {
   std::string label() const { return activity + " " + method + " seed " + std::to_string(seed); }
 };
 
-// What a finished cell must match to be skipped.
+// The --set settings that reach `method`'s trainer.
+std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
+  std::vector<std::string> kept;
+  for (const std::string& s : settings) {
+    if (!s.starts_with(uses_sac(method) ? "ppo." : "sac.")) kept.push_back(s);
+  }
+  return kept;
+}
+
+// The cell's `chore train` (a new run).
+TrainOptions train_options(const Cell& c, const ReproduceOptions& o) {
+  TrainOptions t;
+  t.activity = c.activity;
+  t.baseline = c.method;
+  t.seed = c.seed;
+  t.steps = o.steps;
+  t.mode = o.mode;
+  t.threads = 1;
+  t.out = c.dir.string();
+  t.settings = settings_for(c.method, o.settings);
+  return t;
+}
+
+// What a finished cell must match to be skipped (settings only where given,
+// so cells from before they existed still match).
 nlohmann::json cell_spec(const Cell& c, const ReproduceOptions& o) {
-  return {{"activity", c.activity}, {"method", c.method}, {"seed", c.seed}, {"steps", o.steps},
-          {"mode", o.mode}, {"eval_episodes", o.eval_episodes}, {"eval_policy", "sampled"},
-          {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
+  nlohmann::json spec = {{"activity", c.activity}, {"method", c.method}, {"seed", c.seed}, {"steps", o.steps},
+                         {"mode", o.mode}, {"eval_episodes", o.eval_episodes}, {"eval_policy", "sampled"},
+                         {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
+  if (const auto settings = settings_for(c.method, o.settings); !settings.empty()) spec["settings"] = settings;
+  return spec;
+}
+
+// A cell's checkpoint is resumed only if it is the run these options would
+// start (all but the step count): other settings or code defaults mean another run.
+void check_resumable(const Cell& c, const ReproduceOptions& o) {
+  const fs::path checkpoint = c.dir / "checkpoint.pt";
+  nlohmann::json saved;
+  try {
+    // Read back through today's reader: fields added since take their defaults.
+    saved = to_json(train_config_from_json(read_checkpoint(checkpoint.string()).meta.at("config")));
+  } catch (const std::exception&) {
+    return;  // unreadable: the run fails on it and the table reports that
+  }
+  nlohmann::json wanted = to_json(new_run_config(train_options(c, o)));
+  saved.erase("total_steps");
+  wanted.erase("total_steps");
+  if (saved == wanted) return;
+  std::string differs;
+  for (const nlohmann::json& op : nlohmann::json::diff(saved, wanted)) {
+    differs += (differs.empty() ? "" : ", ") + op.at("path").get<std::string>().substr(1);
+  }
+  throw Error("reproduce: " + checkpoint.string() + " is a run with other settings (" + differs +
+              ") than these options; remove it or give another --out");
 }
 
 bool cell_done(const Cell& c, const ReproduceOptions& o) {
@@ -205,10 +257,12 @@ class CellRun {
         if (fs::exists(cell_.dir / "checkpoint.pt")) {
           pid_ = spawn({"train", "--resume", cell_.dir.string(), "--steps", steps}, "/dev/null", log);
         } else {
-          pid_ = spawn({"train", "--activity", cell_.activity, "--baseline", cell_.method, "--seed",
-                        std::to_string(cell_.seed), "--steps", steps, "--mode", o_.mode, "--threads", "1",
-                        "--out", cell_.dir.string()},
-                       "/dev/null", log);
+          const TrainOptions t = train_options(cell_, o_);
+          std::vector<std::string> args = {"train", "--activity", t.activity, "--baseline", t.baseline, "--seed",
+                                           std::to_string(t.seed), "--steps", steps, "--mode", t.mode,
+                                           "--threads", std::to_string(t.threads), "--out", t.out};
+          for (const std::string& setting : t.settings) args.insert(args.end(), {"--set", setting});
+          pid_ = spawn(args, "/dev/null", log);
         }
         return true;
       case 1:
@@ -281,6 +335,11 @@ void validate(const ReproduceOptions& o) {
   if (o.jobs < 1) throw Error("reproduce: --jobs must be at least 1");
   if (o.eval_episodes < 1) throw Error("reproduce: --eval-episodes must be at least 1");
   if (o.generalisation_last < o.generalisation_first) throw Error("reproduce: --generalisation-seeds: B is below A");
+  for (const std::string& m : o.methods) {
+    for (const std::string& setting : settings_for(m, o.settings)) {
+      with_setting(baseline_config(m, ""), setting);  // throws naming a bad one
+    }
+  }
 }
 
 std::vector<Cell> cells_of(const ReproduceOptions& o) {
@@ -302,6 +361,7 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
     if (cell_done(c, o)) {
       log << "reproduce: " << c.label() << ": done already (" << (c.dir / "cell.json").string() << ")\n";
     } else {
+      if (fs::exists(c.dir / "checkpoint.pt")) check_resumable(c, o);
       todo.push_back(c);
     }
   }
@@ -476,7 +536,7 @@ nlohmann::json report(const std::vector<Cell>& cells, const ReproduceOptions& o,
                     {"steps", o.steps}, {"mode", o.mode}, {"eval_seed", 0}, {"eval_episodes", o.eval_episodes},
                     {"eval_policy", "sampled"},
                     {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
-                    {"generalisation_episodes_per_seed", 1}}},
+                    {"generalisation_episodes_per_seed", 1}, {"settings", o.settings}}},
       {"command", o.command_line},
       {"machine", machine()},
       {"rows", rows},
@@ -508,7 +568,13 @@ std::string markdown(const nlohmann::json& r, const ReproduceOptions& o) {
   md << "; " << o.mode << " primitive execution; evaluation at seed 0 (" << o.eval_episodes
      << " episodes) and over seeds " << o.generalisation_first << "-" << o.generalisation_last
      << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as in "
-        "training. Mean ± std over the training seeds.\n"
+        "training. Mean ± std over the training seeds.\n";
+  if (!o.settings.empty()) {
+    md << "- Settings beyond the paper's (`chore train --set`, ppo.* for RL-Prim. and RL-Prim.Hist., sac.* for RL-VMC):";
+    for (const std::string& s : o.settings) md << " `" << s << "`";
+    md << "\n";
+  }
+  md
      << "- Wall-clock: training " << hours(r["train_wall_s"].get<double>()) << " and evaluation "
      << hours(r["eval_wall_s"].get<double>()) << " summed over runs (one core each, " << o.jobs
      << " at a time)\n\n";

@@ -40,6 +40,10 @@ struct ReproduceOptions {
   std::string out = "results";
   bool videos = true;
   bool report_only = false;         // no training or evaluation: report the cells done
+  // `chore train --set KEY=VALUE` for every new run; ppo.* reach only the PPO
+  // methods and sac.* only SAC's, so a method's runs are shared between tables
+  // whose settings differ only for the other algorithm.
+  std::vector<std::string> settings;
   std::string command_line;         // as typed, for the report
 };
 

@@ -53,6 +53,27 @@ void prepare_metrics(const fs::path& path, const std::string& header, int64_t st
 
 }  // namespace
 
+TrainConfig new_run_config(const TrainOptions& o) {
+  if (o.activity.empty()) throw Error("train: --activity is required");
+  if (o.baseline.empty()) throw Error("train: --baseline is required");
+  TrainConfig config = baseline_config(o.baseline, o.activity);
+  config.seed = o.seed;
+  config.num_envs = o.envs;
+  config.threads = o.threads;
+  config.total_steps = o.steps.value_or(30000);
+  config.env.primitive_mode = parse_execution_mode(o.mode);
+  if (!o.observations.empty()) config.env.observations = o.observations;
+  // Primitive episodes: 60 steps (as the scripted expert's); low-level: the env's 500.
+  if (config.env.action_space == "primitives") config.env.max_episode_steps = 60;
+  if (o.episode_steps > 0) config.env.max_episode_steps = o.episode_steps;
+  if (o.history > 0) {
+    if (config.baseline != "rl-prim-hist") throw Error("train: --history is for rl-prim-hist");
+    config.ppo.history = o.history;
+  }
+  for (const std::string& setting : o.settings) config = with_setting(config, setting);
+  return config;
+}
+
 void run_train(const TrainOptions& o, std::ostream& log) {
   const std::string dir = o.out.empty() ? o.resume : o.out;
   if (dir.empty()) throw Error("train: give --out DIR (or --resume DIR)");
@@ -78,27 +99,11 @@ void run_train(const TrainOptions& o, std::ostream& log) {
                   "; --resume continues it as it was");
     }
   } else {
-    if (o.activity.empty()) throw Error("train: --activity is required");
-    if (o.baseline.empty()) throw Error("train: --baseline is required");
     if (fs::exists(checkpoint)) {
       throw Error("train: " + dir + " already holds a run (checkpoint.pt); --resume " + dir +
                   " continues it, or choose another --out");
     }
-    TrainConfig config = baseline_config(o.baseline, o.activity);
-    config.seed = o.seed;
-    config.num_envs = o.envs;
-    config.threads = o.threads;
-    config.total_steps = o.steps.value_or(30000);
-    config.env.primitive_mode = parse_execution_mode(o.mode);
-    if (!o.observations.empty()) config.env.observations = o.observations;
-    // Primitive episodes: 60 steps (as the scripted expert's); low-level: the env's 500.
-    if (config.env.action_space == "primitives") config.env.max_episode_steps = 60;
-    if (o.episode_steps > 0) config.env.max_episode_steps = o.episode_steps;
-    if (o.history > 0) {
-      if (config.baseline != "rl-prim-hist") throw Error("train: --history is for rl-prim-hist");
-      config.ppo.history = o.history;
-    }
-    for (const std::string& setting : o.settings) config = with_setting(config, setting);
+    const TrainConfig config = new_run_config(o);
     fs::create_directories(dir);
     trainer = make_trainer(config);
     // The run's settings, readable without the checkpoint (the names --set takes).

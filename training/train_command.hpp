@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "training/trainer.hpp"
+
 namespace chore {
 
 struct TrainOptions {
@@ -25,6 +27,9 @@ struct TrainOptions {
   int64_t checkpoint_every = 3000;        // env steps
   std::vector<std::string> settings;      // KEY=VALUE overrides of the config (with_setting)
 };
+
+// The config of a new run from the options (not --resume's); throws chore::Error.
+TrainConfig new_run_config(const TrainOptions& options);
 
 // Runs (or resumes) the training; throws chore::Error for bad options or files.
 void run_train(const TrainOptions& options, std::ostream& log);
