@@ -574,8 +574,7 @@ std::string markdown(const nlohmann::json& r, const ReproduceOptions& o) {
     for (const std::string& s : o.settings) md << " `" << s << "`";
     md << "\n";
   }
-  md
-     << "- Wall-clock: training " << hours(r["train_wall_s"].get<double>()) << " and evaluation "
+  md << "- Wall-clock: training " << hours(r["train_wall_s"].get<double>()) << " and evaluation "
      << hours(r["eval_wall_s"].get<double>()) << " summed over runs (one core each, " << o.jobs
      << " at a time)\n\n";
 
