@@ -155,6 +155,7 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   TrainConfig c = with_setting(base, "ppo.entropy_coef=0.01");
   c = with_setting(c, "ppo.normalize_advantage=false");
   c = with_setting(c, "ppo.epochs=4");
+  c = with_setting(c, "ppo.target_kl=0.01");
   c = with_setting(c, "env.max_episode_steps=30");
   EXPECT_EQ(c.ppo.entropy_coef, 0.01);
   EXPECT_FALSE(c.ppo.normalize_advantage);
@@ -167,6 +168,7 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   expected["ppo"]["entropy_coef"] = 0.01;
   expected["ppo"]["normalize_advantage"] = false;
   expected["ppo"]["epochs"] = 4;
+  expected["ppo"]["target_kl"] = 0.01;
   expected["env"]["max_episode_steps"] = 30;
   EXPECT_EQ(to_json(c), expected);
   for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
@@ -179,10 +181,12 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
            {"seed=-1", "is not a number"}}) {
     EXPECT_NE(test::error_of([&] { with_setting(base, bad); }).find(message), std::string::npos) << bad;
   }
-  // A run saved before the field existed normalised its advantages.
+  // A run saved before the fields existed normalised its advantages and never stopped early.
   nlohmann::json old = to_json(c);
   old["ppo"].erase("normalize_advantage");
+  old["ppo"].erase("target_kl");
   EXPECT_TRUE(train_config_from_json(old).ppo.normalize_advantage);
+  EXPECT_EQ(train_config_from_json(old).ppo.target_kl, 0.0);
 }
 
 // Without the normalisation the same rollout gives another update.
@@ -194,6 +198,31 @@ TEST(Training, PpoAdvantageNormalisationChangesTheUpdate) {
   const std::vector<MetricsRow> a = train(*normalised, 300), b = train(*raw, 300);
   EXPECT_EQ(a.front().mean_return, b.front().mean_return);  // the same first rollout
   EXPECT_NE(normalised->parameters(), raw->parameters());
+}
+
+// SB3's target_kl: an update stops before the first minibatch past 1.5x the
+// target, so every minibatch stepped was within it; a target never reached
+// changes nothing.
+TEST(Training, PpoTargetKlStopsTheUpdateEarly) {
+  TrainConfig config = collect_trash_config();
+  auto unbounded = make_trainer(config);
+  config.ppo.target_kl = 1e6;
+  auto never_reached = make_trainer(config);
+  config.ppo.target_kl = 1e-3;
+  auto bounded = make_trainer(config);
+  const std::vector<std::string> names = unbounded->extra_metric_names();
+  const size_t kl = std::find(names.begin(), names.end(), "approx_kl") - names.begin();
+  ASSERT_LT(kl, names.size());
+  const std::vector<MetricsRow> a = train(*unbounded, 600), b = train(*never_reached, 600), c = train(*bounded, 600);
+  EXPECT_EQ(unbounded->parameters(), never_reached->parameters());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_GT(a[i].extras[kl], 1.5e-3) << "update " << i;  // ten epochs go past the target...
+    EXPECT_LE(c[i].extras[kl], 1.5e-3) << "update " << i;  // ...and stop within it
+    EXPECT_GT(c[i].extras[kl], 0) << "update " << i;       // after at least one step
+  }
+  EXPECT_NE(unbounded->parameters(), bounded->parameters());
+  config.ppo.target_kl = -1;
+  EXPECT_NE(test::error_of([&] { make_trainer(config); }).find("target_kl must be 0 (off) or positive"), std::string::npos);
 }
 
 // With 32x32 RGB: the conv trunk and the image normaliser.

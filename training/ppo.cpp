@@ -3,7 +3,8 @@
 // a vector env collects a rollout of `buffer` transitions with the current
 // policy; GAE(gamma, lambda) gives advantages and returns; `epochs` passes of
 // shuffled minibatches optimise the clipped surrogate, the value loss and the
-// entropy bonus with Adam (eps 1e-5) and global gradient clipping. Episode ends
+// entropy bonus with Adam (eps 1e-5) and global gradient clipping, optionally
+// stopping an update early on approx-KL (SB3's target_kl). Episode ends
 // by truncation bootstrap from the value of the final observation.
 #include <chrono>
 #include <numeric>
@@ -34,6 +35,7 @@ struct Rollout {
 struct UpdateStats {
   double policy_loss = 0, value_loss = 0, entropy = 0, approx_kl = 0, clip_fraction = 0;
   double update_ms = 0;  // per minibatch update
+  bool stopped_early = false;  // by target_kl
 };
 
 class PpoTrainer : public Trainer {
@@ -50,6 +52,7 @@ class PpoTrainer : public Trainer {
                   env_.single_action_space().to_string());
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
+    if (!(p.target_kl >= 0)) throw Error("ppo: target_kl must be 0 (off) or positive, got " + std::to_string(p.target_kl));
     generator_ = seed_torch(config_.seed, config_.threads);
     net_ = ActorCritic(spec_);
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
@@ -209,7 +212,7 @@ class PpoTrainer : public Trainer {
     UpdateStats s;
     int updates = 0;
     const auto start = Clock::now();
-    for (int epoch = 0; epoch < p.epochs; ++epoch) {
+    for (int epoch = 0; epoch < p.epochs && !s.stopped_early; ++epoch) {
       const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
       for (int64_t begin = 0; begin < rows; begin += p.batch) {
         const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
@@ -220,6 +223,16 @@ class PpoTrainer : public Trainer {
         const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
         const torch::Tensor log_ratio = log_probs - old_log_probs.index_select(0, idx);
         const torch::Tensor ratio = log_ratio.exp();
+        const double approx_kl = [&] {
+          torch::NoGradGuard no_grad;
+          return ((ratio - 1) - log_ratio).mean().item<double>();
+        }();
+        // As SB3: the policy has moved far enough from the rollout's; this
+        // minibatch and the rest of the update are skipped.
+        if (p.target_kl > 0 && approx_kl > 1.5 * p.target_kl) {
+          s.stopped_early = true;
+          break;
+        }
         torch::Tensor adv = advantages.index_select(0, idx);
         if (p.normalize_advantage && adv.size(0) > 1) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
         const torch::Tensor policy_loss =
@@ -235,13 +248,15 @@ class PpoTrainer : public Trainer {
         s.policy_loss += policy_loss.item<double>();
         s.value_loss += value_loss.item<double>();
         s.entropy += entropy.item<double>();
-        s.approx_kl += ((ratio - 1) - log_ratio).mean().item<double>();
+        s.approx_kl += approx_kl;
         s.clip_fraction += ((ratio - 1).abs() > p.clip).to(torch::kFloat32).mean().item<double>();
         ++updates;
       }
     }
-    s.update_ms = 1000 * seconds_since(start) / updates;
-    for (double* v : {&s.policy_loss, &s.value_loss, &s.entropy, &s.approx_kl, &s.clip_fraction}) *v /= updates;
+    // Means over the minibatches stepped (none when target_kl stopped the first).
+    const double stepped = std::max(updates, 1);
+    s.update_ms = 1000 * seconds_since(start) / stepped;
+    for (double* v : {&s.policy_loss, &s.value_loss, &s.entropy, &s.approx_kl, &s.clip_fraction}) *v /= stepped;
     net_->encoder->update_normalizers(obs);
     return s;
   }

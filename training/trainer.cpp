@@ -123,7 +123,7 @@ nlohmann::json to_json(const TrainConfig& c) {
                    {"gamma", p.gamma}, {"gae_lambda", p.gae_lambda}, {"clip", p.clip},
                    {"entropy_coef", p.entropy_coef}, {"value_coef", p.value_coef},
                    {"max_grad_norm", p.max_grad_norm}, {"history", p.history},
-                   {"normalize_advantage", p.normalize_advantage}}},
+                   {"normalize_advantage", p.normalize_advantage}, {"target_kl", p.target_kl}}},
           {"sac", {{"lr", s.lr}, {"buffer", s.buffer}, {"batch", s.batch}, {"gamma", s.gamma},
                    {"tau", s.tau}, {"learning_starts", s.learning_starts},
                    {"initial_alpha", s.initial_alpha}, {"hidden", s.hidden},
@@ -145,8 +145,8 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
              p.at("clip").get<double>(), p.at("entropy_coef").get<double>(),
              p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
              p.at("history").get<int>(),
-             // Runs saved before the field existed normalised.
-             p.value("normalize_advantage", true)};
+             // Runs saved before these fields existed normalised and never stopped early.
+             p.value("normalize_advantage", true), p.value("target_kl", 0.0)};
     const nlohmann::json& s = j.at("sac");
     c.sac = {s.at("lr").get<double>(), s.at("buffer").get<int>(), s.at("batch").get<int>(),
              s.at("gamma").get<double>(), s.at("tau").get<double>(),

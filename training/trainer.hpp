@@ -36,6 +36,9 @@ struct PpoConfig {
   int history = 4;  // rl-prim-hist: past steps the policy sees (K)
   // Advantages scaled to mean 0, std 1 per minibatch (SB3's and CleanRL's default).
   bool normalize_advantage = true;
+  // SB3's target_kl: an update stops before a minibatch whose approx-KL from
+  // the rollout's policy exceeds 1.5x this; 0: never (SB3's None, the default).
+  double target_kl = 0;
 };
 
 // Table A.11 (RL-VMC); the rest from SB3/CleanRL's defaults.
