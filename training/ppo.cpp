@@ -35,7 +35,6 @@ struct Rollout {
 struct UpdateStats {
   double policy_loss = 0, value_loss = 0, entropy = 0, approx_kl = 0, clip_fraction = 0;
   double update_ms = 0;  // per minibatch update
-  bool stopped_early = false;  // by target_kl
 };
 
 class PpoTrainer : public Trainer {
@@ -211,8 +210,9 @@ class PpoTrainer : public Trainer {
 
     UpdateStats s;
     int updates = 0;
+    bool stopped_early = false;  // by target_kl
     const auto start = Clock::now();
-    for (int epoch = 0; epoch < p.epochs && !s.stopped_early; ++epoch) {
+    for (int epoch = 0; epoch < p.epochs && !stopped_early; ++epoch) {
       const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
       for (int64_t begin = 0; begin < rows; begin += p.batch) {
         const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
@@ -230,7 +230,7 @@ class PpoTrainer : public Trainer {
         // As SB3: the policy has moved far enough from the rollout's; this
         // minibatch and the rest of the update are skipped.
         if (p.target_kl > 0 && approx_kl > 1.5 * p.target_kl) {
-          s.stopped_early = true;
+          stopped_early = true;
           break;
         }
         torch::Tensor adv = advantages.index_select(0, idx);
