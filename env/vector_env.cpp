@@ -61,6 +61,9 @@ struct VectorEnv::Impl {
   std::vector<std::unique_ptr<Env>> envs;
   std::vector<std::vector<float>> actions;             // per env, set by send()
   std::vector<std::optional<uint64_t>> seeds;          // per env, set by reset()
+  // in_flight: sent, and its result not yet returned by recv() (a finished
+  // step waiting in a block is still in flight: sending it again would step
+  // the env before the caller has seen the result).
   std::vector<std::uint8_t> in_flight, needs_reset;
   std::vector<std::unique_ptr<Block>> ring;
   std::unique_ptr<Block> reset_block;
@@ -143,7 +146,6 @@ struct VectorEnv::Impl {
         std::lock_guard<std::mutex> lock(mutex);
         for (size_t i = 0; i < rows.size(); ++i) {
           rows[i].block->done++;
-          in_flight[task.envs[i]] = 0;
         }
       }
       rows_done.notify_all();
@@ -252,7 +254,6 @@ struct VectorEnv::Impl {
         Task task;
         task.reset = reset;
         task.envs.assign(ids.begin() + first, ids.begin() + std::min(ids.size(), first + share));
-        for (int e : task.envs) in_flight[e] = 1;
         queue.push_back(std::move(task));
       }
     }
@@ -331,6 +332,7 @@ void VectorEnv::send(std::span<const float> actions, std::span<const int> env_id
       if (m.in_flight[e] || seen[e]) throw Error("vector env: env " + std::to_string(e) + " is already in flight");
       seen[e] = 1;
     }
+    for (int e : env_ids) m.in_flight[e] = 1;
     for (size_t k = 0; k < env_ids.size(); ++k) {
       std::copy_n(actions.begin() + k * m.action_size, m.action_size, m.actions[env_ids[k]].begin());
     }
@@ -353,6 +355,7 @@ Batch VectorEnv::recv() {
   m.rethrow_error();
   m.returned++;
   m.pending -= m.batch;
+  for (int e : block->env_ids) m.in_flight[e] = 0;
   m.held = block;
   return block->view(m.same_step);
 }

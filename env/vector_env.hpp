@@ -72,6 +72,8 @@ class VectorEnv {
   // All envs, actions row-major (num_envs x action size); needs batch_size == num_envs.
   Batch step(std::span<const float> actions);
   // Starts the given envs stepping; actions row-major (ids.size() x action size).
+  // An env is in flight from send() until recv() returns its result; it cannot
+  // be sent again before.
   void send(std::span<const float> actions, std::span<const int> env_ids);
   // Waits for the first batch_size results.
   Batch recv();
