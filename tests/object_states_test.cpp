@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <array>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "env/world/error.hpp"
 #include "env/world/object_geometry.hpp"
 #include "env/world/predicates.hpp"
+#include "env/world/renderer.hpp"
 #include "env/world/sampling.hpp"
 #include "test_util.hpp"
 
@@ -130,6 +135,93 @@ TEST_F(ObjectStatesTest, ASoakedCleaningToolWipesStainsOffAndADryOneDoesNot) {
   sample_state(world_, "soaked", tool, true);
   sweep();
   EXPECT_FALSE(covered(world_, table, "stain"));
+}
+
+// OmniGibson's texture change, albedo = tint * (albedo + add): a soaked rag
+// turns blue, a cooked apple brown, a burnt one dark, a frozen one white, in
+// that order of precedence; untouched objects keep their colour.
+TEST_F(ObjectStatesTest, SoakedCookedBurntAndFrozenObjectsChangeColourAsInOmniGibson) {
+  const int rag = object("rag_1"), apple = object("apple_1"), cup = object("cup_1");
+  ObjectAbilities cloth;
+  cloth.soakable = true;
+  ObjectAbilities food;
+  food.temperature = true;
+  world_.states().configure(rag, cloth);
+  world_.states().configure(apple, food);
+  world_.states().configure(cup, food);
+  const mjModel* m = world_.model();
+  mjvScene scene;
+  mjv_defaultScene(&scene);
+  mjv_makeScene(m, &scene, 4000);
+  mjvOption option;
+  mjv_defaultOption(&option);
+  mjvCamera camera;
+  mjv_defaultCamera(&camera);
+  // Each geom of `object` in a drawn scene: its colour, and the model's.
+  auto drawn = [&](int object) {
+    mjv_updateScene(m, world_.data(), &option, nullptr, &camera, mjCAT_ALL, &scene);
+    world_.states().draw(world_, &scene);
+    std::vector<std::pair<std::array<float, 3>, std::array<float, 3>>> colours;
+    for (int i = 0; i < scene.ngeom; ++i) {
+      const mjvGeom& g = scene.geoms[i];
+      if (g.objtype != mjOBJ_GEOM || scene_->object_of_body(m->geom_bodyid[g.objid]) != object) continue;
+      const float* own = m->geom_rgba + 4 * g.objid;
+      colours.push_back({{g.rgba[0], g.rgba[1], g.rgba[2]}, {own[0], own[1], own[2]}});
+    }
+    return colours;
+  };
+  auto expect_change = [&](int object, float add, std::array<float, 3> tint, const char* what) {
+    const auto colours = drawn(object);
+    ASSERT_FALSE(colours.empty()) << what;
+    for (const auto& [seen, own] : colours) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(seen[c], std::clamp(tint[c] * (own[c] + add), 0.0f, 1.0f)) << what << " channel " << c;
+      }
+    }
+  };
+  expect_change(rag, 0, {1, 1, 1}, "dry rag");
+  expect_change(apple, 0, {1, 1, 1}, "apple at room temperature");
+  sample_state(world_, "soaked", rag, true);
+  expect_change(rag, 0.1f, {0.5f, 0.5f, 1.5f}, "soaked rag");  // water has no colour: blue
+  world_.states().state(apple).max_temperature = 100;
+  expect_change(apple, 0.1f, {1.5f, 0.75f, 0.25f}, "cooked apple");
+  world_.states().state(cup).max_temperature = 250;
+  expect_change(cup, -0.3f, {1, 1, 1}, "burnt cup");
+  world_.states().state(apple).temperature = -5;
+  expect_change(apple, 0.3f, {1, 1, 1}, "frozen (and cooked) apple");
+  mjv_freeScene(&scene);
+
+  // And the picture shows it: the rag from above, dry and soaked.
+  const int size = 512;
+  Renderer renderer(m, size, size, 1);
+  std::vector<std::uint8_t> rgb(size * size * 3);
+  std::vector<std::int32_t> segment(size * size);
+  auto rag_colour = [&](const char* png) {
+    const CameraView view{m, world_.data(), scene_->overview_camera(), rgb.data(), nullptr, 0, false, &world_,
+                          segment.data()};
+    renderer.render({&view, 1});
+    cv::Mat bgr;
+    cv::cvtColor(cv::Mat(size, size, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
+    cv::imwrite((test::output_dir() / png).string(), bgr);
+    std::array<double, 3> sum{};
+    int pixels = 0;
+    for (int i = 0; i < size * size; ++i) {
+      if (segment[i] < 0 || scene_->object_of_body(m->geom_bodyid[segment[i]]) != rag) continue;
+      for (int c = 0; c < 3; ++c) sum[c] += rgb[3 * i + c];
+      ++pixels;
+    }
+    EXPECT_GT(pixels, 10) << png;
+    for (double& c : sum) c /= std::max(pixels, 1);
+    return sum;
+  };
+  const auto soaked_rag = rag_colour("soaked_rag_from_above.png");
+  sample_state(world_, "soaked", rag, false);
+  const auto dry_rag = rag_colour("dry_rag_from_above.png");
+  // Light blue (0.45, 0.65, 0.85) to (0.275, 0.375, 1): red and green fall by
+  // about 0.6, blue rises.
+  EXPECT_NEAR(soaked_rag[0] / dry_rag[0], 0.61, 0.1);
+  EXPECT_NEAR(soaked_rag[1] / dry_rag[1], 0.58, 0.1);
+  EXPECT_GT(soaked_rag[2], dry_rag[2]);
 }
 
 // iGibson's stained/dusty: dirty while more than half of the particles sampled

@@ -136,7 +136,39 @@ void ObjectStates::after_env_step(const World& w, double dt) {
   }
 }
 
-void ObjectStates::add_dirt_geoms(const World& w, mjvScene* scene) const {
+void ObjectStates::draw(const World& w, mjvScene* scene) const {
+  // OmniGibson's StatefulObject texture change: albedo = tint * (albedo + add),
+  // with the parameters of its states' get_texture_change_params (a colourless
+  // liquid such as water tints blue) and its priority frozen > burnt > cooked >
+  // soaked. Without it a soaked rag would look dry, and an image-based policy
+  // could not tell whether it has dipped.
+  struct TextureChange {
+    float add;
+    float tint[3];
+  };
+  constexpr TextureChange kFrozen{0.3f, {1, 1, 1}}, kBurnt{-0.3f, {1, 1, 1}},
+      kCooked{0.1f, {1.5f, 0.75f, 0.25f}}, kSoaked{0.1f, {0.5f, 0.5f, 1.5f}};
+  std::map<int, const TextureChange*> changes;
+  for (const auto& [object, state] : states_) {
+    const bool wet = std::any_of(state.soaked.begin(), state.soaked.end(),
+                                 [&](const auto& liquid) { return soaked(w, object, liquid.first); });
+    const TextureChange* change = frozen(w, object)   ? &kFrozen
+                                  : burnt(w, object)  ? &kBurnt
+                                  : cooked(w, object) ? &kCooked
+                                  : wet               ? &kSoaked
+                                                      : nullptr;
+    if (change) changes[object] = change;
+  }
+  if (!changes.empty()) {
+    for (int i = 0; i < scene->ngeom; ++i) {
+      mjvGeom& g = scene->geoms[i];
+      if (g.objtype != mjOBJ_GEOM) continue;
+      const auto it = changes.find(w.scene().object_of_body(w.model()->geom_bodyid[g.objid]));
+      if (it == changes.end()) continue;
+      for (int c = 0; c < 3; ++c) g.rgba[c] = std::clamp(it->second->tint[c] * (g.rgba[c] + it->second->add), 0.0f, 1.0f);
+    }
+  }
+
   constexpr float kRadius = 0.03f, kHalfThickness = 0.001f;
   const float stain[4] = {0.12f, 0.09f, 0.05f, 1.0f}, dust[4] = {0.78f, 0.76f, 0.70f, 1.0f};
   for (const auto& [object, state] : states_) {

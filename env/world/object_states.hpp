@@ -93,8 +93,11 @@ class ObjectStates {
   // Heat transfer and toggling, after each env step of `dt` seconds.
   void after_env_step(const World& world, double dt);
 
- // Draws the dirt particles as small flat discs into a scene being rendered.
-  void add_dirt_geoms(const World& world, mjvScene_* scene) const;
+  // How the states look, in a scene being rendered (after mjv_updateScene):
+  // OmniGibson's texture change recolours frozen, burnt, cooked and soaked
+  // objects (the first that holds, in that order), and the dirt particles are
+  // drawn as small flat discs.
+  void draw(const World& world, mjvScene_* scene) const;
 
  private:
   std::map<int, ObjectAbilities> abilities_;

@@ -290,7 +290,7 @@ void Renderer::render_pass(const std::vector<Draw*>& pass) {
     s.camera.fixedcamid = v->camera;
     s.option.geomgroup[kCeilingGroup] = v->ceiling;
     mjv_updateScene(v->model, v->data, &s.option, nullptr, &s.camera, mjCAT_ALL, &s.scene);
-    if (v->world && !d->segment) v->world->states().add_dirt_geoms(*v->world, &s.scene);
+    if (v->world && !d->segment) v->world->states().draw(*v->world, &s.scene);
     cull_to_frustum(s.scene, double(s.width) / s.height);
     if (d->segment) {
       // MuJoCo colours a geom with its segid + 1 (r + 256 g + 65536 b).
