@@ -30,7 +30,8 @@ struct CameraView {
   // one level), so an environment that must render bit-identically keeps its tile.
   int tile = 0;
   bool ceiling = true;  // false for views from above the scene
-  // When set, extended-state visuals (dirt particles) of this world are drawn,
+  // When set, extended-state visuals of this world are drawn (soaked, cooked,
+  // burnt and frozen colours, dirt particles; ObjectStates::draw),
   // and its randomised textures (World::texture_version) are used.
   const class World* world = nullptr;
   // height x width model geom id seen at each pixel (-1: none), from a second
