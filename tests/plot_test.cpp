@@ -66,6 +66,23 @@ TEST(Plot, GroupsRunsByLabelWithMeanAndSpread) {
   EXPECT_TRUE(near(at(image, r, 10000, 0.1), orange, 60)) << at(image, r, 10000, 0.1);
 }
 
+TEST(Plot, TheBandStaysWithinTheRunsValues) {
+  // Q of 0, 0 and 0.9: mean 0.3, std 0.42; mean - std would be -0.12, a Q no run had.
+  const auto dir = test::scratch_dir("plot_band");
+  for (const auto& [name, q] : {std::pair{"a_seed0", 0.0}, {"a_seed1", 0.0}, {"a_seed2", 0.9}}) {
+    test::write_file(dir / name / "metrics.csv", run([q = q](double) { return q; }));
+  }
+  PlotOptions options;
+  for (const char* name : {"a_seed0", "a_seed1", "a_seed2"}) options.runs.push_back((dir / name / "metrics.csv").string());
+  options.y = "mean_q";
+  options.out = (test::output_dir() / "plot_band.png").string();
+  const nlohmann::json r = plot_curves(options);
+  // The y axis spans the band, 0 to 0.72 (0.3 + 0.42), plus 5% of that each side.
+  const double high = 0.3 + std::sqrt(0.18), pad = 0.05 * high;
+  EXPECT_NEAR(r["y_range"][0].get<double>(), -pad, 1e-9);
+  EXPECT_NEAR(r["y_range"][1].get<double>(), high + pad, 1e-9);
+}
+
 TEST(Plot, BadFilesAreErrorsNamingThem) {
   const auto dir = test::scratch_dir("plot_errors");
   PlotOptions options;

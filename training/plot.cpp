@@ -118,12 +118,19 @@ void summarise(Group& g) {
   if (to < from) throw Error("plot: the runs of '" + g.label + "' share no x range");
   for (int i = 0; i < kGridPoints; ++i) {
     const double x = to > from ? from + (to - from) * i / (kGridPoints - 1) : from;
-    double sum = 0, squares = 0;
-    for (const Curve& r : g.runs) sum += interpolate(r, x);
+    double sum = 0, squares = 0, lowest = INFINITY, highest = -INFINITY;
+    for (const Curve& r : g.runs) {
+      const double y = interpolate(r, x);
+      sum += y;
+      lowest = std::min(lowest, y);
+      highest = std::max(highest, y);
+    }
     const double mean = sum / g.runs.size();
     for (const Curve& r : g.runs) squares += std::pow(interpolate(r, x) - mean, 2);
     const double std = std::sqrt(squares / g.runs.size());
-    for (auto [curve, y] : {std::pair{&g.mean, mean}, {&g.low, mean - std}, {&g.high, mean + std}}) {
+    // The band stays within the runs' values: a Q of 0, 0, 0.9 draws no band below 0.
+    for (auto [curve, y] : {std::pair{&g.mean, mean}, {&g.low, std::max(mean - std, lowest)},
+                            {&g.high, std::min(mean + std, highest)}}) {
       curve->x.push_back(x);
       curve->y.push_back(y);
     }

@@ -9,7 +9,8 @@
 // the run directory's name less a seed suffix ("ppo_seed2" -> "ppo"). Each
 // group is drawn as its mean over runs (linearly interpolated at 200 x values
 // across the range all its runs cover) with a band of +- one (population)
-// standard deviation; a single run is drawn as logged.
+// standard deviation, kept within the runs' lowest and highest values there;
+// a single run is drawn as logged.
 #pragma once
 
 #include <nlohmann/json.hpp>
