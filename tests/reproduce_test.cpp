@@ -117,14 +117,24 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   EXPECT_NE(read_text(out / "baselines.md").find("(1 of 2 seeds)"), std::string::npos);
 
   // With videos: the run left (seed 0) gets collect_trash's; the video an
-  // earlier invocation made of another activity stays in the report.
+  // earlier invocation made of another activity stays in the report while its
+  // file and its run are here, and goes once its run has been moved away.
+  const fs::path other_run = out / "runs" / "symbolic" / "store_decoration" / "rl-prim-hist_seed2";
+  fs::create_directories(other_run);
+  std::ofstream(other_run / "cell.json") << "{}";
+  fs::create_directories(out / "videos");
+  std::ofstream(out / "videos" / "store_decoration.mp4") << "an earlier video";
   nlohmann::json with_other = partial;
-  with_other["videos"] = {{"store_decoration", {{"file", "videos/store_decoration.mp4"}, {"method", "rl-prim-hist"},
-                                                {"run", "elsewhere"}, {"seed", 2}}}};
+  with_other["videos"] = {
+      {"store_decoration", {{"file", (out / "videos" / "store_decoration.mp4").string()}, {"method", "rl-prim-hist"},
+                            {"run", other_run.string()}, {"seed", 2}}},
+      {"clean_table", {{"file", (out / "videos" / "store_decoration.mp4").string()}, {"method", "rl-prim"},
+                       {"run", (out / "moved_away").string()}, {"seed", 1}}}};
   std::ofstream(out / "baselines.json", std::ios::trunc) << with_other.dump();
   EXPECT_EQ(reproduce_small_table(out, log, true), 1) << log;
   nlohmann::json videos = read_json(out / "baselines.json")["videos"];
   EXPECT_EQ(videos["store_decoration"]["seed"], 2);
+  EXPECT_FALSE(videos.contains("clean_table")) << videos;
   EXPECT_EQ(videos["collect_trash"]["run"], seed0.string());
   EXPECT_GT(fs::file_size(out / "videos" / "collect_trash.mp4"), 1000u);
   fs::remove_all(out);

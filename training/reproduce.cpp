@@ -505,6 +505,11 @@ nlohmann::json report(const std::vector<Cell>& cells, const ReproduceOptions& o,
   nlohmann::json videos = fs::exists(out / "baselines.json")
                               ? read_json(out / "baselines.json").value("videos", nlohmann::json::object())
                               : nlohmann::json::object();
+  // ...while their file and their run are still here (a run moved away takes its video's entry along).
+  for (auto it = videos.begin(); it != videos.end();) {
+    const bool here = fs::exists(it->value("file", "")) && fs::exists(fs::path(it->value("run", "")) / "cell.json");
+    it = here ? std::next(it) : videos.erase(it);
+  }
   if (o.videos && !o.report_only) {
     fs::create_directories(out / "videos");
     for (const std::string& a : o.activities) {
