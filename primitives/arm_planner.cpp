@@ -82,7 +82,7 @@ bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_obje
   for (const Box& other : others_) {
     if ((other.lo.array() > hi.array()).any() || (other.hi.array() < lo.array()).any()) continue;
     const int o = other.geom;
-    if (ignored_object >= 0 && world_.scene().object_of_body(m->geom_bodyid[o]) == ignored_object) continue;
+    if (ignored_object >= 0 && world_.scene().object_of_geom(o) == ignored_object) continue;
     for (int g : mine) {
       if (!((m->geom_contype[g] & m->geom_conaffinity[o]) || (m->geom_contype[o] & m->geom_conaffinity[g]))) continue;
       const double extra = moved_by_arm_[g] ? clearance : 0.0;

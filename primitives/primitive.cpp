@@ -174,11 +174,9 @@ std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object) {
   std::vector<Eigen::Vector3d> particles;
   const ObjectStates& states = w.states();
   if (!states.tracked(object)) return particles;
-  const int body = w.scene().objects()[object].body;
-  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
-  const Eigen::Vector3d origin(w.data()->xpos[3 * body], w.data()->xpos[3 * body + 1], w.data()->xpos[3 * body + 2]);
+  const Frame frame = object_frame(w, object);
   for (const auto& [name, local] : states.state(object).dirt) {
-    for (const Eigen::Vector3d& p : local) particles.push_back(origin + r * p);
+    for (const Eigen::Vector3d& p : local) particles.push_back(frame.to_world(p));
   }
   return particles;
 }
@@ -861,12 +859,6 @@ PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, 
   if (object < 0 || object >= static_cast<int>(world.scene().objects().size())) {
     throw Error("primitives: no object " + std::to_string(object) + " in scene '" + world.scene().name() + "'");
   }
-  struct Wake {
-    World& world;
-    bool on;
-    ~Wake() { if (on) world.set_sleeping(false); }
-  } wake{world, options.sleeping && !world.sleeping()};
-  if (wake.on) world.set_sleeping(true);
   return Executor(world, type, object, seed, options).run();
 }
 

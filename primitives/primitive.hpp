@@ -62,10 +62,6 @@ struct PrimitiveOptions {
   int base_pose_samples = 100;       // candidate base poses navigate tries
   unsigned base_iterations = 50000;  // RRTConnect iterations for a base path (grid checks are cheap)
   unsigned arm_iterations = 3000;    // ... and for an arm path
-  // Objects at rest away from the robot sleep while it moves (physical) or
-  // is moved (symbolic; env/world/sleeping.hpp); the primitive returns with
-  // everyone awake and every contact computed.
-  bool sleeping = true;
 };
 
 // Executes one primitive on scene object `object` (an index into

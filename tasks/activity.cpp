@@ -142,8 +142,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
         const SceneObject& o = scene.objects()[i];
         if (taken[i] || !a->kb_->contains(o.synset) || !a->kb_->is_a(o.synset, decl.type)) continue;
         if (room != rooms.end()) {
-          const double* p = scene.model()->body_pos + 3 * o.body;
-          const Room* r = scene.room_at(p[0], p[1]);
+          const Room* r = scene.room_at(o.pos[0], o.pos[1]);
           if (!r || !room_matches(*r, room->second)) {
             seen += (seen.empty() ? "" : ", ") + o.name + " (in " + (r ? r->name : "no room") + ")";
             continue;

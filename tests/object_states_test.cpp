@@ -164,7 +164,7 @@ TEST_F(ObjectStatesTest, SoakedCookedBurntAndFrozenObjectsChangeColourAsInOmniGi
     std::vector<std::pair<std::array<float, 3>, std::array<float, 3>>> colours;
     for (int i = 0; i < scene.ngeom; ++i) {
       const mjvGeom& g = scene.geoms[i];
-      if (g.objtype != mjOBJ_GEOM || scene_->object_of_body(m->geom_bodyid[g.objid]) != object) continue;
+      if (g.objtype != mjOBJ_GEOM || scene_->object_of_geom(g.objid) != object) continue;
       const float* own = m->geom_rgba + 4 * g.objid;
       colours.push_back({{g.rgba[0], g.rgba[1], g.rgba[2]}, {own[0], own[1], own[2]}});
     }

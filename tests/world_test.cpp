@@ -129,40 +129,80 @@ int object_index(const World& w, const char* name) {
   return static_cast<int>(w.scene().find_object(name) - w.scene().objects().data());
 }
 
-bool in_contact_list(const World& w, const char* name) {
-  const mjModel* m = w.model();
-  const int body = w.scene().find_object(name)->body;
+// The object's contacts in the list: those physics computed, and the resting
+// contacts sleeping keeps for it (efc_address Sleeping::kKeptContact).
+int contacts_of(const World& w, const char* name, bool kept) {
+  const int object = object_index(w, name);
+  int n = 0;
   for (int c = 0; c < w.data()->ncon; ++c) {
-    if (m->geom_bodyid[w.data()->contact[c].geom1] == body || m->geom_bodyid[w.data()->contact[c].geom2] == body) return true;
+    const mjContact& con = w.data()->contact[c];
+    const bool mine = w.scene().object_of_geom(con.geom1) == object || w.scene().object_of_geom(con.geom2) == object;
+    n += mine && (con.efc_address == Sleeping::kKeptContact) == kept;
   }
-  return false;
+  return n;
 }
+bool in_contact_list(const World& w, const char* name) { return contacts_of(w, name, false) > 0; }
 
-TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndWakeWithTheirContacts) {
+TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndKeepTheirContacts) {
   Env env(box_room_config());
   env.reset(0);
   World& w = env.world();
+  w.set_sleeping(false);
   // A block 0.45 m in front of the robot (within its reach) and one 2.8 m away.
   double* near = w.data()->qpos + (object_qpos(w, "heavy_block_1") - w.data()->qpos);
   near[0] = 0.45, near[1] = 0;
   mj_forward(w.model(), w.data());
   w.step(60);  // both come to rest on the floor
-  const std::vector<double> far_rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
-  ASSERT_TRUE(in_contact_list(w, "small_block_1"));
+  const int resting = contacts_of(w, "small_block_1", false);
+  ASSERT_GT(resting, 0);
 
   w.set_sleeping(true);
-  w.step(120);
+  w.step(60);
+  ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
+  const std::vector<double> far_rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
+  w.step(60);
   EXPECT_TRUE(w.asleep(object_index(w, "small_block_1")));
   EXPECT_TRUE(w.asleep(object_index(w, "red_panel_1")));  // furniture nothing moves near
   EXPECT_FALSE(w.asleep(object_index(w, "heavy_block_1")));  // within the robot's region
   EXPECT_EQ(w.sleepers(), 3);
   for (int k = 0; k < 7; ++k) EXPECT_EQ(object_qpos(w, "small_block_1")[k], far_rest[k]) << k;  // held exactly
-  EXPECT_FALSE(in_contact_list(w, "small_block_1"));  // out of collision detection
+  // Out of collision detection, its resting contacts kept: the same number,
+  // with no force in the solver.
+  EXPECT_EQ(contacts_of(w, "small_block_1", false), 0);
+  EXPECT_EQ(contacts_of(w, "small_block_1", true), resting);
+  for (int c = 0; c < w.data()->ncon; ++c) {
+    if (w.data()->contact[c].efc_address != Sleeping::kKeptContact) continue;
+    double force[6];
+    mj_contactForce(w.model(), w.data(), c, force);
+    EXPECT_EQ(force[0], 0.0);
+  }
   EXPECT_TRUE(in_contact_list(w, "heavy_block_1"));
+  EXPECT_TRUE(onfloor(w, object_index(w, "small_block_1"), 0));  // contact predicates read the kept ones
 
-  w.set_sleeping(false);  // everyone awake, every contact back
+  w.set_sleeping(false);  // everyone awake, every contact computed again
   EXPECT_EQ(w.sleepers(), 0);
-  EXPECT_TRUE(in_contact_list(w, "small_block_1"));
+  EXPECT_EQ(contacts_of(w, "small_block_1", false), resting);
+  EXPECT_EQ(contacts_of(w, "small_block_1", true), 0);
+}
+
+TEST(Sleeping, AnObjectLetGoInTheAirFallsBeforeItSleeps) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.world();
+  w.step(120);
+  ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
+  // A sampler's move: 30 cm up, still. The sleeper wakes, and an object
+  // still in the air is not at rest: it falls to the floor, then sleeps.
+  double* block = w.data()->qpos + (object_qpos(w, "small_block_1") - w.data()->qpos);
+  const double floor_z = block[2];
+  block[2] += 0.3;
+  mj_forward(w.model(), w.data());
+  w.step(1);
+  EXPECT_FALSE(w.asleep(object_index(w, "small_block_1")));
+  w.step(120);
+  EXPECT_NEAR(object_qpos(w, "small_block_1")[2], floor_z, 0.005);
+  EXPECT_TRUE(w.asleep(object_index(w, "small_block_1")));
+  EXPECT_GT(contacts_of(w, "small_block_1", true), 0);
 }
 
 TEST(Sleeping, AMovingObjectWakesWhatItWouldHit) {

@@ -46,7 +46,7 @@ bool randomize_appearance(const Scene& scene, mjModel* model, const AppearanceRa
       for (double& c : t) c = factor(r.surface_color);
     }
     for (int g = 0; g < model->ngeom; ++g) {
-      const int object = scene.object_of_body(model->geom_bodyid[g]);
+      const int object = scene.object_of_geom(g);
       if (object < 0 || model->geom_group[g] != kStaticGroup) continue;
       for (int c = 0; c < 3; ++c) {
         model->geom_rgba[4 * g + c] = static_cast<float>(std::min(1.0, model->geom_rgba[4 * g + c] * tint[object][c]));

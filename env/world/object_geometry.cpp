@@ -7,6 +7,14 @@
 
 namespace chore {
 
+Frame object_frame(const World& world, int object) {
+  const SceneObject& o = world.scene().objects()[object];
+  using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  if (o.body < 0) return {Eigen::Vector3d(o.pos.data()), Eigen::Map<const RowMajor>(o.mat.data())};
+  const mjData* d = world.data();
+  return {Eigen::Vector3d(d->xpos + 3 * o.body), Eigen::Map<const RowMajor>(d->xmat + 9 * o.body)};
+}
+
 Aabb geom_aabb(const World& world, int g) {
   const mjModel* m = world.model();
   const mjData* d = world.data();
@@ -64,13 +72,12 @@ namespace {
 
 template <class OtherTest>
 bool any_contact(const World& world, int a, OtherTest is_other) {
-  const mjModel* m = world.model();
   const mjData* d = world.data();
   const Scene& scene = world.scene();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
-    const int o1 = scene.object_of_body(m->geom_bodyid[con.geom1]);
-    const int o2 = scene.object_of_body(m->geom_bodyid[con.geom2]);
+    const int o1 = scene.object_of_geom(con.geom1);
+    const int o2 = scene.object_of_geom(con.geom2);
     if ((o1 == a && is_other(con.geom2)) || (o2 == a && is_other(con.geom1))) return true;
   }
   return false;
@@ -79,9 +86,8 @@ bool any_contact(const World& world, int a, OtherTest is_other) {
 }  // namespace
 
 bool in_contact(const World& world, int a, int b) {
-  const mjModel* m = world.model();
   const Scene& scene = world.scene();
-  return any_contact(world, a, [&](int g) { return scene.object_of_body(m->geom_bodyid[g]) == b; });
+  return any_contact(world, a, [&](int g) { return scene.object_of_geom(g) == b; });
 }
 
 bool in_contact_with_geoms(const World& world, int a, const std::vector<int>& geoms) {

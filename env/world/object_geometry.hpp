@@ -12,6 +12,16 @@
 
 namespace chore {
 
+// An object's frame in the world: its root body's pose, or where furniture
+// compiled into a static body stands (Scene's tables: it has no body of its own).
+struct Frame {
+  Eigen::Vector3d pos;
+  Eigen::Matrix3d rot;
+  Eigen::Vector3d to_world(const Eigen::Vector3d& local) const { return pos + rot * local; }
+  Eigen::Vector3d to_local(const Eigen::Vector3d& world) const { return rot.transpose() * (world - pos); }
+};
+Frame object_frame(const World& world, int object);
+
 // World-frame box of one geom (primitive shapes; meshes by their bounding sphere).
 Aabb geom_aabb(const World& world, int geom);
 // World-frame box of an object's collision geoms (links included).

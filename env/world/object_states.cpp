@@ -15,13 +15,6 @@ namespace {
 constexpr double kSoakSeconds = 0.5;     // in water this long: saturated
 constexpr double kCoolingRate = 0.01;    // towards room temperature, per second
 
-Eigen::Vector3d to_world(const World& w, int object, const Eigen::Vector3d& local) {
-  const int body = w.scene().objects()[object].body;
-  const double* x = w.data()->xpos + 3 * body;
-  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
-  return Eigen::Vector3d(x[0], x[1], x[2]) + r * local;
-}
-
 }  // namespace
 
 void ObjectStates::configure(int object, const ObjectAbilities& abilities) {
@@ -71,8 +64,8 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
   const mjData* d = w.data();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
-    const int o1 = w.scene().object_of_body(m->geom_bodyid[con.geom1]);
-    const int o2 = w.scene().object_of_body(m->geom_bodyid[con.geom2]);
+    const int o1 = w.scene().object_of_geom(con.geom1);
+    const int o2 = w.scene().object_of_geom(con.geom2);
     const ObjectAbilities* a1 = o1 >= 0 ? abilities(o1) : nullptr;
     const ObjectAbilities* a2 = o2 >= 0 ? abilities(o2) : nullptr;
     if (!a1 && !a2) continue;
@@ -91,7 +84,7 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
           const Substance* sub = substance(name);
           if (sub && sub->needs_soaked_tool && !(s.soaked.count("water") && s.soaked.at("water") >= kSoakedLevel)) continue;
           std::erase_if(particles, [&](const Eigen::Vector3d& local) {
-            return (to_world(w, other, local) - p).head<2>().norm() < kCleaningRadius;
+            return (object_frame(w, other).to_world(local) - p).head<2>().norm() < kCleaningRadius;
           });
         }
       }
@@ -163,7 +156,7 @@ void ObjectStates::draw(const World& w, mjvScene* scene) const {
     for (int i = 0; i < scene->ngeom; ++i) {
       mjvGeom& g = scene->geoms[i];
       if (g.objtype != mjOBJ_GEOM) continue;
-      const auto it = changes.find(w.scene().object_of_body(w.model()->geom_bodyid[g.objid]));
+      const auto it = changes.find(w.scene().object_of_geom(g.objid));
       if (it == changes.end()) continue;
       for (int c = 0; c < 3; ++c) g.rgba[c] = std::clamp(it->second->tint[c] * (g.rgba[c] + it->second->add), 0.0f, 1.0f);
     }
@@ -176,7 +169,7 @@ void ObjectStates::draw(const World& w, mjvScene* scene) const {
       const float* rgba = name == "dust" ? dust : stain;
       for (const Eigen::Vector3d& local : particles) {
         if (scene->ngeom >= scene->maxgeom) return;
-        const Eigen::Vector3d p = to_world(w, object, local) + Eigen::Vector3d(0, 0, kHalfThickness);
+        const Eigen::Vector3d p = object_frame(w, object).to_world(local) + Eigen::Vector3d(0, 0, kHalfThickness);
         const mjtNum size[3] = {kRadius, kHalfThickness, 0};
         const mjtNum pos[3] = {p.x(), p.y(), p.z()};
         mjvGeom* g = scene->geoms + scene->ngeom++;

@@ -109,7 +109,7 @@ bool infov(const World& w, int a) {
   const mjtByte groups[mjNGROUP] = {1, 0, 0, 1, 0, 0};  // drawn objects and collision geoms
   int geom = -1;
   const double hit = mj_ray(m, d, d->cam_xpos + 3 * cam, dir.data(), groups, 0, m->cam_bodyid[cam], &geom);
-  return hit >= 0 && geom >= 0 && w.scene().object_of_body(m->geom_bodyid[geom]) == a;
+  return hit >= 0 && geom >= 0 && w.scene().object_of_geom(geom) == a;
 }
 
 bool inreach(const World& w, int a) {

@@ -33,7 +33,7 @@ int free_joint_qpos(const World& w, int a) {
 
 Footprint footprint(const World& w, int a) {
   const Aabb box = object_aabb(w, a);
-  const double origin_z = w.data()->xpos[3 * w.scene().objects()[a].body + 2];
+  const double origin_z = object_frame(w, a).pos.z();
   return {0.5 * box.extent().head<2>().norm(), box.extent().z(), origin_z - box.lo.z()};
 }
 
@@ -59,7 +59,7 @@ std::vector<int> geoms_except(const World& w, int a, int b = -1) {
   std::vector<int> out;
   for (int g = 0; g < m->ngeom; ++g) {
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
-    const int o = w.scene().object_of_body(m->geom_bodyid[g]);
+    const int o = w.scene().object_of_geom(g);
     if (o >= 0 && (o == a || o == b)) continue;
     out.push_back(g);
   }
@@ -67,12 +67,11 @@ std::vector<int> geoms_except(const World& w, int a, int b = -1) {
 }
 
 bool touches_anything(const World& w, int a) {
-  const mjModel* m = w.model();
   const mjData* d = w.data();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
-    if (w.scene().object_of_body(m->geom_bodyid[con.geom1]) == a ||
-        w.scene().object_of_body(m->geom_bodyid[con.geom2]) == a) {
+    if (w.scene().object_of_geom(con.geom1) == a ||
+        w.scene().object_of_geom(con.geom2) == a) {
       return true;
     }
   }
@@ -262,16 +261,13 @@ bool sample_covered(World& w, int a, const std::string& substance, bool value, R
   if (!value) return true;
   const Aabb box = object_aabb(w, a);
   const std::vector<int> all = geoms_except(w, -1);
-  const int body = w.scene().objects()[a].body;
-  const Eigen::Vector3d origin(w.data()->xpos[3 * body], w.data()->xpos[3 * body + 1],
-                               w.data()->xpos[3 * body + 2]);
-  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(w.data()->xmat + 9 * body);
+  const Frame frame = object_frame(w, a);
   for (int attempt = 0; attempt < 20 * particles && static_cast<int>(dirt.size()) < particles; ++attempt) {
     const Eigen::Vector2d p = point_in(box, 0, rng);
     const Eigen::Vector3d start(p.x(), p.y(), box.hi.z() + 0.05);
     const double to_a = ray_to_object(w, a, start, kDown, 10);
     if (to_a < 0 || ray_to_geoms(w, all, start, kDown, 10) < to_a - 1e-9) continue;
-    dirt.push_back(r.transpose() * (start + kDown * to_a - origin));
+    dirt.push_back(frame.to_local(start + kDown * to_a));
   }
   sampled = static_cast<int>(dirt.size());
   return static_cast<int>(dirt.size()) == particles;

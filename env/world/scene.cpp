@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -328,6 +329,19 @@ std::string resolve_scene_path(const std::string& name, const std::string& asset
               (known.empty() ? "none" : known));
 }
 
+// The cell of the static-body grid a point lies in (clamped: positions far
+// out of any room are the scene reader's to refuse, not a reason to overflow).
+std::pair<long, long> static_cell(const Eigen::Vector3d& p) {
+  auto index = [](double v) {
+    return static_cast<long>(std::floor(std::clamp(v, -1e6, 1e6) / Scene::kStaticCell));
+  };
+  return {index(p.x()), index(p.y())};
+}
+
+std::string static_body_name(const std::pair<long, long>& cell) {
+  return "static_" + std::to_string(cell.first) + "_" + std::to_string(cell.second);
+}
+
 // Parses an MJCF document from memory through MuJoCo's virtual file system.
 mjModel* compile_mjcf(const std::string& xml, const std::string& what) {
   mjVFS vfs;
@@ -432,8 +446,11 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
 
   // Objects.
   std::map<std::string, ObjectModel> models;
-  std::vector<std::string> root_bodies;  // per object: its root body's name
+  std::vector<std::string> holder_bodies;  // per object: its root body's name, or its static body's
+  std::vector<char> in_static_body;        // per object: its geoms are in a static body
   std::vector<std::optional<Cloth>> cloths;  // per object: its cloth, if simulated
+  std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
+  std::vector<std::string> static_roots;  // fixed objects with moving parts: their static roots
   const JsonReader objects = j.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) {
     const JsonReader o = objects.at(i);
@@ -463,16 +480,46 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
     pose.linear() = Eigen::AngleAxisd(o.number("yaw", 0.0) * M_PI / 180.0,
                                       Eigen::Vector3d::UnitZ()).toRotationMatrix();
 
-    const std::string body = root_body_name(object.name, model, options.cloth);
-    root_bodies.push_back(body);
-    cloths.push_back(model.cloth && options.cloth ? model.cloth : std::nullopt);
-    if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
     if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(object.mat.data()) = pose.linear();
+    Eigen::Map<Eigen::Vector3d>(object.pos.data()) = pose.translation();
+    if (model.light) {
+      lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" +
+                fmt(Eigen::Vector3d(pose * model.light->pos)) +
+                "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"90\" "
+                "exponent=\"0\" attenuation=\"1 0 0.2\" diffuse=\"" + fmt(model.light->rgb[0]) +
+                " " + fmt(model.light->rgb[1]) + " " + fmt(model.light->rgb[2]) +
+                "\" specular=\"0.1 0.1 0.1\"/>\n";
+    }
+    if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
+    if (object.fixed && !model.cloth && model.root.links.empty()) {
+      // Furniture without moving parts: its geoms, posed in the world, join
+      // the static body of the cell it stands in.
+      const auto key = static_cell(pose.translation());
+      std::string& cell = static_cells[key];
+      for (size_t g = 0; g < model.root.geoms.size(); ++g) {
+        Geom placed = model.root.geoms[g];
+        placed.pose = pose * placed.pose;
+        add_to_static_mesh(mesh, Eigen::Isometry3d::Identity(), placed);
+        cell += "      " + geom_xml(object.name + "/" + std::to_string(g), placed, false, 0) + "\n";
+      }
+      holder_bodies.push_back(static_body_name(key));
+      in_static_body.push_back(1);
+      cloths.emplace_back();
+      scene->objects_.push_back(std::move(object));
+      continue;
+    }
+    const std::string body = root_body_name(object.name, model, options.cloth);
+    holder_bodies.push_back(body);
+    in_static_body.push_back(0);
+    cloths.push_back(model.cloth && options.cloth ? model.cloth : std::nullopt);
     world += "    <body name=\"" + body + "\" " + pose_attributes(pose) + ">\n";
     if (!object.fixed) {
       world += "      <freejoint name=\"" + object.name + "\"/>\n";
       welds += "    <weld name=\"grasp_" + object.name + "\" body1=\"gripper\" body2=\"" + body +
                "\" active=\"false\" solref=\"0.005 1\"/>\n";
+    } else {
+      static_roots.push_back(body);
     }
     if (model.cloth && options.cloth) {
       world += cloth_xml(object.name, *model.cloth, model.root.mass);
@@ -488,16 +535,26 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       emit_link_geoms(world, mesh, object.name, model.root, object.fixed, pose, "      ");
       emit_child_links(world, welds, mesh, object.name, model.root, pose, "      ");
     }
-    if (model.light) {
-      lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" +
-                fmt(Eigen::Vector3d(pose * model.light->pos)) +
-                "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"90\" "
-                "exponent=\"0\" attenuation=\"1 0 0.2\" diffuse=\"" + fmt(model.light->rgb[0]) +
-                " " + fmt(model.light->rgb[1]) + " " + fmt(model.light->rgb[2]) +
-                "\" specular=\"0.1 0.1 0.1\"/>\n";
-    }
     world += "    </body>\n";
     scene->objects_.push_back(std::move(object));
+  }
+
+  // The static bodies, and the pairs among what never moves (the world, the
+  // static bodies, the roots of fixed objects with moving parts) excluded:
+  // MuJoCo 2.2.2 pairs the world body with every body and would otherwise
+  // run every geom pair of two touching static bodies through its filters.
+  std::vector<std::string> unmoving = {"world"};
+  for (const auto& [cell, geoms] : static_cells) {
+    const std::string name = static_body_name(cell);
+    world += "    <body name=\"" + name + "\">\n" + geoms + "    </body>\n";
+    unmoving.push_back(name);
+  }
+  unmoving.insert(unmoving.end(), static_roots.begin(), static_roots.end());
+  std::string excludes;
+  for (size_t a = 0; a < unmoving.size(); ++a) {
+    for (size_t b = a + 1; b < unmoving.size(); ++b) {
+      excludes += "    <exclude body1=\"" + unmoving[a] + "\" body2=\"" + unmoving[b] + "\"/>\n";
+    }
   }
 
   const JsonReader robot = j.at("robot");
@@ -551,6 +608,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       "  <asset>\n" + mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n"
       "  <worldbody>\n" + mesh.mjcf_geom() + ceilings.mjcf_geom() + lights + world +
       "  </worldbody>\n";
+  if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
     xml += robot_mjcf_children(robot_path);
@@ -564,26 +622,46 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   mesh.paint_palette(model);
   ceilings.paint_palette(model);
 
-  scene->body_object_.assign(model->nbody, -1);
+  std::vector<int> root_object(model->nbody, -1);
+  std::map<std::string, int, std::less<>> static_object;  // name -> index, furniture in static bodies
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];
-    object.body = mj_name2id(model, mjOBJ_BODY, root_bodies[i].c_str());
+    const int body = mj_name2id(model, mjOBJ_BODY, holder_bodies[i].c_str());
+    if (in_static_body[i]) {
+      object.static_body = body;
+      static_object[object.name] = static_cast<int>(i);
+    } else {
+      object.body = body;
+      root_object[body] = static_cast<int>(i);
+    }
+  }
+  // Objects are children of the world: their links share the root body.
+  scene->body_object_.resize(model->nbody);
+  for (int b = 0; b < model->nbody; ++b) scene->body_object_[b] = root_object[model->body_rootid[b]];
+  // Geoms of a static body are named "<object>/<index>".
+  scene->geom_object_.resize(model->ngeom);
+  for (int g = 0; g < model->ngeom; ++g) {
+    int& object = scene->geom_object_[g] = scene->body_object_[model->geom_bodyid[g]];
+    const char* name = mj_id2name(model, mjOBJ_GEOM, g);
+    if (object < 0 && name && model->body_rootid[model->geom_bodyid[g]] != 0) {
+      const std::string_view n(name);
+      const auto it = static_object.find(n.substr(0, n.find('/')));
+      if (it != static_object.end()) object = it->second;
+    }
+    const bool collides = model->geom_contype[g] || model->geom_conaffinity[g];
+    if (collides && object >= 0) scene->objects_[object].geoms.push_back(g);
+  }
+  for (const auto& [cell, geoms] : static_cells) {
+    scene->static_bodies_.push_back(mj_name2id(model, mjOBJ_BODY, static_body_name(cell).c_str()));
+  }
+  for (size_t i = 0; i < scene->objects_.size(); ++i) {
+    SceneObject& object = scene->objects_[i];
     if (const auto& cloth = cloths[i]) {
       const std::string last = std::to_string(cloth->count - 1);
       for (const std::string& corner : {std::string("0_0"), "0_" + last, last + "_0", last + "_" + last}) {
         object.keypoints.push_back(mj_name2id(model, mjOBJ_BODY, (object.name + "B" + corner).c_str()));
       }
       object.flat_diagonal = (cloth->count - 1) * cloth->spacing * std::sqrt(2.0);
-    }
-    for (int b = 0; b < model->nbody; ++b) {
-      // Objects are children of the world: their links share the root body.
-      if (model->body_rootid[b] == object.body) scene->body_object_[b] = static_cast<int>(i);
-    }
-    for (int g = 0; g < model->ngeom; ++g) {
-      const bool collides = model->geom_contype[g] || model->geom_conaffinity[g];
-      if (collides && model->body_rootid[model->geom_bodyid[g]] == object.body) {
-        object.geoms.push_back(g);
-      }
     }
     if (options.robot && !object.fixed) {
       object.grasp_weld = mj_name2id(model, mjOBJ_EQUALITY, ("grasp_" + object.name).c_str());

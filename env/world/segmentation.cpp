@@ -95,9 +95,6 @@ Segmentation::Segmentation(const World& world) {
     instances_.push_back({objects[i].name, Instance::Kind::object, class_of(objects[i]), static_cast<int>(i)});
   }
   std::vector<int> body_instance(m->nbody, 0);
-  for (int b = 1; b < m->nbody; ++b) {
-    if (const int o = scene.object_of_body(b); o >= 0) body_instance[b] = instance_of_object(o);
-  }
   const int robot = scene.has_robot() ? mj_name2id(m, mjOBJ_BODY, "robot") : -1;
   for (int b = 1; robot >= 0 && b < m->nbody; ++b) {
     if (m->body_rootid[b] != robot) continue;
@@ -105,7 +102,10 @@ Segmentation::Segmentation(const World& world) {
     instances_.push_back({mj_id2name(m, mjOBJ_BODY, b), Instance::Kind::robot_link, kAgent, -1, b});
   }
   geom_instance_.assign(m->ngeom, 0);
-  for (int g = 0; g < m->ngeom; ++g) geom_instance_[g] = body_instance[m->geom_bodyid[g]];
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int o = scene.object_of_geom(g);
+    geom_instance_[g] = o >= 0 ? instance_of_object(o) : body_instance[m->geom_bodyid[g]];
+  }
   for (size_t r = 0; r < scene.rooms().size(); ++r) {
     const int id = static_cast<int>(instances_.size());
     instances_.push_back({"floor_" + scene.rooms()[r].name, Instance::Kind::structure, kFloors});

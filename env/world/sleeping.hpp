@@ -3,17 +3,24 @@
 // where they came to rest, until something comes near. A resting contact costs
 // the same every step whether or not anything happens to it (in the restaurant
 // ~3/4 of a physics step is collision detection of ~800 objects nobody
-// touches); sleepers cost nothing.
+// touches); sleepers cost nothing. It is on in every physics step (World).
 //
 // The mask lives only inside a physics step: before mj_step the sleepers'
 // bodies get no geoms (MuJoCo's broadphase skips them), after it they are
 // given back and their joints put back where they slept (gravity moved them
-// one step). Everything else (planners, predicates, rendering) sees the whole
-// model. What mjData's contact list lacks while some sleep are the sleepers'
-// resting contacts: wake everyone (and run mj_forward) before reading them.
-// While it is on only physics may move objects: a sleeper set elsewhere would
-// be put back where it slept.
+// one step). Static bodies of furniture (Scene::static_bodies()) that no awake
+// region meets are masked too: out of the broadphase, and their geoms out of
+// mj_kinematics (they never move, so their poses in mjData stay valid).
+//
+// What a sleeper touched when it fell asleep it still touches: those resting
+// contacts are kept and appended to mjData's contact list after every masked
+// step, marked with efc_address kKeptContact (no force: mj_contactForce gives
+// zeros), so that contact predicates read the same list as if all were awake.
+// An object sleeps after kStillSteps steps at rest; one moved or set in
+// motion by anything but physics wakes at the next step.
 #pragma once
+
+#include <mujoco/mjdata.h>
 
 #include <cstddef>
 #include <vector>
@@ -21,7 +28,6 @@
 #include "env/world/aabb.hpp"
 
 struct mjModel_;
-struct mjData_;
 
 namespace chore {
 
@@ -34,6 +40,12 @@ class Sleeping {
   // kMovingMargin of it, one at rest what it touches (kTouchMargin).
   static constexpr double kRobotMargin = 0.25, kMovingMargin = 0.25, kTouchMargin = 0.02;
   static constexpr double kRestSpeed = 0.02;
+  // Steps an object stays below kRestSpeed before it may sleep (0.1 s; PhysX
+  // waits 0.4 s): an object just placed in the air is still, not at rest.
+  static constexpr int kStillSteps = 12;
+  // efc_address of a kept resting contact (MuJoCo's own are >= 0, or -1 when
+  // excluded from the solver).
+  static constexpr int kKeptContact = -2;
 
   // `robot_root`: the robot's root body (-1: no robot).
   Sleeping(const Scene& scene, const mjModel_* model, int robot_root);
@@ -41,14 +53,15 @@ class Sleeping {
   // Decides who sleeps from the positions and velocities in `d`, then masks
   // the sleepers' bodies out of `m`'s collision detection. `held_body` (-1:
   // none) is carried by the robot and always awake.
-  void mask(mjModel_* m, const mjData_* d, int held_body);
-  // Gives the bodies their geoms back and the sleepers their resting state.
-  void unmask(mjModel_* m, mjData_* d) const;
+  void mask(mjModel_* m, const mjData* d, int held_body);
+  // Gives the bodies their geoms back, the sleepers their resting state, and
+  // appends the kept resting contacts to d's contact list.
+  void unmask(mjModel_* m, mjData* d) const;
   // Everyone awake, nothing remembered.
   void wake_all();
 
   int sleepers() const;
-  bool asleep(int object) const { return objects_[static_cast<size_t>(object)].asleep; }
+  bool asleep(int object) const;
 
  private:
   struct Object {
@@ -57,14 +70,24 @@ class Sleeping {
     std::vector<int> qpos, dofs;  // its joints' coordinates and degrees of freedom
     bool free = false;        // moves on its own (else welded to the world, links aside)
     bool never = false;       // has unbounded geoms (planes, height fields)
+    int static_body = -1;     // furniture in a static body: index into static_bodies_
     bool asleep = false;
+    int still_steps = 0;      // steps below the rest speed
     std::vector<double> rest_qpos;  // where it fell asleep
   };
+  bool moved_while_asleep(const Object& o, const mjData* d) const;
+  void keep_resting_contacts(const mjData* d);
+
   std::vector<Object> objects_;
+  std::vector<int> geom_object_;  // Scene::object_of_geom, copied
   std::vector<int> robot_geoms_;
   std::vector<int> body_geomnum_;  // the model's own counts
   std::vector<Aabb> boxes_, regions_;  // mask()'s scratch: objects' boxes, awake regions
-  std::vector<char> awake_;
+  std::vector<char> awake_, fell_asleep_;
+  std::vector<int> static_bodies_;
+  std::vector<Aabb> static_boxes_;  // made on the first mask()
+  std::vector<char> static_asleep_;
+  std::vector<mjContact> resting_;  // contacts of sleepers, kept
 };
 
 }  // namespace chore

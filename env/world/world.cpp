@@ -18,6 +18,7 @@ World::World(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
   data_ = mj_makeData(model_);
   if (!model_ || !data_) throw Error("world: out of memory copying scene '" + scene_->name() + "'");
   if (scene_->has_robot()) robot_ = Robot::bind(model_);
+  sleeping_.emplace(*scene_, model_, robot_ ? model_->body_rootid[robot_->gripper_body] : -1);
   reset(scene_->robot_start());
 }
 
@@ -35,8 +36,7 @@ mjData* World::scratch() const {
 
 void World::reset(const Pose2& base) {
   release();
-  if (sleeping_) sleeping_->wake_all();
-  sleeping_on_ = false;
+  sleeping_->wake_all();
   states_.reset();
   mj_resetData(model_, data_);
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
@@ -146,10 +146,7 @@ World::StepReport World::step(int substeps) {
 void World::set_sleeping(bool enabled) {
   if (enabled == sleeping_on_) return;
   sleeping_on_ = enabled;
-  if (enabled) {
-    if (!sleeping_) sleeping_.emplace(*scene_, model_, robot_ ? model_->body_rootid[robot_->gripper_body] : -1);
-    return;
-  }
+  if (enabled) return;
   sleeping_->wake_all();
   mj_forward(model_, data_);
 }

@@ -77,15 +77,15 @@ class World {
   void set_state_updates(bool enabled) { state_updates_ = enabled; }
   bool state_updates() const { return state_updates_; }
 
-  // Sleeping (env/world/sleeping.hpp): on, physics skips the collisions of
-  // objects at rest away from the robot and holds them still; only physics
-  // may move objects then. Turning it off
-  // wakes them all and recomputes the contacts (mj_forward), so that contact
-  // predicates read every contact again. reset() turns it off.
+  // Sleeping (env/world/sleeping.hpp), on unless turned off: physics skips
+  // the collisions of objects at rest away from the robot and holds them
+  // still; their resting contacts stay in the contact list. Turning it off
+  // wakes them all and recomputes the contacts (mj_forward). reset() wakes
+  // everyone and keeps the setting.
   void set_sleeping(bool enabled);
   bool sleeping() const { return sleeping_on_; }
   // Objects asleep after the last step.
-  int sleepers() const { return sleeping_ ? sleeping_->sleepers() : 0; }
+  int sleepers() const { return sleeping_on_ ? sleeping_->sleepers() : 0; }
   bool asleep(int object) const { return sleeping_on_ && sleeping_->asleep(object); }
 
   // Index into scene().objects() of the object held by the gripper, or -1.
@@ -132,8 +132,8 @@ class World {
   int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
-  std::optional<Sleeping> sleeping_;  // made on first use
-  bool sleeping_on_ = false;
+  std::optional<Sleeping> sleeping_;  // made with the world: it needs the scene and model
+  bool sleeping_on_ = true;
   int texture_version_ = 0;
   mutable mjData_* scratch_ = nullptr;
   std::vector<double> payload_jacobian_;
