@@ -138,6 +138,23 @@ torch::Tensor RunningNormImpl::forward(const torch::Tensor& x, int64_t dim) cons
   return ((x - mean) / std).clamp(-clip_, clip_);
 }
 
+torch::Tensor RunningNormImpl::forward_bytes(const torch::Tensor& images) const {
+  const int64_t channels = mean_.size(0);
+  TORCH_CHECK(images.scalar_type() == torch::kUInt8 && images.dim() == 4 && images.size(1) == channels,
+              "forward_bytes: expected uint8 images (B, ", channels, ", H, W)");
+  const torch::Tensor table = forward(torch::arange(256, torch::kFloat32).expand({channels, 256}), 0).contiguous();
+  const torch::Tensor in = images.contiguous();
+  torch::Tensor out = torch::empty(in.sizes(), torch::kFloat32);
+  const int64_t planes = in.size(0) * channels, plane = in.size(2) * in.size(3);
+  const uint8_t* src = in.data_ptr<uint8_t>();
+  float* dst = out.data_ptr<float>();
+  for (int64_t p = 0; p < planes; ++p) {
+    const float* values = table.data_ptr<float>() + (p % channels) * 256;
+    for (int64_t i = p * plane; i < (p + 1) * plane; ++i) dst[i] = values[src[i]];
+  }
+  return out;
+}
+
 int64_t trunk_output_size(int height, int width) {
   torch::NoGradGuard no_grad;
   return make_trunk()->forward(torch::zeros({1, 3, height, width})).size(1);
@@ -162,7 +179,7 @@ EncoderImpl::EncoderImpl(const NetworkSpec& spec) {
 
 torch::Tensor EncoderImpl::forward(const ObsTensors& obs) {
   std::vector<torch::Tensor> parts;
-  if (trunk_) parts.push_back(trunk_->forward(rgb_norm_->forward(obs.rgb.to(torch::kFloat32), 1)));
+  if (trunk_) parts.push_back(trunk_->forward(rgb_norm_->forward_bytes(obs.rgb)));
   if (state_net_) parts.push_back(state_net_->forward(state_norm_->forward(obs.state, 1)));
   return mlp_->forward(torch::cat(parts, 1));
 }
