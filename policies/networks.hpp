@@ -68,6 +68,14 @@ class RunningNormImpl : public torch::nn::Module {
 };
 TORCH_MODULE(RunningNorm);
 
+// nn::MaxPool2d(2) bit for bit, values and gradients, at a fraction of torch
+// 1.13's CPU cost (the trunk's pooling; networks.cpp says why).
+class MaxPool2x2Impl : public torch::nn::Module {
+ public:
+  torch::Tensor forward(const torch::Tensor& x);  // (B, C, H, W) float -> (B, C, H/2, W/2)
+};
+TORCH_MODULE(MaxPool2x2);
+
 class EncoderImpl : public torch::nn::Module {
  public:
   explicit EncoderImpl(const NetworkSpec& spec);
