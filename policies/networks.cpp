@@ -1,7 +1,6 @@
 #include "policies/networks.hpp"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "env/world/error.hpp"
