@@ -9,6 +9,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <random>
 #include <set>
 #include <sstream>
@@ -252,6 +254,47 @@ TEST(Training, HistoryKeepsTheLastKPrimitivesAndResultsNewestFirst) {
   EXPECT_EQ(history.rows(env0).abs().sum().item<float>(), 0.0f);  // untouched env: zeros
   history.reset(ids);
   EXPECT_EQ(history.rows(ids).abs().sum().item<float>(), 0.0f);
+}
+
+// The bits of a float tensor (NaN and -0 included), for exact comparisons.
+torch::Tensor bits(const torch::Tensor& t) { return t.contiguous().view(torch::kInt32); }
+
+// The trunk's own pooling computes what nn::MaxPool2d(2) does, bit for bit:
+// ties (a flat region, all-zero windows after a ReLU) go to the first
+// maximum, a NaN wins, an odd size drops its last row and column, and a -0
+// gradient lands as +0.
+TEST(Training, MaxPool2x2IsTorchsMaxPoolBitForBit) {
+  torch::manual_seed(0);
+  torch::Tensor x = torch::relu(torch::randn({2, 3, 9, 7}));
+  x[0][0].narrow(0, 0, 4).fill_(0.5f);
+  x[1][2][3][3] = std::numeric_limits<float>::quiet_NaN();
+  x[1][1].narrow(0, 0, 2).narrow(1, 0, 2).fill_(-std::numeric_limits<float>::infinity());
+  torch::Tensor grad = torch::randn({2, 3, 4, 3});
+  grad[0][1][1][1] = -0.0f;
+  auto run = [&](const std::function<torch::Tensor(const torch::Tensor&)>& pool) {
+    const torch::Tensor input = x.clone().requires_grad_();
+    const torch::Tensor out = pool(input);
+    out.backward(grad);
+    torch::NoGradGuard no_grad;
+    return std::make_tuple(out.detach(), input.grad(), pool(x));
+  };
+  const auto [out, input_grad, no_grad_out] = run([](const torch::Tensor& t) { return torch::max_pool2d(t, 2); });
+  MaxPool2x2 pool;
+  const auto [own, own_grad, own_no_grad] = run([&](const torch::Tensor& t) { return pool(t); });
+  EXPECT_TRUE(torch::equal(bits(own), bits(out)));
+  EXPECT_TRUE(torch::equal(bits(own_grad), bits(input_grad)));
+  EXPECT_TRUE(torch::equal(bits(own_no_grad), bits(no_grad_out)));
+}
+
+// Images normalise through a table of each channel's 256 values, bit for bit
+// as the float path.
+TEST(Training, ByteNormalisationIsTheFloatOneBitForBit) {
+  torch::manual_seed(0);
+  RunningNorm norm(3, 5.0);
+  norm->update(torch::rand({100, 3}) * 255);
+  norm->update(torch::rand({50, 3}) * 40 + 200);
+  const torch::Tensor images = torch::randint(0, 256, {4, 3, 16, 12}, torch::kUInt8);
+  EXPECT_TRUE(torch::equal(bits(norm->forward_bytes(images)), bits(norm->forward(images.to(torch::kFloat32), 1))));
 }
 
 TEST(Training, ImageTrunkPoolsTo4x4) {

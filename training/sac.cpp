@@ -279,13 +279,13 @@ class SacTrainer : public Trainer {
     q_loss.backward();
     critic_opt_->step();
 
-    // Actor: on the detached feature; the critic's gradients from this loss are
-    // discarded (zero_grad above, before the critic's next step).
+    // Actor: on the detached feature, through the Q heads to the actor alone
+    // (backward's inputs: no gradients for the Q heads' weights are computed).
     const SacSample sample = actor_->sample(feature.detach(), generator_);
     const auto [pq1, pq2] = critic_->q(feature.detach(), sample.action);
     const torch::Tensor policy_loss = (alpha * sample.log_prob - torch::min(pq1, pq2)).mean();
     actor_opt_->zero_grad();
-    policy_loss.backward();
+    policy_loss.backward({}, c10::nullopt, false, actor_->parameters());
     actor_opt_->step();
 
     // Temperature towards the target entropy -|A|.
