@@ -36,16 +36,24 @@ TEST(Scene, RoomAtAnswersFromTheFloorRectangles) {
   EXPECT_EQ(scene->room_at(3.5, 0), nullptr);
 }
 
-TEST(Scene, StaticGeometryIsOneDrawnMeshAndMovingPartsKeepTheirGeoms) {
+TEST(Scene, StaticGeometryIsDrawnAsMergedChunksAndMovingPartsKeepTheirGeoms) {
   auto scene = Scene::load(test::box_room());
   const mjModel* m = scene->model();
   int merged = 0, drawn_static = 0, hidden_static = 0;
+  std::set<int> materials;
   for (int g = 0; g < m->ngeom; ++g) {
     if (m->body_weldid[m->geom_bodyid[g]] != 0) continue;  // moves
     const int group = m->geom_group[g];
     (group == kMergedGroup ? merged : group == kStaticGroup ? drawn_static : hidden_static)++;
+    if (group == kMergedGroup) {
+      materials.insert(m->geom_matid[g]);
+      // A chunk is a 2 m cell's shapes: far smaller than the 6 x 6 m room
+      // (a wall, the largest shape, reaches 3 m out of its cell).
+      EXPECT_LT(m->geom_rbound[g], 4.5) << g;
+    }
   }
-  EXPECT_EQ(merged, 1);        // the merged static mesh, in a group of its own
+  EXPECT_GE(merged, 4);        // the merged static meshes, chunked, in a group of their own
+  EXPECT_EQ(materials.size(), 1u);  // one palette texture for them all
   EXPECT_EQ(drawn_static, 0);  // nothing static is drawn apart from it
   EXPECT_GE(hidden_static, 1 + 4 + 2);  // floor, 4 walls, 2 fixed objects for collision
   const SceneObject* block = scene->find_object("small_block_1");
@@ -55,7 +63,8 @@ TEST(Scene, StaticGeometryIsOneDrawnMeshAndMovingPartsKeepTheirGeoms) {
   EXPECT_EQ(m->geom_group[m->body_geomadr[block->body]], 0);  // drawn itself
   const SceneObject* panel = scene->find_object("red_panel_1");
   EXPECT_TRUE(panel->fixed);
-  EXPECT_EQ(m->body_jntnum[panel->body], 0);
+  EXPECT_EQ(panel->body, -1);  // in a static body
+  EXPECT_EQ(m->body_jntnum[panel->static_body], 0);
 }
 
 TEST(Scene, FurnitureWithoutMovingPartsSharesStaticBodiesAndKeepsItsIdentity) {

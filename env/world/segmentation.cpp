@@ -119,11 +119,10 @@ Segmentation::Segmentation(const World& world) {
   }
   const int ceilings = static_cast<int>(instances_.size());
   instances_.push_back({"ceilings", Instance::Kind::structure, kCeilings});
-  if (const int g = mj_name2id(m, mjOBJ_GEOM, "ceiling_visual"); g >= 0) geom_instance_[g] = ceilings;
-
-  // What the merged mesh draws: the collision geoms welded to the world.
-  if (const int merged = mj_name2id(m, mjOBJ_GEOM, "static_visual"); merged >= 0) {
-    geom_instance_[merged] = kResolve;
+  // What the merged meshes draw: ceilings, and the collision geoms welded to the world.
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_group[g] == kCeilingGroup) geom_instance_[g] = ceilings;
+    if (m->geom_group[g] == kMergedGroup) geom_instance_[g] = kResolve;
   }
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (int g = 0; g < m->ngeom; ++g) {

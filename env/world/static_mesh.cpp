@@ -41,6 +41,17 @@ std::string format_indices(const std::vector<std::array<int, 3>>& faces) {
 
 }  // namespace
 
+int StaticMesh::start_shape(const Eigen::Vector3d& center, const Rgb& color) {
+  auto index = [](double v) { return static_cast<long>(std::floor(std::clamp(v, -1e6, 1e6) / kChunk)); };
+  chunk_ = {index(center.x()), index(center.y())};
+  return color_index(color);
+}
+
+void StaticMesh::add_face(int a, int b, int c) {
+  faces_.push_back({a, b, c});
+  face_chunk_.push_back(chunk_);
+}
+
 int StaticMesh::color_index(const Rgb& color) {
   std::array<int, 3> key;
   for (int i = 0; i < 3; ++i) {
@@ -69,15 +80,15 @@ void StaticMesh::add_quad(const Eigen::Vector3d& corner, const Eigen::Vector3d& 
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i < nu; ++i) {
       const int a = first + j * (nu + 1) + i, b = a + 1, c = a + nu + 1, d = c + 1;
-      faces_.push_back({a, b, d});  // counter-clockwise seen from the normal side
-      faces_.push_back({a, d, c});
+      add_face(a, b, d);  // counter-clockwise seen from the normal side
+      add_face(a, d, c);
     }
   }
 }
 
 void StaticMesh::add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half,
                          const Rgb& color) {
-  const int c = color_index(color);
+  const int c = start_shape(pose.translation(), color);
   const Eigen::Matrix3d r = pose.linear();
   const Eigen::Vector3d center = pose.translation();
   for (int axis = 0; axis < 3; ++axis) {
@@ -97,7 +108,7 @@ void StaticMesh::add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& h
 
 void StaticMesh::add_cylinder(const Eigen::Isometry3d& pose, double radius, double half_height,
                               const Rgb& color) {
-  const int c = color_index(color);
+  const int c = start_shape(pose.translation(), color);
   const Eigen::Matrix3d r = pose.linear();
   const Eigen::Vector3d center = pose.translation(), z = r.col(2);
   auto rim = [&](int k) {
@@ -112,8 +123,8 @@ void StaticMesh::add_cylinder(const Eigen::Isometry3d& pose, double radius, doub
   for (int k = 0; k < kRoundSegments; ++k) {
     const int k1 = (k + 1) % kRoundSegments;
     const int a = first + 2 * k, b = first + 2 * k1;
-    faces_.push_back({a, b, b + 1});
-    faces_.push_back({a, b + 1, a + 1});
+    add_face(a, b, b + 1);
+    add_face(a, b + 1, a + 1);
   }
   for (int sign : {-1, 1}) {
     const Eigen::Vector3d n = z * sign;
@@ -122,8 +133,8 @@ void StaticMesh::add_cylinder(const Eigen::Isometry3d& pose, double radius, doub
     for (int k = 0; k < kRoundSegments; ++k) add_vertex(center + rim(k) * radius + n * half_height, n, c);
     for (int k = 0; k < kRoundSegments; ++k) {
       const int a = ring + k, b = ring + (k + 1) % kRoundSegments;
-      if (sign > 0) faces_.push_back({hub, a, b});
-      else faces_.push_back({hub, b, a});
+      if (sign > 0) add_face(hub, a, b);
+      else add_face(hub, b, a);
     }
   }
 }
@@ -136,7 +147,7 @@ void StaticMesh::add_capsule(const Eigen::Isometry3d& pose, double radius, doubl
                              const Rgb& color) {
   // Latitude rings from the bottom pole to the top pole; the two hemispheres are
   // pulled apart by +-half_length along z.
-  const int c = color_index(color);
+  const int c = start_shape(pose.translation(), color);
   const Eigen::Matrix3d r = pose.linear();
   const Eigen::Vector3d center = pose.translation();
   const int stacks = kRoundSegments / 2;  // even: the equator is a ring
@@ -164,8 +175,8 @@ void StaticMesh::add_capsule(const Eigen::Isometry3d& pose, double radius, doubl
       const int k1 = (k + 1) % kRoundSegments;
       const int a = first + j * kRoundSegments + k, b = first + j * kRoundSegments + k1;
       const int a2 = a + kRoundSegments, b2 = b + kRoundSegments;
-      faces_.push_back({a, b, b2});
-      faces_.push_back({a, b2, a2});
+      add_face(a, b, b2);
+      add_face(a, b2, a2);
     }
   }
 }
@@ -183,30 +194,56 @@ std::array<double, 2> StaticMesh::texcoord(int color) const {
           (by * kBlock + kBlock / 2.0) / texture_height()};
 }
 
+std::map<StaticMesh::Chunk, std::vector<size_t>> StaticMesh::faces_by_chunk() const {
+  std::map<Chunk, std::vector<size_t>> chunks;
+  for (size_t f = 0; f < faces_.size(); ++f) chunks[face_chunk_[f]].push_back(f);
+  return chunks;
+}
+
 std::string StaticMesh::mjcf_assets() const {
   if (empty()) return "";
-  std::vector<double> positions, normals, texcoords;
-  for (const Vertex& v : vertices_) {
-    for (int i = 0; i < 3; ++i) positions.push_back(v.position[i]);
-    for (int i = 0; i < 3; ++i) normals.push_back(v.normal[i]);
-    const auto uv = texcoord(v.color);
-    texcoords.push_back(uv[0]);
-    texcoords.push_back(uv[1]);
+  std::string xml = "    <texture name=\"" + name_ + "\" type=\"2d\" builtin=\"flat\" width=\"" +
+                    std::to_string(texture_width()) + "\" height=\"" + std::to_string(texture_height()) +
+                    "\" rgb1=\"1 1 1\"/>\n"
+                    "    <material name=\"" + name_ + "\" texture=\"" + name_ +
+                    "\" specular=\"0.05\" shininess=\"0.1\"/>\n";
+  int index = 0;
+  for (const auto& [chunk, faces] : faces_by_chunk()) {
+    // The chunk's own vertices, renumbered in order of first use.
+    std::map<int, int> renumbered;
+    std::vector<std::array<int, 3>> local;
+    std::vector<double> positions, normals, texcoords;
+    for (size_t f : faces) {
+      std::array<int, 3>& face = local.emplace_back();
+      for (int k = 0; k < 3; ++k) {
+        const int v = faces_[f][k];
+        const auto [it, fresh] = renumbered.try_emplace(v, static_cast<int>(renumbered.size()));
+        face[k] = it->second;
+        if (!fresh) continue;
+        const Vertex& vertex = vertices_[static_cast<size_t>(v)];
+        for (int i = 0; i < 3; ++i) positions.push_back(vertex.position[i]);
+        for (int i = 0; i < 3; ++i) normals.push_back(vertex.normal[i]);
+        const auto uv = texcoord(vertex.color);
+        texcoords.push_back(uv[0]);
+        texcoords.push_back(uv[1]);
+      }
+    }
+    xml += "    <mesh name=\"" + name_ + "_" + std::to_string(index++) + "\" vertex=\"" +
+           format_numbers(positions) + "\" normal=\"" + format_numbers(normals) + "\" texcoord=\"" +
+           format_numbers(texcoords) + "\" face=\"" + format_indices(local) + "\"/>\n";
   }
-  return "    <texture name=\"" + name_ + "\" type=\"2d\" builtin=\"flat\" width=\"" +
-         std::to_string(texture_width()) + "\" height=\"" + std::to_string(texture_height()) +
-         "\" rgb1=\"1 1 1\"/>\n"
-         "    <material name=\"" + name_ + "\" texture=\"" + name_ +
-         "\" specular=\"0.05\" shininess=\"0.1\"/>\n"
-         "    <mesh name=\"" + name_ + "\" vertex=\"" + format_numbers(positions) +
-         "\" normal=\"" + format_numbers(normals) + "\" texcoord=\"" + format_numbers(texcoords) +
-         "\" face=\"" + format_indices(faces_) + "\"/>\n";
+  return xml;
 }
 
 std::string StaticMesh::mjcf_geom() const {
-  if (empty()) return "";
-  return "    <geom name=\"" + name_ + "\" class=\"visual\" group=\"" + std::to_string(group_) +
-         "\" type=\"mesh\" mesh=\"" + name_ + "\" material=\"" + name_ + "\"/>\n";
+  std::string xml;
+  const size_t chunks = faces_by_chunk().size();
+  for (size_t i = 0; i < chunks; ++i) {
+    const std::string mesh = name_ + "_" + std::to_string(i);
+    xml += "    <geom name=\"" + mesh + "\" class=\"visual\" group=\"" + std::to_string(group_) +
+           "\" type=\"mesh\" mesh=\"" + mesh + "\" material=\"" + name_ + "\"/>\n";
+  }
+  return xml;
 }
 
 void StaticMesh::paint_palette(mjModel_* model) const {

@@ -1,13 +1,17 @@
 // The geometry that never moves (floors, walls, ceilings, fixed furniture)
-// merged into one MuJoCo mesh, coloured through a palette texture. MuJoCo
-// 2.2.2's renderer pays ~30 us per drawn geom on llvmpipe; merged, the whole
-// static scene is a single draw call. Collision keeps the original geoms.
+// merged into MuJoCo meshes, coloured through one palette texture. MuJoCo
+// 2.2.2's renderer pays ~30 us per drawn geom on llvmpipe, and llvmpipe about
+// as much per thousand triangles: each shape joins the mesh of the kChunk x
+// kChunk m cell its centre lies in, so that the renderer's frustum culling
+// drops the chunks out of view (a few draw calls, a fraction of the
+// triangles). Collision keeps the original geoms.
 #pragma once
 
 #include <Eigen/Geometry>
 
 #include <array>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -37,7 +41,7 @@ class StaticMesh {
 
   // <texture>, <material> and <mesh> elements for the <asset> section.
   std::string mjcf_assets() const;
-  // The one <geom> that draws it (visual only).
+  // Its <geom>s, one per chunk (visual only), named "<name>_<i>".
   std::string mjcf_geom() const;
   // MuJoCo's builtin texture is flat white; this paints the palette into it.
   void paint_palette(mjModel_* model) const;
@@ -47,6 +51,12 @@ class StaticMesh {
     Eigen::Vector3d position, normal;
     int color;
   };
+  using Chunk = std::pair<long, long>;
+  static constexpr double kChunk = 2.0;  // 1-2 m measured best in the restaurant (docs/benchmarks.md)
+  // Sets the chunk the shape centred at `center` goes to; its colour's index.
+  int start_shape(const Eigen::Vector3d& center, const Rgb& color);
+  void add_face(int a, int b, int c);
+  std::map<Chunk, std::vector<size_t>> faces_by_chunk() const;
   int color_index(const Rgb& color);
   int add_vertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n, int color);
   // A planar quad (corner, two edges), subdivided so that per-vertex lighting
@@ -61,6 +71,8 @@ class StaticMesh {
   int group_;
   std::vector<Vertex> vertices_;
   std::vector<std::array<int, 3>> faces_;
+  std::vector<Chunk> face_chunk_;  // per face
+  Chunk chunk_;                    // of the shape being added
   std::map<std::array<int, 3>, int> palette_;  // 8-bit rgb -> index
 };
 
