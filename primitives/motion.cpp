@@ -308,15 +308,13 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
       last = i;
       if (checker && checker->hand_touches(path[i])) touched_ = true;
       if (rules_along) {
-        world_.set_robot_configuration(world_.base_pose(), path[i].data());
+        world_.pass_robot_through(world_.base_pose(), path[i].data());
         world_.states().after_physics_step(world_, dt);
       }
       if (touched_) break;
     }
-    if (!rules_along) {
-      world_.set_robot_configuration(world_.base_pose(), path[last].data());
-      if (world_.state_updates()) world_.states().after_physics_step(world_, dt * static_cast<double>(last));
-    }
+    world_.set_robot_configuration(world_.base_pose(), path[last].data());
+    if (!rules_along && world_.state_updates()) world_.states().after_physics_step(world_, dt * static_cast<double>(last));
     result_.execution_seconds += since(t);
     return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
            fail(PrimitiveStatus::motion_planning_failure,

@@ -22,12 +22,16 @@ void add_geom(Aabb& box, const mjModel* m, const mjData* d, int g) {
 
 Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
     : geom_object_(m->ngeom),
+      robot_geom_(m->ngeom, 0),
       body_geomnum_(m->body_geomnum, m->body_geomnum + m->nbody),
       static_bodies_(scene.static_bodies()),
       static_asleep_(static_bodies_.size(), 0) {
   for (int g = 0; g < m->ngeom; ++g) {
     geom_object_[g] = scene.object_of_geom(g);
-    if (robot_root >= 0 && m->body_rootid[m->geom_bodyid[g]] == robot_root) robot_geoms_.push_back(g);
+    if (robot_root >= 0 && m->body_rootid[m->geom_bodyid[g]] == robot_root) {
+      robot_geoms_.push_back(g);
+      robot_geom_[g] = 1;
+    }
   }
   for (const SceneObject& so : scene.objects()) {
     Object o;
@@ -150,7 +154,7 @@ void Sleeping::keep_resting_contacts(const mjData* d) {
   // Sides that physics computes contacts for: the robot and awake free objects.
   auto computed = [&](int g) {
     const int o = object(g);
-    if (o < 0) return std::find(robot_geoms_.begin(), robot_geoms_.end(), g) != robot_geoms_.end();
+    if (o < 0) return robot_geom_[static_cast<size_t>(g)] != 0;
     return objects_[o].free && objects_[o].static_body < 0 && !objects_[o].asleep;
   };
   auto sleeper = [&](int g) {
@@ -180,6 +184,10 @@ void Sleeping::unmask(mjModel* m, mjData* d) const {
     for (size_t k = 0; k < o.qpos.size(); ++k) d->qpos[o.qpos[k]] = o.rest_qpos[k];
     for (int v : o.dofs) d->qvel[v] = 0;
   }
+}
+
+void Sleeping::append_resting_contacts(const mjModel* m, mjData* d) const {
+  if (d->ncon > 0 && d->contact[d->ncon - 1].efc_address == kKeptContact) return;  // appended already
   for (const mjContact& c : resting_) {
     if (d->ncon >= m->nconmax) break;
     d->contact[d->ncon++] = c;

@@ -13,9 +13,11 @@
 // mj_kinematics (they never move, so their poses in mjData stay valid).
 //
 // What a sleeper touched when it fell asleep it still touches: those resting
-// contacts are kept and appended to mjData's contact list after every masked
-// step, marked with efc_address kKeptContact (no force: mj_contactForce gives
-// zeros), so that contact predicates read the same list as if all were awake.
+// contacts are kept, and World appends them to mjData's contact list at the
+// end of each of its steps and kinematic moves (not between physics substeps:
+// ~500 bytes a contact), marked with efc_address kKeptContact (no force:
+// mj_contactForce gives zeros), so that contact predicates read the same list
+// as if all were awake.
 // An object sleeps after kStillSteps steps at rest; one moved or set in
 // motion by anything but physics wakes at the next step.
 #pragma once
@@ -54,9 +56,10 @@ class Sleeping {
   // the sleepers' bodies out of `m`'s collision detection. `held_body` (-1:
   // none) is carried by the robot and always awake.
   void mask(mjModel_* m, const mjData* d, int held_body);
-  // Gives the bodies their geoms back, the sleepers their resting state, and
-  // appends the kept resting contacts to d's contact list.
+  // Gives the bodies their geoms back and the sleepers their resting state.
   void unmask(mjModel_* m, mjData* d) const;
+  // Appends the kept resting contacts to d's contact list (once per list).
+  void append_resting_contacts(const mjModel_* m, mjData* d) const;
   // Everyone awake, nothing remembered.
   void wake_all();
 
@@ -81,6 +84,7 @@ class Sleeping {
   std::vector<Object> objects_;
   std::vector<int> geom_object_;  // Scene::object_of_geom, copied
   std::vector<int> robot_geoms_;
+  std::vector<char> robot_geom_;  // per geom
   std::vector<int> body_geomnum_;  // the model's own counts
   std::vector<Aabb> boxes_, regions_;  // mask()'s scratch: objects' boxes, awake regions
   std::vector<char> awake_, fell_asleep_;

@@ -139,6 +139,7 @@ World::StepReport World::step(int substeps) {
     if (robot_) update_grasp(report);
     if (state_updates_) states_.after_physics_step(*this, model_->opt.timestep);
   }
+  if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
   if (state_updates_) states_.after_env_step(*this, substeps * model_->opt.timestep);
   return report;
 }
@@ -261,6 +262,24 @@ void World::command_gripper(bool open) {
 }
 
 void World::set_robot_configuration(const Pose2& base, const double* torso_and_arm) {
+  pose_robot(base, torso_and_arm);
+  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
+  mj_forward(model_, data_);
+  if (sleeping_on_) sleeping_->unmask(model_, data_);
+  if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
+}
+
+void World::pass_robot_through(const Pose2& base, const double* torso_and_arm) {
+  pose_robot(base, torso_and_arm);
+  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
+  mj_collision(model_, data_);
+  if (sleeping_on_) sleeping_->unmask(model_, data_);
+  // No forces: nothing was solved for this pose.
+  for (int c = 0; c < data_->ncon; ++c) data_->contact[c].efc_address = -1;
+  if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
+}
+
+void World::pose_robot(const Pose2& base, const double* torso_and_arm) {
   const Robot& r = *robot_;
   data_->qpos[r.base_x.qpos] = base.x;
   data_->qpos[r.base_y.qpos] = base.y;
@@ -276,9 +295,7 @@ void World::set_robot_configuration(const Pose2& base, const double* torso_and_a
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
   mj_kinematics(model_, data_);
   carry_grasped(data_);
-  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
-  mj_forward(model_, data_);
-  if (sleeping_on_) sleeping_->unmask(model_, data_);
+  mj_kinematics(model_, data_);
 }
 
 void World::set_head(double pan, double tilt) {
