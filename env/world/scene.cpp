@@ -543,10 +543,18 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   // static bodies, the roots of fixed objects with moving parts) excluded:
   // MuJoCo 2.2.2 pairs the world body with every body and would otherwise
   // run every geom pair of two touching static bodies through its filters.
-  std::vector<std::string> unmoving = {"world"};
+  // They come last in the document, so that their geoms are the model's last
+  // (Scene::first_static_geom). The drawn static meshes get a body of their
+  // own: the world body is paired with every body each step, and each of its
+  // geoms visited in the pair. (Welded to the world, its inertia is never
+  // used; massless geoms need one given.)
+  std::string statics = "    <body name=\"static_visuals\">\n"
+                        "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n" +
+                        mesh.mjcf_geom() + ceilings.mjcf_geom() + "    </body>\n";
+  std::vector<std::string> unmoving = {"world", "static_visuals"};
   for (const auto& [cell, geoms] : static_cells) {
     const std::string name = static_body_name(cell);
-    world += "    <body name=\"" + name + "\">\n" + geoms + "    </body>\n";
+    statics += "    <body name=\"" + name + "\">\n" + geoms + "    </body>\n";
     unmoving.push_back(name);
   }
   unmoving.insert(unmoving.end(), static_roots.begin(), static_roots.end());
@@ -606,15 +614,14 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       "\"/></default>\n"
       "  </default>\n"
       "  <asset>\n" + mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n"
-      "  <worldbody>\n" + mesh.mjcf_geom() + ceilings.mjcf_geom() + lights + world +
-      "  </worldbody>\n";
+      "  <worldbody>\n" + lights + world + "  </worldbody>\n";
   if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
     xml += robot_mjcf_children(robot_path);
     if (!welds.empty()) xml += "  <equality>\n" + welds + "  </equality>\n";
   }
-  xml += "</mujoco>\n";
+  xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";
   scene->mjcf_ = xml;
 
   mjModel* model = compile_mjcf(xml, path);
@@ -653,6 +660,14 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   }
   for (const auto& [cell, geoms] : static_cells) {
     scene->static_bodies_.push_back(mj_name2id(model, mjOBJ_BODY, static_body_name(cell).c_str()));
+  }
+  const int visuals = mj_name2id(model, mjOBJ_BODY, "static_visuals");
+  scene->first_static_geom_ = model->body_geomadr[visuals] >= 0 ? model->body_geomadr[visuals] : model->ngeom;
+  for (int g = scene->first_static_geom_; g < model->ngeom; ++g) {
+    const int b = model->geom_bodyid[g];
+    if (b != visuals && std::find(scene->static_bodies_.begin(), scene->static_bodies_.end(), b) == scene->static_bodies_.end()) {
+      throw Error(path + ": internal: geom " + std::to_string(g) + " follows the static bodies'");
+    }
   }
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];

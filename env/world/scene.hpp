@@ -91,6 +91,10 @@ class Scene {
   // grid. Chosen by measurement (docs/benchmarks.md): smaller cells mean more
   // bodies and excluded pairs, larger ones more geoms awake near the robot.
   const std::vector<int>& static_bodies() const { return static_bodies_; }
+  // The static bodies' geoms (and the drawn static meshes') are the model's
+  // last, from this id on: they never move, so a physics step may leave
+  // them out of MuJoCo's per-geom loops (Sleeping does).
+  int first_static_geom() const { return first_static_geom_; }
   static constexpr double kStaticCell = 2.0;
   // Collision geoms of each room's floor, in rooms() order.
   const std::vector<int>& floor_geoms(int room) const { return floor_geoms_[room]; }
@@ -110,6 +114,7 @@ class Scene {
   std::vector<Room> rooms_;
   std::vector<SceneObject> objects_;
   std::vector<int> body_object_, geom_object_, static_bodies_;
+  int first_static_geom_ = 0;
   std::vector<std::vector<int>> floor_geoms_;
   Pose2 robot_start_;
   bool has_robot_ = true;
