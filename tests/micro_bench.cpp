@@ -110,7 +110,7 @@ mjtNum microseconds() {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 // Times World::step(1) with MuJoCo's timers on: the benchmark's counters are
-// microseconds per step of collision detection and of the constraint solver,
+// microseconds per step of kinematics, collision detection and the constraint solver,
 // contacts per step, and the model's size.
 void time_physics_steps(benchmark::State& state, World& w) {
   mjcb_time = microseconds;
@@ -123,6 +123,7 @@ void time_physics_steps(benchmark::State& state, World& w) {
     contacts += d->ncon;
   }
   const double steps = d->timer[mjTIMER_STEP].number;
+  state.counters["kinematics_us"] = d->timer[mjTIMER_POS_KINEMATICS].duration / steps;
   state.counters["collision_us"] = d->timer[mjTIMER_POS_COLLISION].duration / steps;
   state.counters["solver_us"] = d->timer[mjTIMER_CONSTRAINT].duration / steps;
   state.counters["contacts"] = contacts / static_cast<double>(state.iterations());

@@ -205,6 +205,33 @@ TEST(Sleeping, AnObjectLetGoInTheAirFallsBeforeItSleeps) {
   EXPECT_GT(contacts_of(w, "small_block_1", true), 0);
 }
 
+TEST(Sleeping, StaticGeomsLeftOutOfTheStepStayPutAndStillCollide) {
+  auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
+  World w(scene);
+  const mjModel* m = w.model();
+  const int ngeom = m->ngeom, first = scene->first_static_geom();
+  ASSERT_LT(first, ngeom);
+  for (int g = first; g < ngeom; ++g) {
+    const int b = m->geom_bodyid[g];
+    EXPECT_EQ(m->body_weldid[b], 0) << g;  // never moves
+    EXPECT_EQ(m->body_jntnum[b], 0) << g;
+  }
+  const std::vector<double> before(w.data()->geom_xpos + 3 * first, w.data()->geom_xpos + 3 * ngeom);
+  // An apple let go 5 cm above the table (a static body's geoms): it lands
+  // on the table top, 0.75 m, and rests there.
+  const SceneObject& apple = *scene->find_object("apple_1");
+  double* q = w.data()->qpos + m->jnt_qposadr[m->body_jntadr[apple.body]];
+  q[0] = 1.5, q[1] = 1.5, q[2] = 0.80;
+  mj_forward(w.model(), w.data());
+  w.step(240);
+  EXPECT_EQ(m->ngeom, ngeom);  // the full count outside a step
+  EXPECT_NEAR(q[2], 0.75, 0.01);
+  const int table = static_cast<int>(scene->find_object("table_1") - scene->objects().data());
+  EXPECT_TRUE(ontop(w, object_index(w, "apple_1"), table));
+  const std::vector<double> after(w.data()->geom_xpos + 3 * first, w.data()->geom_xpos + 3 * ngeom);
+  EXPECT_EQ(before, after);
+}
+
 TEST(Sleeping, AMovingObjectWakesWhatItWouldHit) {
   Env env(box_room_config());
   env.reset(0);
