@@ -293,9 +293,13 @@ void World::pose_robot(const Pose2& base, const double* torso_and_arm) {
   for (const RobotJoint* j : {&r.base_x, &r.base_y, &r.base_yaw}) data_->qvel[j->dof] = 0;
   for (const RobotJoint* j : joints) data_->qvel[j->dof] = 0;
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
+  // The static geoms (the model's last) never move: their poses stand.
+  const int ngeom = model_->ngeom;
+  model_->ngeom = scene_->first_static_geom();
   mj_kinematics(model_, data_);
   carry_grasped(data_);
   mj_kinematics(model_, data_);
+  model_->ngeom = ngeom;
 }
 
 void World::set_head(double pan, double tilt) {
