@@ -83,8 +83,9 @@ void ObjectStates::after_physics_step(const World& w, double dt) {
         for (auto& [name, particles] : states_[other].dirt) {
           const Substance* sub = substance(name);
           if (sub && sub->needs_soaked_tool && !(s.soaked.count("water") && s.soaked.at("water") >= kSoakedLevel)) continue;
+          const Frame frame = object_frame(w, other);
           std::erase_if(particles, [&](const Eigen::Vector3d& local) {
-            return (object_frame(w, other).to_world(local) - p).head<2>().norm() < kCleaningRadius;
+            return (frame.to_world(local) - p).head<2>().norm() < kCleaningRadius;
           });
         }
       }
@@ -167,9 +168,10 @@ void ObjectStates::draw(const World& w, mjvScene* scene) const {
   for (const auto& [object, state] : states_) {
     for (const auto& [name, particles] : state.dirt) {
       const float* rgba = name == "dust" ? dust : stain;
+      const Frame frame = object_frame(w, object);
       for (const Eigen::Vector3d& local : particles) {
         if (scene->ngeom >= scene->maxgeom) return;
-        const Eigen::Vector3d p = object_frame(w, object).to_world(local) + Eigen::Vector3d(0, 0, kHalfThickness);
+        const Eigen::Vector3d p = frame.to_world(local) + Eigen::Vector3d(0, 0, kHalfThickness);
         const mjtNum size[3] = {kRadius, kHalfThickness, 0};
         const mjtNum pos[3] = {p.x(), p.y(), p.z()};
         mjvGeom* g = scene->geoms + scene->ngeom++;

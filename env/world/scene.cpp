@@ -661,13 +661,11 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   for (const auto& [cell, geoms] : static_cells) {
     scene->static_bodies_.push_back(mj_name2id(model, mjOBJ_BODY, static_body_name(cell).c_str()));
   }
+  // The static bodies are the last bodies (static_visuals first): their geoms the last geoms.
   const int visuals = mj_name2id(model, mjOBJ_BODY, "static_visuals");
-  scene->first_static_geom_ = model->body_geomadr[visuals] >= 0 ? model->body_geomadr[visuals] : model->ngeom;
-  for (int g = scene->first_static_geom_; g < model->ngeom; ++g) {
-    const int b = model->geom_bodyid[g];
-    if (b != visuals && std::find(scene->static_bodies_.begin(), scene->static_bodies_.end(), b) == scene->static_bodies_.end()) {
-      throw Error(path + ": internal: geom " + std::to_string(g) + " follows the static bodies'");
-    }
+  scene->first_static_geom_ = model->ngeom;
+  while (scene->first_static_geom_ > 0 && model->geom_bodyid[scene->first_static_geom_ - 1] >= visuals) {
+    --scene->first_static_geom_;
   }
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];

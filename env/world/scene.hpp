@@ -93,7 +93,7 @@ class Scene {
   const std::vector<int>& static_bodies() const { return static_bodies_; }
   // The static bodies' geoms (and the drawn static meshes') are the model's
   // last, from this id on: they never move, so a physics step may leave
-  // them out of MuJoCo's per-geom loops (Sleeping does).
+  // them out of MuJoCo's per-geom loops (World does).
   int first_static_geom() const { return first_static_geom_; }
   static constexpr double kStaticCell = 2.0;
   // Collision geoms of each room's floor, in rooms() order.

@@ -25,8 +25,6 @@ Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
       robot_geom_(m->ngeom, 0),
       body_geomnum_(m->body_geomnum, m->body_geomnum + m->nbody),
       static_bodies_(scene.static_bodies()),
-      ngeom_(m->ngeom),
-      first_static_geom_(scene.first_static_geom()),
       static_asleep_(static_bodies_.size(), 0) {
   for (int g = 0; g < m->ngeom; ++g) {
     geom_object_[g] = scene.object_of_geom(g);
@@ -135,7 +133,6 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
     static_asleep_[k] = std::none_of(regions_.begin(), regions_.end(), near);
     if (static_asleep_[k]) m->body_geomnum[static_bodies_[k]] = 0;
   }
-  m->ngeom = first_static_geom_;
   fell_asleep_.assign(n, 0);
   for (size_t i = 0; i < n; ++i) {
     Object& o = objects_[i];
@@ -180,7 +177,6 @@ void Sleeping::keep_resting_contacts(const mjData* d) {
 }
 
 void Sleeping::unmask(mjModel* m, mjData* d) const {
-  m->ngeom = ngeom_;
   for (int b : static_bodies_) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
   for (const Object& o : objects_) {
     if (!o.asleep) continue;

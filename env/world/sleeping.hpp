@@ -9,11 +9,7 @@
 // bodies get no geoms (MuJoCo's broadphase skips them), after it they are
 // given back and their joints put back where they slept (gravity moved them
 // one step). Static bodies of furniture (Scene::static_bodies()) that no awake
-// region meets are masked too (out of the broadphase), and the model's geom
-// count ends before the static geoms (Scene::first_static_geom()): MuJoCo's
-// kinematics and broadphase visit every geom up to it each step, and these
-// never move, so their poses in mjData stay valid. Collision still reaches
-// the geoms of unmasked static bodies through their bodies.
+// region meets are masked too: out of the broadphase.
 //
 // What a sleeper touched when it fell asleep it still touches: those resting
 // contacts are kept, and World appends them to mjData's contact list at the
@@ -92,7 +88,6 @@ class Sleeping {
   std::vector<Aabb> boxes_, regions_;  // mask()'s scratch: objects' boxes, awake regions
   std::vector<char> awake_, fell_asleep_;
   std::vector<int> static_bodies_;
-  int ngeom_, first_static_geom_;
   std::vector<Aabb> static_boxes_;  // made on the first mask()
   std::vector<char> static_asleep_;
   std::vector<mjContact> resting_;  // contacts of sleepers, kept

@@ -127,9 +127,7 @@ World::StepReport World::step(int substeps) {
              data_->warning[mjWARN_BADQACC].number;
     };
     const int bad_before = bad_state_count();
-    if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
-    mj_step(model_, data_);
-    if (sleeping_on_) sleeping_->unmask(model_, data_);
+    run_masked(mj_step);
     if (bad_state_count() != bad_before) {
       // MuJoCo has already reset the state; the episode cannot go on.
       report.diverged = true;
@@ -239,10 +237,10 @@ void World::release() {
   grasped_ = grasped_weld_ = -1;
 }
 
-void World::carry_grasped(mjData* d) const {
+bool World::carry_grasped(mjData* d) const {
   const int body = grasped_body();
   if (body < 0 || model_->body_jntnum[body] != 1 || model_->jnt_type[model_->body_jntadr[body]] != mjJNT_FREE) {
-    return;  // nothing held, or a link: it stays on its joint
+    return false;  // nothing held, or a link: it stays on its joint
   }
   // The weld's relative pose, applied: x_body = x_hand + R_hand relpos, q_body = q_hand relquat.
   const mjtNum* eq = model_->eq_data + mjNEQDATA * grasped_weld_;
@@ -253,6 +251,7 @@ void World::carry_grasped(mjData* d) const {
   mju_add3(qpos, d->xpos + 3 * hand, offset);
   mju_mulQuat(qpos + 3, d->xquat + 4 * hand, eq + 6);
   mju_zero(d->qvel + model_->jnt_dofadr[joint], 6);
+  return true;
 }
 
 void World::command_gripper(bool open) {
@@ -263,20 +262,47 @@ void World::command_gripper(bool open) {
 
 void World::set_robot_configuration(const Pose2& base, const double* torso_and_arm) {
   pose_robot(base, torso_and_arm);
-  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
-  mj_forward(model_, data_);
-  if (sleeping_on_) sleeping_->unmask(model_, data_);
+  run_masked(mj_forward);
   if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
 }
 
 void World::pass_robot_through(const Pose2& base, const double* torso_and_arm) {
   pose_robot(base, torso_and_arm);
-  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
-  mj_collision(model_, data_);
-  if (sleeping_on_) sleeping_->unmask(model_, data_);
+  run_masked(mj_collision);
   // No forces: nothing was solved for this pose.
   for (int c = 0; c < data_->ncon; ++c) data_->contact[c].efc_address = -1;
   if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
+}
+
+namespace {
+
+// The static geoms are the model's last (Scene::first_static_geom) and never
+// move: while this lives, MuJoCo's per-geom loops (kinematics, the
+// broadphase's covariance) end before them; their poses in mjData stand, and
+// collision still reaches them through their bodies.
+class StaticGeomsLeftOut {
+ public:
+  StaticGeomsLeftOut(mjModel* m, const Scene& scene) : m_(m), ngeom_(m->ngeom) {
+    m->ngeom = scene.first_static_geom();
+  }
+  ~StaticGeomsLeftOut() { m_->ngeom = ngeom_; }
+  StaticGeomsLeftOut(const StaticGeomsLeftOut&) = delete;
+  StaticGeomsLeftOut& operator=(const StaticGeomsLeftOut&) = delete;
+
+ private:
+  mjModel* m_;
+  int ngeom_;
+};
+
+}  // namespace
+
+void World::run_masked(void (*stage)(const mjModel*, mjData*)) {
+  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
+  {
+    const StaticGeomsLeftOut out(model_, *scene_);
+    stage(model_, data_);
+  }
+  if (sleeping_on_) sleeping_->unmask(model_, data_);
 }
 
 void World::pose_robot(const Pose2& base, const double* torso_and_arm) {
@@ -293,13 +319,9 @@ void World::pose_robot(const Pose2& base, const double* torso_and_arm) {
   for (const RobotJoint* j : {&r.base_x, &r.base_y, &r.base_yaw}) data_->qvel[j->dof] = 0;
   for (const RobotJoint* j : joints) data_->qvel[j->dof] = 0;
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
-  // The static geoms (the model's last) never move: their poses stand.
-  const int ngeom = model_->ngeom;
-  model_->ngeom = scene_->first_static_geom();
+  const StaticGeomsLeftOut out(model_, *scene_);
   mj_kinematics(model_, data_);
-  carry_grasped(data_);
-  mj_kinematics(model_, data_);
-  model_->ngeom = ngeom;
+  if (carry_grasped(data_)) mj_kinematics(model_, data_);
 }
 
 void World::set_head(double pan, double tilt) {

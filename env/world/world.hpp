@@ -113,8 +113,9 @@ class World {
   // of bodies and cameras are recomputed.
   void set_head(double pan, double tilt);
   // Moves the held free object, in `d` after mj_kinematics, to where the grasp
-  // holds it relative to the gripper (then kinematics must run again).
-  void carry_grasped(mjData_* d) const;
+  // holds it relative to the gripper; true if it moved one (then kinematics
+  // must run again).
+  bool carry_grasped(mjData_* d) const;
   // Gripper command: open (the assistive grasp releases) or closed.
   void command_gripper(bool open);
   // Symbolic grasping: attaches free object `object` to the hand where it is
@@ -129,6 +130,9 @@ class World {
   void update_grasp(StepReport& report);
   // Joint values and controller targets of a kinematic move, the load carried, kinematics.
   void pose_robot(const Pose2& base, const double* torso_and_arm);
+  // One MuJoCo stage (mj_step, mj_forward, mj_collision) with the sleepers
+  // masked and the static geoms left out of its per-geom loops.
+  void run_masked(void (*stage)(const mjModel_*, mjData_*));
   void attach(int object, int weld);
 
   std::shared_ptr<const Scene> scene_;
