@@ -24,7 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string behavior100_dir() { return std::string(CHORE_SHARED_DIR) + "/bddl/behavior-100"; }
+std::string behavior100_dir() { return std::string(CHORE_TEST_DATA) + "/bddl/behavior-100"; }
 std::string seed_listing(int n) {
   return test::data_path("bddl/seed_listing_" + std::to_string(n) + ".bddl");
 }

@@ -321,7 +321,7 @@ TEST(GoalTypes, QuantifiersRangeOverTheTypeTest) {
 std::vector<Problem> corpus() {
   std::vector<Problem> out;
   for (const auto& e :
-       std::filesystem::directory_iterator(std::string(CHORE_SHARED_DIR) + "/bddl/behavior-100"))
+       std::filesystem::directory_iterator(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100"))
     if (e.is_directory()) out.push_back(load_bddl((e.path() / "problem0.bddl").string()));
   ParseOptions lenient;
   lenient.allow_undeclared_objects = true;
@@ -353,7 +353,7 @@ TEST(GoalCorpus, EveryActivityGroundsAndItsFirstOptionSucceeds) {
 
 TEST(GoalCorpus, AssemblingGiftBasketsProductIsCapped) {
   const GroundGoal g = ground_goal(
-      load_bddl(std::string(CHORE_SHARED_DIR) + "/bddl/behavior-100/assembling_gift_baskets/problem0.bddl"));
+      load_bddl(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100/assembling_gift_baskets/problem0.bddl"));
   ASSERT_EQ(g.conditions.size(), 4u);
   for (const GroundCondition& c : g.conditions) EXPECT_EQ(c.options.size(), 20u);
   EXPECT_EQ(g.options.size(), kMaxGoalOptions);  // of 20^4
