@@ -45,6 +45,7 @@ ArmCollisionChecker::ArmCollisionChecker(const World& world)
     hand_and_load_.push_back(g);
     moved_by_arm_[g] = 1;
   }
+  whole_load_ = kinematics_.load_geoms();
   mju_copy(data_->geom_xpos, world.data()->geom_xpos, 3 * m->ngeom);
   mju_copy(data_->geom_xmat, world.data()->geom_xmat, 9 * m->ngeom);
   for (int g = 0; g < m->ngeom; ++g) {
@@ -67,7 +68,9 @@ bool ArmCollisionChecker::hand_touches(const ArmConfiguration& q, const Pose2* b
 }
 
 // Broad phase by bounding spheres against world boxes, then MuJoCo's pair functions.
-bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_object, double clearance) {
+template <typename Visit>
+bool ArmCollisionChecker::for_each_contact(const std::vector<int>& mine, int ignored_object, double clearance,
+                                           Visit visit) {
   const mjModel* m = world_.model();
   mjData* d = data_;
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
@@ -94,10 +97,33 @@ bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_obje
       const int g1 = ordered ? g : o, g2 = ordered ? o : g;
       const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
       const double margin = std::max(m->geom_margin[g1], m->geom_margin[g2]) + extra;
-      if (collide && collide(m, d, contacts, g1, g2, margin) > 0) return true;
+      const int n = collide ? collide(m, d, contacts, g1, g2, margin) : 0;
+      if (n <= 0) continue;
+      for (int k = 0; k < n; ++k) {
+        contacts[k].geom1 = g1;
+        contacts[k].geom2 = g2;
+        contacts[k].efc_address = -1;
+      }
+      if (visit(contacts, n)) return true;
     }
   }
   return false;
+}
+
+Aabb ArmCollisionChecker::load_contacts(const ArmConfiguration& q, std::vector<mjContact>& contacts) {
+  kinematics_.set(world_.base_pose(), q);
+  contacts.clear();
+  for_each_contact(whole_load_, -1, 0.0, [&](const mjContact* found, int n) {
+    contacts.insert(contacts.end(), found, found + n);
+    return false;
+  });
+  Aabb box;
+  for (int g : whole_load_) box.grow(geom_aabb(world_.model(), g, data_->geom_xpos + 3 * g, data_->geom_xmat + 9 * g));
+  return box;
+}
+
+bool ArmCollisionChecker::touches(const std::vector<int>& mine, int ignored_object, double clearance) {
+  return for_each_contact(mine, ignored_object, clearance, [](const mjContact*, int) { return true; });
 }
 
 bool arm_in_collision(const World& world, const ArmConfiguration& q) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "env/world/aabb.hpp"
 #include "env/world/world.hpp"
 #include "primitives/kinematics.hpp"
 
@@ -40,6 +41,11 @@ class ArmCollisionChecker {
   // Whether the hand (gripper and fingers) or what it holds touches anything
   // else (but `ignored_object`), with the base where it is or at `base`.
   bool hand_touches(const ArmConfiguration& q, const Pose2* base = nullptr, int ignored_object = -1);
+  // Where the whole load (a cloth's whole sheet) meets anything but the robot
+  // at q, the base where it is: MuJoCo's contacts as its collision pass would
+  // write them (no forces), and the load's box. What a symbolic motion's state
+  // rules need at each waypoint, without posing the world.
+  Aabb load_contacts(const ArmConfiguration& q, std::vector<mjContact_>& contacts);
 
  private:
   struct Box {
@@ -47,6 +53,9 @@ class ArmCollisionChecker {
     Eigen::Vector3d lo, hi;
   };
   bool touches(const std::vector<int>& mine, int ignored_object, double clearance);
+  // Each contact of `mine` (posed in data_) with the others, until `visit` returns true.
+  template <typename Visit>
+  bool for_each_contact(const std::vector<int>& mine, int ignored_object, double clearance, Visit visit);
 
   const World& world_;
   RobotKinematics kinematics_;
@@ -54,6 +63,7 @@ class ArmCollisionChecker {
   std::vector<Box> others_;           // what the robot can touch, with world boxes
   std::vector<int> robot_and_load_;   // colliding geoms moving with the robot
   std::vector<int> hand_and_load_;
+  std::vector<int> whole_load_;       // every geom of the load, a cloth's draped part too
   std::vector<unsigned char> moved_by_arm_;  // by geom id: a clearance applies to it
 };
 

@@ -295,21 +295,24 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   if (!physical()) {
     // Waypoint by waypoint: the hand stops at the first contact. The state
     // rules run at every waypoint while the hand holds something they act on
-    // (a tool soaking or wiping); otherwise once, over the motion's time.
+    // (a tool soaking or wiping), on the load's contacts and box from the
+    // collision checker (the world is posed once, at the end); otherwise
+    // once, over the motion's time.
     const Clock::time_point t = Clock::now();
     const double dt = kLineSpacing / speed;
     const int held = world_.carried_object();
     const ObjectAbilities* load = held >= 0 ? world_.states().abilities(held) : nullptr;
     const bool rules_along = world_.state_updates() && load && (load->soakable || load->cleaning_tool);
     std::optional<ArmCollisionChecker> checker;
-    if (until_contact) checker.emplace(world_);
+    if (until_contact || rules_along) checker.emplace(world_);
+    std::vector<mjContact> contacts;
     size_t last = 0;
     for (size_t i = 1; i < path.size(); ++i) {
       last = i;
-      if (checker && checker->hand_touches(path[i])) touched_ = true;
+      if (until_contact && checker->hand_touches(path[i])) touched_ = true;
       if (rules_along) {
-        world_.pass_robot_through(world_.base_pose(), path[i].data());
-        world_.states().after_physics_step(world_, dt);
+        const Aabb box = checker->load_contacts(path[i], contacts);
+        world_.states().after_motion_waypoint(world_, dt, held, box, contacts);
       }
       if (touched_) break;
     }

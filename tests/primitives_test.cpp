@@ -8,9 +8,11 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
+#include "env/world/object_geometry.hpp"
 #include "env/world/predicates.hpp"
 #include "policies/expert.hpp"
 #include "primitives/arm_planner.hpp"
+#include "primitives/ik.hpp"
 #include "primitives/motion.hpp"
 #include "test_util.hpp"
 
@@ -270,6 +272,76 @@ TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {
   EXPECT_TRUE(dipped);
   EXPECT_TRUE(cleaned);
   EXPECT_LE(stains(), before / 2);  // stained (iGibson): clean at half the stains gone
+}
+
+// Along a symbolic motion the state rules read the load's contacts from the
+// collision checker instead of posing the world at every waypoint: they are
+// the contacts MuJoCo's own collision pass finds for the load at that pose.
+TEST(Primitives, TheCheckersLoadContactsAreThoseMuJoCoFindsForThePose) {
+  Env env(primitive_config("clean_table", ExecutionMode::symbolic));
+  env.reset(3);
+  ASSERT_EQ(act(env, "navigate(rag.n.01_1)").info.primitive_status, 0);
+  ASSERT_EQ(act(env, "pick(rag.n.01_1)").info.primitive_status, 0);
+  ASSERT_EQ(act(env, "navigate(table.n.02_1)").info.primitive_status, 0);
+  World& w = env.world();
+  const int rag = env.activity()->object("rag.n.01_1"), table = env.activity()->object("table.n.02_1");
+  // The hand 15 cm above the stain nearest the base, pointing down; then
+  // lowered until the rag meets the table, and pressed 1 cm in.
+  const Pose2 base = w.base_pose();
+  const Frame frame = object_frame(w, table);
+  Eigen::Vector3d above = Eigen::Vector3d::Constant(1e9);
+  for (const Eigen::Vector3d& local : w.states().state(table).dirt.at("stain")) {
+    const Eigen::Vector3d p = frame.to_world(local);
+    if (std::hypot(p.x() - base.x, p.y() - base.y) < std::hypot(above.x() - base.x, above.y() - base.y)) above = p;
+  }
+  above.z() += 0.15;
+  IkSolver ik(w);
+  const IkResult up = ik.solve({above, Eigen::Vector3d(0, 0, -1), std::nullopt}, {});
+  ASSERT_TRUE(up.success) << up.reason;
+  w.set_robot_configuration(base, up.joints.data());
+  PrimitiveResult result;
+  Motion motion(w, {.mode = ExecutionMode::symbolic}, 1, table, result);
+  ASSERT_TRUE(motion.line(Eigen::Vector3d(0, 0, -0.3), true, 0.2, 0.0)) << result.reason;
+  ASSERT_TRUE(motion.touched());
+  ASSERT_TRUE(motion.line(Eigen::Vector3d(0, 0, -0.01), false, 0.2, 0.0)) << result.reason;
+
+  // What the rules read: the load's contacts with scene objects.
+  using Touch = std::tuple<int, int, double, double, double>;  // geoms (lower first), point
+  const auto touch = [](const mjContact& c) {
+    return Touch{std::min(c.geom1, c.geom2), std::max(c.geom1, c.geom2), c.pos[0], c.pos[1], c.pos[2]};
+  };
+  const Scene& scene = w.scene();
+  const auto of_load_with_objects = [&](const mjContact& c) {
+    const int o1 = scene.object_of_geom(c.geom1), o2 = scene.object_of_geom(c.geom2);
+    return (o1 == rag && o2 >= 0 && o2 != rag) || (o2 == rag && o1 >= 0 && o1 != rag);
+  };
+  std::vector<Touch> world_touches, checker_touches;
+  for (int c = 0; c < w.data()->ncon; ++c) {
+    if (of_load_with_objects(w.data()->contact[c])) world_touches.push_back(touch(w.data()->contact[c]));
+  }
+  ArmCollisionChecker checker(w);
+  std::vector<mjContact> contacts;
+  const Aabb box = checker.load_contacts(arm_configuration(w), contacts);
+  for (const mjContact& c : contacts) {
+    if (of_load_with_objects(c)) checker_touches.push_back(touch(c));
+  }
+  std::sort(world_touches.begin(), world_touches.end());
+  std::sort(checker_touches.begin(), checker_touches.end());
+  ASSERT_GE(world_touches.size(), 2u);
+  ASSERT_EQ(checker_touches.size(), world_touches.size());
+  for (size_t k = 0; k < world_touches.size(); ++k) {
+    const auto& [a1, a2, ax, ay, az] = world_touches[k];
+    const auto& [b1, b2, bx, by, bz] = checker_touches[k];
+    EXPECT_EQ(std::pair(a1, a2), std::pair(b1, b2));
+    EXPECT_LT((Eigen::Vector3d(ax, ay, az) - Eigen::Vector3d(bx, by, bz)).norm(), 1e-9);
+  }
+  EXPECT_TRUE(std::any_of(world_touches.begin(), world_touches.end(), [&](const Touch& t) {
+    return scene.object_of_geom(std::get<0>(t)) == table || scene.object_of_geom(std::get<1>(t)) == table;
+  }));
+  // And the load's box is the world's.
+  const Aabb world_box = object_aabb(w, rag);
+  EXPECT_LT((box.lo - world_box.lo).norm(), 1e-9);
+  EXPECT_LT((box.hi - world_box.hi).norm(), 1e-9);
 }
 
 // Navigate aims at every dirt particle, the densest patches first: a

@@ -16,10 +16,11 @@ Frame object_frame(const World& world, int object) {
 }
 
 Aabb geom_aabb(const World& world, int g) {
-  const mjModel* m = world.model();
-  const mjData* d = world.data();
-  const double* s = m->geom_size + 3 * g;
-  const double* r = d->geom_xmat + 9 * g;  // row-major: r[3 * i + j] = R(i, j)
+  return geom_aabb(world.model(), g, world.data()->geom_xpos + 3 * g, world.data()->geom_xmat + 9 * g);
+}
+
+Aabb geom_aabb(const mjModel* m, int g, const double* xpos, const double* r) {
+  const double* s = m->geom_size + 3 * g;  // r row-major: r[3 * i + j] = R(i, j)
   Eigen::Vector3d half;
   for (int i = 0; i < 3; ++i) {
     const double zi = std::abs(r[3 * i + 2]);  // the geom's local z along world axis i
@@ -40,7 +41,7 @@ Aabb geom_aabb(const World& world, int g) {
         half[i] = m->geom_rbound[g];
     }
   }
-  const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+  const Eigen::Vector3d c(xpos[0], xpos[1], xpos[2]);
   return {c - half, c + half};
 }
 

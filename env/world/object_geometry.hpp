@@ -24,6 +24,8 @@ Frame object_frame(const World& world, int object);
 
 // World-frame box of one geom (primitive shapes; meshes by their bounding sphere).
 Aabb geom_aabb(const World& world, int geom);
+// The same with the geom at xpos, xmat (MuJoCo layout) instead of where the world has it.
+Aabb geom_aabb(const mjModel_* model, int geom, const double* xpos, const double* xmat);
 // World-frame box of an object's collision geoms (links included).
 Aabb object_aabb(const World& world, int object);
 

@@ -42,52 +42,76 @@ void ObjectStates::reset() {
 
 void ObjectStates::after_physics_step(const World& w, double dt) {
   if (states_.empty()) return;
-  // Soaking: a soakable object overlapping the water of a container.
+  soak(w, dt, -1, nullptr);
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  for (int c = 0; c < d->ncon; ++c) {
+    if (!acts_on(w, d->contact[c])) continue;  // most contacts: the force is not worth computing
+    double force[6];
+    mj_contactForce(m, d, c, force);
+    touch(w, d->contact[c], std::abs(force[0]));
+  }
+}
+
+void ObjectStates::after_motion_waypoint(const World& w, double dt, int moved, const Aabb& moved_box,
+                                         const std::vector<mjContact>& moved_contacts) {
+  if (states_.empty()) return;
+  soak(w, dt, moved, &moved_box);
+  for (const mjContact& con : moved_contacts) {
+    if (acts_on(w, con)) touch(w, con, 0.0);
+  }
+}
+
+// A soakable object overlapping the water of a container (`moved` has
+// `moved_box` instead of its box in the world).
+void ObjectStates::soak(const World& w, double dt, int moved, const Aabb* moved_box) {
+  const auto box = [&](int object) { return object == moved ? *moved_box : object_aabb(w, object); };
   for (const auto& [container, ca] : abilities_) {
     const double level = states_[container].liquid_level;
     if (!ca.holds_liquid || level <= 0) continue;
     const std::string& liquid = states_[container].liquid;
-    Aabb water = object_aabb(w, container);
+    Aabb water = box(container);
     water.lo.head<2>().array() += 0.01;
     water.hi.head<2>().array() -= 0.01;
     water.hi.z() = water.lo.z() + level * (water.hi.z() - water.lo.z());
     for (const auto& [object, oa] : abilities_) {
       if (object == container || !oa.soakable) continue;
-      if (object_aabb(w, object).overlaps(water)) {
+      if (box(object).overlaps(water)) {
         double& soaked = states_[object].soaked[liquid];
         soaked = std::min(1.0, soaked + dt / kSoakSeconds);
       }
     }
   }
-  // Contacts: cleaning, breaking, slicing.
-  const mjModel* m = w.model();
-  const mjData* d = w.data();
-  for (int c = 0; c < d->ncon; ++c) {
-    const mjContact& con = d->contact[c];
-    const int o1 = w.scene().object_of_geom(con.geom1);
-    const int o2 = w.scene().object_of_geom(con.geom2);
-    const ObjectAbilities* a1 = o1 >= 0 ? abilities(o1) : nullptr;
-    const ObjectAbilities* a2 = o2 >= 0 ? abilities(o2) : nullptr;
-    if (!a1 && !a2) continue;
-    double force[6];
-    mj_contactForce(m, d, c, force);
-    const double normal = std::abs(force[0]);
-    for (const auto& [self, mine, other, theirs] :
-         {std::tuple{o1, a1, o2, a2}, std::tuple{o2, a2, o1, a1}}) {
-      if (!mine) continue;
-      ObjectState& s = states_[self];
-      if (mine->breakable && normal > mine->break_force) s.broken = true;
-      if (mine->sliceable && theirs && theirs->slicer && normal > mine->slice_force) s.sliced = true;
-      if (mine->cleaning_tool && other >= 0 && theirs && theirs->covered) {
-        const Eigen::Vector3d p(con.pos[0], con.pos[1], con.pos[2]);
-        for (auto& [name, particles] : states_[other].dirt) {
-          const Substance* sub = substance(name);
-          if (sub && sub->needs_soaked_tool && !(s.soaked.count("water") && s.soaked.at("water") >= kSoakedLevel)) continue;
-          const Frame frame = object_frame(w, other);
-          std::erase_if(particles, [&](const Eigen::Vector3d& local) {
-            return (frame.to_world(local) - p).head<2>().norm() < kCleaningRadius;
-          });
-        }
+}
+
+// Whether a contact joins an object whose states are kept.
+bool ObjectStates::acts_on(const World& w, const mjContact& con) const {
+  const int o1 = w.scene().object_of_geom(con.geom1);
+  const int o2 = w.scene().object_of_geom(con.geom2);
+  return (o1 >= 0 && abilities(o1)) || (o2 >= 0 && abilities(o2));
+}
+
+// Cleaning, breaking, slicing: what one contact does to the objects it joins.
+void ObjectStates::touch(const World& w, const mjContact& con, double normal_force) {
+  const int o1 = w.scene().object_of_geom(con.geom1);
+  const int o2 = w.scene().object_of_geom(con.geom2);
+  const ObjectAbilities* a1 = o1 >= 0 ? abilities(o1) : nullptr;
+  const ObjectAbilities* a2 = o2 >= 0 ? abilities(o2) : nullptr;
+  for (const auto& [self, mine, other, theirs] :
+       {std::tuple{o1, a1, o2, a2}, std::tuple{o2, a2, o1, a1}}) {
+    if (!mine) continue;
+    ObjectState& s = states_[self];
+    if (mine->breakable && normal_force > mine->break_force) s.broken = true;
+    if (mine->sliceable && theirs && theirs->slicer && normal_force > mine->slice_force) s.sliced = true;
+    if (mine->cleaning_tool && other >= 0 && theirs && theirs->covered) {
+      const Eigen::Vector3d p(con.pos[0], con.pos[1], con.pos[2]);
+      for (auto& [name, particles] : states_[other].dirt) {
+        const Substance* sub = substance(name);
+        if (sub && sub->needs_soaked_tool && !(s.soaked.count("water") && s.soaked.at("water") >= kSoakedLevel)) continue;
+        const Frame frame = object_frame(w, other);
+        std::erase_if(particles, [&](const Eigen::Vector3d& local) {
+          return (frame.to_world(local) - p).head<2>().norm() < kCleaningRadius;
+        });
       }
     }
   }

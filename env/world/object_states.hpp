@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "env/world/aabb.hpp"
+
+struct mjContact_;
 struct mjvScene_;
 
 namespace chore {
@@ -88,8 +91,16 @@ class ObjectStates {
 
   // Back to room temperature, dry, clean, off, whole.
   void reset();
-  // Contact- and liquid-driven rules, after each physics step.
+  // Contact- and liquid-driven rules, after each physics step: soaking by the
+  // objects' boxes, cleaning, breaking and slicing by the world's contacts.
   void after_physics_step(const World& world, double dt);
+  // The same rules at a waypoint of a symbolic motion, where only `moved` (what
+  // the robot carries) has moved since the world's contacts were computed: its
+  // box and its contacts (no forces: nothing is solved) are given. The world's
+  // other contacts are left out: they acted when computed, and without new
+  // forces or positions they act the same again.
+  void after_motion_waypoint(const World& world, double dt, int moved, const Aabb& moved_box,
+                             const std::vector<mjContact_>& moved_contacts);
   // Heat transfer and toggling, after each env step of `dt` seconds.
   void after_env_step(const World& world, double dt);
 
@@ -100,6 +111,10 @@ class ObjectStates {
   void draw(const World& world, mjvScene_* scene) const;
 
  private:
+  void soak(const World& world, double dt, int moved, const Aabb* moved_box);
+  bool acts_on(const World& world, const mjContact_& contact) const;
+  void touch(const World& world, const mjContact_& contact, double normal_force);
+
   std::map<int, ObjectAbilities> abilities_;
   std::map<int, ObjectState> states_;
   std::map<std::string, Substance> substances_;

@@ -266,14 +266,6 @@ void World::set_robot_configuration(const Pose2& base, const double* torso_and_a
   if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
 }
 
-void World::pass_robot_through(const Pose2& base, const double* torso_and_arm) {
-  pose_robot(base, torso_and_arm);
-  run_masked(mj_collision);
-  // No forces: nothing was solved for this pose.
-  for (int c = 0; c < data_->ncon; ++c) data_->contact[c].efc_address = -1;
-  if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
-}
-
 namespace {
 
 // The static geoms are the model's last (Scene::first_static_geom) and never

@@ -103,11 +103,6 @@ class World {
   // and a held object moves with the gripper. Contacts are recomputed (those
   // of the awake objects while sleeping is on).
   void set_robot_configuration(const Pose2& base, const double* torso_and_arm);
-  // The same pose, for a waypoint the robot passes through: poses and
-  // contacts only (kinematics and collision, no dynamics, no forces), what
-  // the object-state rules read along a symbolic motion. The motion's last
-  // pose goes through set_robot_configuration.
-  void pass_robot_through(const Pose2& base, const double* torso_and_arm);
   // Kinematic head turn (symbolic primitives), clamped to the joints' ranges:
   // its controllers hold it there. The head touches nothing: only the poses
   // of bodies and cameras are recomputed.
