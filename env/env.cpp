@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace {

@@ -18,10 +18,10 @@
 
 #include "env/primitive_actions.hpp"
 #include "env/spaces.hpp"
-#include "env/world/random.hpp"
-#include "env/world/renderer.hpp"
-#include "env/world/sensors.hpp"
-#include "env/world/world.hpp"
+#include "base/random.hpp"
+#include "world/renderer.hpp"
+#include "world/sensors.hpp"
+#include "world/world.hpp"
 #include "tasks/activity.hpp"
 
 namespace chore {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 #include "primitives/primitive.hpp"
 #include "tasks/activity.hpp"
 

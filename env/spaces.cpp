@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <thread>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace {

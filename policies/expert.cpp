@@ -1,7 +1,7 @@
 #include "policies/expert.hpp"
 
-#include "env/world/error.hpp"
-#include "env/world/predicates.hpp"
+#include "base/error.hpp"
+#include "world/predicates.hpp"
 
 namespace chore {
 

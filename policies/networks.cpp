@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace nn = torch::nn;

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace {

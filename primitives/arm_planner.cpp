@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <memory>
 
-#include "env/world/object_geometry.hpp"
+#include "world/object_geometry.hpp"
 #include "primitives/rrt_connect.hpp"
 
 namespace chore {

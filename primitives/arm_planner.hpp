@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "env/world/aabb.hpp"
-#include "env/world/world.hpp"
+#include "world/aabb.hpp"
+#include "world/world.hpp"
 #include "primitives/kinematics.hpp"
 
 namespace chore {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "env/world/object_geometry.hpp"
+#include "world/object_geometry.hpp"
 #include "primitives/rrt_connect.hpp"
 
 namespace chore {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 

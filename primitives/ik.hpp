@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 #include "primitives/kinematics.hpp"
 
 namespace chore {

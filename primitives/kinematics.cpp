@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 

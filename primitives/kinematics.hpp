@@ -10,7 +10,7 @@
 #include <array>
 #include <vector>
 
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 

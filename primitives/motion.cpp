@@ -7,10 +7,11 @@
 #include <cmath>
 #include <optional>
 
-#include "env/world/object_geometry.hpp"
 #include "primitives/arm_planner.hpp"
 #include "primitives/base_planner.hpp"
 #include "primitives/trajectory.hpp"
+#include "world/object_geometry.hpp"
+#include "world/state_rules.hpp"
 
 namespace chore {
 namespace {
@@ -312,12 +313,12 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
       if (until_contact && checker->hand_touches(path[i])) touched_ = true;
       if (rules_along) {
         const Aabb box = checker->load_contacts(path[i], contacts);
-        world_.states().after_motion_waypoint(world_, dt, held, box, contacts);
+        update_states_at_motion_waypoint(world_, dt, held, box, contacts);
       }
       if (touched_) break;
     }
     world_.set_robot_configuration(world_.base_pose(), path[last].data());
-    if (!rules_along && world_.state_updates()) world_.states().after_physics_step(world_, dt * static_cast<double>(last));
+    if (!rules_along && world_.state_updates()) update_states_after_physics_step(world_, dt * static_cast<double>(last));
     result_.execution_seconds += since(t);
     return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
            fail(PrimitiveStatus::motion_planning_failure,
@@ -404,7 +405,7 @@ void Motion::wait(double seconds) {
     step_physics(static_cast<int>(std::ceil(seconds / kControlDt)));
     return;
   }
-  if (world_.state_updates()) world_.states().after_physics_step(world_, seconds);
+  if (world_.state_updates()) update_states_after_physics_step(world_, seconds);
 }
 
 bool Motion::tuck() {

@@ -9,9 +9,9 @@
 #include <functional>
 #include <random>
 
-#include "env/world/error.hpp"
-#include "env/world/object_geometry.hpp"
-#include "env/world/predicates.hpp"
+#include "base/error.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
 #include "primitives/arm_planner.hpp"
 #include "primitives/base_planner.hpp"
 #include "primitives/motion.hpp"

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 

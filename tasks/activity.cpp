@@ -1,18 +1,16 @@
 #include "tasks/activity.hpp"
 
-#include <mujoco/mujoco.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
 
-#include "env/world/error.hpp"
-#include "env/world/json_file.hpp"
-#include "env/world/object_geometry.hpp"
-#include "env/world/predicates.hpp"
-#include "env/world/sampling.hpp"
+#include "base/error.hpp"
+#include "base/json_file.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
+#include "world/sampling.hpp"
 
 namespace fs = std::filesystem;
 
@@ -233,36 +231,6 @@ void Activity::configure(World& world) const {
   world.states().add_substance({"dust", false});
 }
 
-namespace {
-
-// A collision-free base pose for the robot in `room`.
-bool place_robot(World& w, int room, Rng& rng) {
-  const Robot& r = *w.robot();
-  const Room& rm = w.scene().rooms()[room];
-  const mjModel* m = w.model();
-  for (int attempt = 0; attempt < 200; ++attempt) {
-    const auto& rect = rm.rects[uniform_index(rng, static_cast<int>(rm.rects.size()))];
-    const double margin = 0.4;
-    if (rect[2] - rect[0] < 2 * margin || rect[3] - rect[1] < 2 * margin) continue;
-    w.data()->qpos[r.base_x.qpos] = uniform(rng, rect[0] + margin, rect[2] - margin);
-    w.data()->qpos[r.base_y.qpos] = uniform(rng, rect[1] + margin, rect[3] - margin);
-    w.data()->qpos[r.base_yaw.qpos] = uniform(rng, -M_PI, M_PI);
-    mj_forward(m, w.data());
-    bool clear = true;
-    for (int c = 0; c < w.data()->ncon && clear; ++c) {
-      const mjContact& con = w.data()->contact[c];
-      const int root1 = m->body_rootid[m->geom_bodyid[con.geom1]];
-      const int root2 = m->body_rootid[m->geom_bodyid[con.geom2]];
-      const int robot = m->body_rootid[m->jnt_bodyid[r.base_x.joint]];
-      clear = root1 != robot && root2 != robot;
-    }
-    if (clear) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   const Binding& first = binding(l.args.at(0));
   if (first.kind == Binding::Kind::agent) {
@@ -270,7 +238,7 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     const int room = binding(l.args.at(1)).index;
     const Pose2 base = w.base_pose();
     const Room* now = w.scene().room_at(base.x, base.y);
-    return now == &w.scene().rooms()[room] || place_robot(w, room, rng);
+    return now == &w.scene().rooms()[room] || sample_robot_in_room(w, room, rng);
   }
   const bool value = !l.negated;
   if (kKinematic.count(l.predicate)) {

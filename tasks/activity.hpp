@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "env/world/random.hpp"
-#include "env/world/world.hpp"
+#include "base/random.hpp"
+#include "world/world.hpp"
 #include "tasks/bddl.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/knowledge_base.hpp"

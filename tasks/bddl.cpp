@@ -7,7 +7,7 @@
 #include <sstream>
 #include <utility>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 

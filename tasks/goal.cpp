@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace {

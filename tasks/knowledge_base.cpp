@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <set>
 
-#include "env/world/error.hpp"
-#include "env/world/json_file.hpp"
+#include "base/error.hpp"
+#include "base/json_file.hpp"
 
 namespace chore {
 

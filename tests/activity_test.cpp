@@ -3,10 +3,10 @@
 
 #include <functional>
 
-#include "env/world/error.hpp"
-#include "env/world/object_geometry.hpp"
-#include "env/world/predicates.hpp"
-#include "env/world/sampling.hpp"
+#include "base/error.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
+#include "world/sampling.hpp"
 #include "tasks/activity.hpp"
 #include "test_util.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "env/env.hpp"
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 #include "primitives/base_planner.hpp"
 #include "test_util.hpp"
 

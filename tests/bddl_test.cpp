@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "test_util.hpp"
 
 namespace chore {

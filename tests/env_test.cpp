@@ -5,8 +5,8 @@
 #include <random>
 
 #include "env/env.hpp"
-#include "env/world/error.hpp"
-#include "env/world/sampling.hpp"
+#include "base/error.hpp"
+#include "world/sampling.hpp"
 #include "test_util.hpp"
 
 namespace chore {

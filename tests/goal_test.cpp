@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "tasks/bddl.hpp"
 #include "test_util.hpp"
 

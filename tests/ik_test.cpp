@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include "env/world/world.hpp"
+#include "world/world.hpp"
 #include "primitives/ik.hpp"
 #include "test_util.hpp"
 

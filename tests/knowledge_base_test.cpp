@@ -5,7 +5,7 @@
 #include <functional>
 #include <set>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "tasks/knowledge_base.hpp"
 #include "test_util.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "env/env.hpp"
-#include "env/world/renderer.hpp"
+#include "world/renderer.hpp"
 
 namespace chore {
 namespace {
@@ -136,7 +136,7 @@ void time_physics_steps(benchmark::State& state, World& w) {
 
 // One physics step of an activity's scene at rest after reset 0 (World::step:
 // mj_step with the robot's controllers, grasp and state rules), with objects
-// asleep as during a primitive (env/world/sleeping.hpp) or not, with the
+// asleep as during a primitive (world/sleeping.hpp) or not, with the
 // scene's Newton solver or MuJoCo's conjugate-gradient one.
 void physics_step_activity(benchmark::State& state, const std::string& activity, bool sleeping, mjtSolver solver) {
   EnvConfig c;

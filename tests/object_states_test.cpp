@@ -5,11 +5,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "env/world/error.hpp"
-#include "env/world/object_geometry.hpp"
-#include "env/world/predicates.hpp"
-#include "env/world/renderer.hpp"
-#include "env/world/sampling.hpp"
+#include "base/error.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
+#include "world/renderer.hpp"
+#include "world/sampling.hpp"
+#include "world/state_rules.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -160,7 +161,7 @@ TEST_F(ObjectStatesTest, SoakedCookedBurntAndFrozenObjectsChangeColourAsInOmniGi
   // Each geom of `object` in a drawn scene: its colour, and the model's.
   auto drawn = [&](int object) {
     mjv_updateScene(m, world_.data(), &option, nullptr, &camera, mjCAT_ALL, &scene);
-    world_.states().draw(world_, &scene);
+    draw_states(world_, &scene);
     std::vector<std::pair<std::array<float, 3>, std::array<float, 3>>> colours;
     for (int i = 0; i < scene.ngeom; ++i) {
       const mjvGeom& g = scene.geoms[i];

@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <functional>
 
-#include "env/world/error.hpp"
-#include "env/world/object_geometry.hpp"
-#include "env/world/predicates.hpp"
-#include "env/world/sampling.hpp"
+#include "base/error.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
+#include "world/sampling.hpp"
 #include "test_util.hpp"
 
 namespace chore {

@@ -8,8 +8,8 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "env/world/object_geometry.hpp"
-#include "env/world/predicates.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
 #include "policies/expert.hpp"
 #include "primitives/arm_planner.hpp"
 #include "primitives/ik.hpp"

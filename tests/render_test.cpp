@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "env/env.hpp"
-#include "env/world/renderer.hpp"
+#include "world/renderer.hpp"
 #include "test_util.hpp"
 
 namespace chore {

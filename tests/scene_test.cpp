@@ -6,8 +6,8 @@
 #include <functional>
 #include <set>
 
-#include "env/world/error.hpp"
-#include "env/world/scene.hpp"
+#include "base/error.hpp"
+#include "world/scene.hpp"
 #include "test_util.hpp"
 
 namespace chore {

@@ -1,4 +1,4 @@
-// The observation modalities of env/world/sensors.hpp, each against a
+// The observation modalities of world/sensors.hpp, each against a
 // constructed scene whose answer is known: segmentation ids of known objects,
 // normals of a floor and a wall, flow of a camera turn and of a moving object,
 // LiDAR ranges to walls; sensor noise models and their determinism.
@@ -11,7 +11,7 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "test_util.hpp"
 
 namespace chore {

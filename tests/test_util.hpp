@@ -7,7 +7,7 @@
 #include <string>
 
 #include "env/env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore::test {
 

@@ -7,7 +7,7 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "test_util.hpp"
 
 namespace chore {

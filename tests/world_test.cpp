@@ -2,9 +2,9 @@
 #include <mujoco/mujoco.h>
 
 #include "env/env.hpp"
-#include "env/world/error.hpp"
-#include "env/world/mujoco_errors.hpp"
-#include "env/world/predicates.hpp"
+#include "base/error.hpp"
+#include "world/mujoco_errors.hpp"
+#include "world/predicates.hpp"
 #include "test_util.hpp"
 
 namespace chore {

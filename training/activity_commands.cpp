@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "env/env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "tasks/activity.hpp"
 
 namespace chore {

@@ -11,7 +11,7 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "policies/expert.hpp"
 
 namespace chore {

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "policies/networks.hpp"
 #include "training/torch_support.hpp"
 #include "training/trainer.hpp"

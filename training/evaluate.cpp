@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "policies/expert.hpp"
 #include "policies/plugin.hpp"
 

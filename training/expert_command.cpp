@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "env/env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "policies/expert.hpp"
 
 namespace chore {

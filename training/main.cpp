@@ -9,7 +9,7 @@
 #include <string>
 #include <tuple>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "training/activity_commands.hpp"
 #include "training/bench.hpp"
 #include "training/checkpoint.hpp"

@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "env/env.hpp"
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace {

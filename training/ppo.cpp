@@ -10,7 +10,7 @@
 #include <numeric>
 #include <optional>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
 #include "training/torch_support.hpp"

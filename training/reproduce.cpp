@@ -17,7 +17,7 @@
 #include <sstream>
 #include <thread>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "tasks/activity.hpp"
 #include "training/checkpoint.hpp"
 #include "training/plot.hpp"

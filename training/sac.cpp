@@ -14,7 +14,7 @@
 #include <chrono>
 #include <optional>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
 #include "training/torch_support.hpp"

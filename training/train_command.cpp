@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "training/checkpoint.hpp"
 #include "training/trainer.hpp"
 

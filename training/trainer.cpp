@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 #include "training/checkpoint.hpp"
 
 namespace chore {

@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "env/world/error.hpp"
+#include "base/error.hpp"
 
 namespace chore {
 namespace {

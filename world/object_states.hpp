@@ -1,0 +1,97 @@
+// Extended object states (seed Table A.7): what the world keeps for the
+// objects whose properties need them (Table A.5); the activity layer says
+// which, from the synset knowledge base, through ObjectAbilities. Data only:
+// the rules that update them and how they look are in state_rules.hpp.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chore {
+
+constexpr double kRoomTemperature = 23.0;  // degrees C
+
+// A heat or cold source (stove, oven, fridge): it drives the temperature of
+// objects near it (or inside it) towards its own, at `rate` per second.
+struct ThermalSource {
+  double temperature = 200;
+  double rate = 0.04;          // fraction of the difference closed per second
+  double distance = 0.2;       // m from the source's box; 0 with requires_inside
+  bool requires_toggled_on = false;
+  bool requires_closed = false;
+  bool requires_inside = false;
+};
+
+// What the world tracks for one object. Thresholds default to BEHAVIOR's.
+struct ObjectAbilities {
+  bool temperature = false;  // cookable, freezable, burnable, ...
+  double cook_temperature = 70, burn_temperature = 200, freeze_temperature = 0;
+  double hot_temperature = 40, ignition_temperature = std::numeric_limits<double>::infinity();
+  bool soakable = false;
+  bool cleaning_tool = false;
+  bool covered = false;       // dirt (dustyable, stainable) can lie on it
+  bool toggleable = false;
+  bool sliceable = false, slicer = false;
+  bool breakable = false;
+  double break_force = 100;   // N of contact force
+  double slice_force = 10;    // N (seed: F_sliced)
+  std::optional<ThermalSource> heat_source, cold_source;
+  bool holds_liquid = false;  // a container or source of water (sink, bucket)
+};
+
+// A kind of dirt: stains need a soaked cleaning tool, dust any cleaning tool.
+struct Substance {
+  std::string name;
+  bool needs_soaked_tool = false;
+};
+
+struct ObjectState {
+  double temperature = kRoomTemperature, max_temperature = kRoomTemperature;
+  std::map<std::string, double> soaked;  // per liquid, 0 .. 1 absorbed (1 = saturated)
+  std::string liquid;       // what a container holds (holds_liquid) ...
+  double liquid_level = 0;  // ... up to this fraction of its inner height
+  std::map<std::string, std::vector<Eigen::Vector3d>> dirt;  // particles in the object's frame
+  std::map<std::string, int> dirt_sampled;  // how many particles each substance was sampled with
+  bool toggled = false;
+  int toggle_steps = 0;     // consecutive env steps the hand is at the toggle point
+  bool sliced = false, broken = false;
+};
+
+class ObjectStates {
+ public:
+  // Thresholds of the predicates on these states.
+  static constexpr int kCoveredParticles = 5;  // covered (OmniGibson) while at least this many remain
+  static constexpr double kDirtyFraction = 0.5;  // stained/dusty (iGibson) while more than this share of the sampled remain
+  static constexpr double kSoakedLevel = 0.5;
+  static constexpr double kToggleDistance = 0.1;  // m from the toggle point
+  static constexpr int kToggleSteps = 5;
+  static constexpr double kCleaningRadius = 0.06; // m around a tool's contact
+
+  void configure(int object, const ObjectAbilities& abilities);
+  void add_substance(const Substance& substance);
+  const ObjectAbilities* abilities(int object) const;  // nullptr: nothing tracked
+  const Substance* substance(const std::string& name) const;
+
+  ObjectState& state(int object) { return states_.at(object); }
+  const ObjectState& state(int object) const { return states_.at(object); }
+  bool tracked(int object) const { return states_.count(object) > 0; }
+
+  // Back to room temperature, dry, clean, off, whole.
+  void reset();
+  // Every tracked object's abilities and states, by object index.
+  const std::map<int, ObjectAbilities>& all_abilities() const { return abilities_; }
+  std::map<int, ObjectState>& all_states() { return states_; }
+  const std::map<int, ObjectState>& all_states() const { return states_; }
+
+ private:
+  std::map<int, ObjectAbilities> abilities_;
+  std::map<int, ObjectState> states_;
+  std::map<std::string, Substance> substances_;
+};
+
+}  // namespace chore

@@ -1,0 +1,45 @@
+// Logical predicates as sampling functions (seed Table A.9): each finds a
+// physical state of a free object that makes the predicate true, by a ray-cast
+// search for a support surface, a collision test and a short physical settle,
+// as BEHAVIOR's samplers do. They never consult the checking functions
+// (predicates.hpp): the tests measure how often the checkers agree.
+#pragma once
+
+#include <string>
+
+#include "base/random.hpp"
+#include "world/world.hpp"
+
+namespace chore {
+
+struct SampleOptions {
+  int attempts = 100;           // candidate poses before giving up
+  double settle_seconds = 0.25; // physics after placing (objects drop from 5 mm)
+};
+
+// Each returns false when no valid pose was found in options.attempts tries;
+// `a` must be a free object (chore::Error otherwise).
+bool sample_ontop(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
+bool sample_inside(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
+bool sample_under(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
+bool sample_onfloor(World& world, int a, int room, Rng& rng, const SampleOptions& options = {});
+// The robot's base at a collision-free pose in `room` (200 tries).
+bool sample_robot_in_room(World& world, int room, Rng& rng);
+// Sets an articulated object open (one joint, at random, between 30% and 100%
+// of its range) or closed (every joint at its lower limit).
+void sample_open(World& world, int a, bool open, Rng& rng);
+
+// A unary predicate on extended states made `value`: cooked, burnt, frozen, hot,
+// on_fire, soaked, saturated, filled, toggled_on, sliced, broken. It writes the
+// state the checker reads, as OmniGibson's samplers do (cooked: the highest
+// temperature reached is past the cook temperature). chore::Error for an
+// unknown predicate or an object that does not keep that state.
+// soaked, saturated and filled name their liquid.
+void sample_state(World& world, const std::string& predicate, int a, bool value,
+                  const std::string& liquid = "water");
+// Dirt particles of `substance` on a's upward-facing surfaces (value true:
+// `particles` of them, found by rays from above that hit a first), or none.
+bool sample_covered(World& world, int a, const std::string& substance, bool value, Rng& rng,
+                    int particles = 20);
+
+}  // namespace chore

@@ -1,0 +1,728 @@
+#include "world/scene.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "base/error.hpp"
+#include "base/json_file.hpp"
+#include "world/mujoco_errors.hpp"
+#include "world/static_mesh.hpp"
+
+#ifndef CHORE_ASSETS_DIR
+#define CHORE_ASSETS_DIR "assets"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace chore {
+
+std::string default_assets_dir() {
+  const char* env = std::getenv("CHORE_ASSETS");
+  return (env && *env) ? env : CHORE_ASSETS_DIR;
+}
+
+namespace {
+
+// Physics and rendering settings shared by every scene (seed: physics 1/120 s).
+constexpr double kTimestep = 1.0 / 120.0;
+constexpr double kExtent = 10.0;  // metres; sets the depth range with znear/zfar below
+constexpr double kZNear = 0.005;  // near plane = 0.05 m
+constexpr double kZFar = 5.0;     // far plane = 50 m
+constexpr double kCameraHeight = 1.1;  // the robot-less stand-in camera, like Tiago's head
+const Rgb kWallColor = {0.86, 0.84, 0.80};
+const Rgb kCeilingColor = {0.95, 0.95, 0.93};
+
+struct Geom {
+  std::string type;
+  std::vector<double> size;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in the link frame
+  Rgb rgb = {0.7, 0.7, 0.7};
+};
+
+struct Link {
+  std::string name;
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+  std::string joint_type;  // "" for the root
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double range[2] = {0, 0};
+  double damping = 1.0;
+  double mass = 1.0;
+  std::vector<Geom> geoms;
+  std::vector<Link> links;
+};
+
+struct Light {
+  Eigen::Vector3d pos;
+  Rgb rgb;
+};
+
+// A cloth: MuJoCo's composite grid of small bodies joined by hinges, drawn as
+// one skin, rooted at its centre body (which carries the free joint).
+struct Cloth {
+  int count = 5;          // bodies per side (odd: a centre body)
+  double spacing = 0.06;  // m between neighbours
+  double radius = 0.006;  // of the capsules that collide
+  Rgb rgb = {0.45, 0.65, 0.85};
+};
+
+struct ObjectModel {
+  std::string category, synset;
+  Link root;
+  std::optional<Light> light;
+  std::optional<Cloth> cloth;
+};
+
+Eigen::Matrix3d rotation_xyz_degrees(const std::vector<double>& euler) {
+  // MuJoCo's default eulerseq "xyz": intrinsic rotations about x, then y, then z.
+  const double k = M_PI / 180.0;
+  return (Eigen::AngleAxisd(euler[0] * k, Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(euler[1] * k, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(euler[2] * k, Eigen::Vector3d::UnitZ()))
+      .toRotationMatrix();
+}
+
+Rgb to_rgb(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+Geom read_geom(const JsonReader& j) {
+  Geom g;
+  g.type = j.string("type");
+  const std::map<std::string, size_t> sizes = {
+      {"box", 3}, {"cylinder", 2}, {"sphere", 1}, {"capsule", 2}};
+  const auto it = sizes.find(g.type);
+  if (it == sizes.end()) j.fail("type '" + g.type + "' is not one of box, cylinder, sphere, capsule");
+  g.size = j.numbers("size", it->second);
+  for (double s : g.size) {
+    if (!(s > 0)) j.fail("size must be positive");
+  }
+  const auto pos = j.numbers("pos", 3, {0, 0, 0});
+  g.pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+  g.pose.linear() = rotation_xyz_degrees(j.numbers("euler", 3, {0, 0, 0}));
+  g.rgb = to_rgb(j.numbers("rgb", 3, {0.7, 0.7, 0.7}));
+  return g;
+}
+
+Link read_link(const JsonReader& j, bool root) {
+  Link link;
+  if (!root) {
+    link.name = j.string("name");
+    const auto pos = j.numbers("pos", 3);
+    link.pos = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+    const JsonReader joint = j.at("joint");
+    link.joint_type = joint.string("type");
+    if (link.joint_type != "slide" && link.joint_type != "hinge") {
+      joint.fail("type '" + link.joint_type + "' is not slide or hinge");
+    }
+    const auto axis = joint.numbers("axis", 3);
+    link.axis = Eigen::Vector3d(axis[0], axis[1], axis[2]);
+    if (link.axis.norm() < 1e-9) joint.fail("axis is zero");
+    const auto range = joint.numbers("range", 2);
+    const double scale = link.joint_type == "hinge" ? M_PI / 180.0 : 1.0;
+    link.range[0] = range[0] * scale;
+    link.range[1] = range[1] * scale;
+    if (!(link.range[0] < link.range[1])) joint.fail("range must be [low, high] with low < high");
+    link.damping = joint.number("damping", 1.0);
+  }
+  link.mass = j.number("mass");
+  if (!(link.mass > 0)) j.fail("mass must be positive");
+  const JsonReader geoms = j.at("geoms");
+  for (size_t i = 0; i < geoms.size(); ++i) link.geoms.push_back(read_geom(geoms.at(i)));
+  if (link.geoms.empty()) j.fail("a link needs at least one geom");
+  if (j.has("links")) {
+    const JsonReader links = j.at("links");
+    for (size_t i = 0; i < links.size(); ++i) link.links.push_back(read_link(links.at(i), false));
+  }
+  return link;
+}
+
+ObjectModel read_object_model(const std::string& path) {
+  const nlohmann::json json = read_json_file(path);
+  const JsonReader j(json, path);
+  ObjectModel m;
+  m.category = j.string("category");
+  m.synset = j.string("synset");
+  if (j.has("cloth")) {
+    const JsonReader c = j.at("cloth");
+    Cloth cloth;
+    cloth.count = static_cast<int>(c.number("count", 5));
+    cloth.spacing = c.number("spacing", 0.06);
+    cloth.radius = c.number("radius", 0.006);
+    cloth.rgb = to_rgb(c.numbers("rgb", 3, {0.45, 0.65, 0.85}));
+    if (cloth.count < 3 || cloth.count > 15 || cloth.count % 2 == 0) c.fail("count must be odd, 3..15");
+    if (!(cloth.spacing > 2 * cloth.radius) || !(cloth.radius > 0)) c.fail("need spacing > 2 x radius > 0");
+    m.cloth = cloth;
+    m.root.mass = j.number("mass");
+    if (!(m.root.mass > 0)) j.fail("mass must be positive");
+    return m;
+  }
+  m.root = read_link(j, true);
+  if (j.has("light")) {
+    const JsonReader light = j.at("light");
+    const auto pos = light.numbers("pos", 3);
+    m.light = Light{Eigen::Vector3d(pos[0], pos[1], pos[2]),
+                    to_rgb(light.numbers("rgb", 3, {1, 0.9, 0.75}))};
+  }
+  return m;
+}
+
+double geom_volume(const Geom& g) {
+  const auto& s = g.size;
+  if (g.type == "box") return 8 * s[0] * s[1] * s[2];
+  if (g.type == "cylinder") return M_PI * s[0] * s[0] * 2 * s[1];
+  if (g.type == "sphere") return 4.0 / 3.0 * M_PI * s[0] * s[0] * s[0];
+  return M_PI * s[0] * s[0] * (2 * s[1] + 4.0 / 3.0 * s[0]);  // capsule
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string fmt(const Eigen::Vector3d& v) { return fmt(v[0]) + " " + fmt(v[1]) + " " + fmt(v[2]); }
+
+std::string fmt_quat(const Eigen::Matrix3d& r) {
+  const Eigen::Quaterniond q(r);
+  return fmt(q.w()) + " " + fmt(q.x()) + " " + fmt(q.y()) + " " + fmt(q.z());
+}
+
+std::string pose_attributes(const Eigen::Isometry3d& pose) {
+  return "pos=\"" + fmt(Eigen::Vector3d(pose.translation())) + "\" quat=\"" +
+         fmt_quat(pose.linear()) + "\"";
+}
+
+void add_to_static_mesh(StaticMesh& mesh, const Eigen::Isometry3d& world, const Geom& g) {
+  const Eigen::Isometry3d pose = world * g.pose;
+  if (g.type == "box") mesh.add_box(pose, {g.size[0], g.size[1], g.size[2]}, g.rgb);
+  else if (g.type == "cylinder") mesh.add_cylinder(pose, g.size[0], g.size[1], g.rgb);
+  else if (g.type == "sphere") mesh.add_sphere(pose, g.size[0], g.rgb);
+  else mesh.add_capsule(pose, g.size[0], g.size[1], g.rgb);
+}
+
+std::string size_attribute(const Geom& g) {
+  std::string s;
+  for (size_t i = 0; i < g.size.size(); ++i) s += (i ? " " : "") + fmt(g.size[i]);
+  return s;
+}
+
+// A geom element. `drawn`: the camera sees it (group 0); otherwise it is a
+// collision-only geom of a static part whose look lives in the static mesh.
+std::string geom_xml(const std::string& name, const Geom& g, bool drawn, double mass) {
+  std::string xml = "<geom name=\"" + name + "\" type=\"" + g.type + "\" size=\"" +
+                    size_attribute(g) + "\" " + pose_attributes(g.pose);
+  if (drawn) {
+    xml += " class=\"object\" rgba=\"" + fmt(g.rgb[0]) + " " + fmt(g.rgb[1]) + " " + fmt(g.rgb[2]) +
+           " 1\"";
+  }
+  if (mass > 0) xml += " mass=\"" + fmt(mass) + "\"";
+  return xml + "/>";
+}
+
+// Emits a link's geoms; those of a fixed object's root go to the static mesh.
+void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& prefix,
+                     const Link& link, bool static_link, const Eigen::Isometry3d& world,
+                     const std::string& indent) {
+  double volume = 0;
+  for (const Geom& g : link.geoms) volume += geom_volume(g);
+  for (size_t i = 0; i < link.geoms.size(); ++i) {
+    const Geom& g = link.geoms[i];
+    const std::string name = prefix + "/" + std::to_string(i);
+    if (static_link) add_to_static_mesh(mesh, world, g);
+    const double mass = static_link ? 0.0 : link.mass * geom_volume(g) / volume;
+    xml += indent + geom_xml(name, g, !static_link, mass) + "\n";
+  }
+}
+
+void emit_child_links(std::string& xml, std::string& welds, StaticMesh& mesh,
+                      const std::string& object, const Link& parent,
+                      const Eigen::Isometry3d& parent_world, const std::string& indent) {
+  for (const Link& link : parent.links) {
+    const std::string name = object + "/" + link.name;
+    Eigen::Isometry3d world = parent_world;
+    world.translation() += parent_world.linear() * link.pos;
+    xml += indent + "<body name=\"" + name + "\" pos=\"" + fmt(link.pos) + "\">\n";
+    xml += indent + "  <joint name=\"" + name + "\" type=\"" + link.joint_type + "\" axis=\"" +
+           fmt(link.axis.normalized()) + "\" range=\"" + fmt(link.range[0]) + " " +
+           fmt(link.range[1]) + "\" limited=\"true\" damping=\"" + fmt(link.damping) +
+           "\" armature=\"0.01\"/>\n";
+    emit_link_geoms(xml, mesh, name, link, false, world, indent + "  ");
+    emit_child_links(xml, welds, mesh, object, link, world, indent + "  ");
+    xml += indent + "</body>\n";
+    // The gripper can hold a drawer or door by its link (OmniGibson's assisted grasp does).
+    welds += "    <weld name=\"grasp_" + name + "\" body1=\"gripper\" body2=\"" + name +
+             "\" active=\"false\" solref=\"0.005 1\"/>\n";
+  }
+}
+
+// MuJoCo names a composite's bodies <prefix>B<i>_<j>; a cloth's root is its centre.
+std::string root_body_name(const std::string& object, const ObjectModel& model, bool cloth) {
+  if (!model.cloth || !cloth) return object;
+  const std::string c = std::to_string(model.cloth->count / 2);
+  return object + "B" + c + "_" + c;
+}
+
+// The composite lies flat in the object's frame, just above its origin. Each
+// body is a capsule, drawn and colliding: MuJoCo 2.2.2's skins cost ~2 ms per
+// frame on llvmpipe (skin update and draw), a geom ~30 us and is culled out of
+// view; flat ellipsoids went through MPR contacts that threw the cloth about.
+std::string cloth_xml(const std::string& name, const Cloth& c, double mass) {
+  const double per_body = mass / (c.count * c.count);
+  return "      <composite type=\"cloth\" count=\"" + std::to_string(c.count) + " " +
+         std::to_string(c.count) + " 1\" spacing=\"" + fmt(c.spacing) + "\" prefix=\"" + name +
+         "\" flatinertia=\"0.01\">\n"
+         "        <joint kind=\"main\" damping=\"0.01\" armature=\"0.0005\"/>\n"
+         "        <geom type=\"capsule\" size=\"" + fmt(c.radius) + " " + fmt(c.spacing * 0.4) +
+         "\" mass=\"" + fmt(per_body) + "\" group=\"" + std::to_string(kStaticGroup) +
+         // contype 4, conaffinity 3: tiles touch the scene (1) and the robot (2), not each other.
+         "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " +
+         fmt(c.rgb[2]) + " 1\" friction=\"0.8 0.02 0.001\"/>\n"
+         "      </composite>\n";
+}
+
+// The robot file's children, spliced into the scene document.
+std::string robot_mjcf_children(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open robot file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  // Loading it alone reports syntax and schema errors with this file's lines.
+  char error[1024] = "";
+  mjModel* alone = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+  if (!alone) throw Error(path + ": invalid robot MJCF: " + error);
+  mj_deleteModel(alone);
+  const auto open = text.find("<mujoco");
+  const auto open_end = open == std::string::npos ? open : text.find('>', open);
+  const auto close = text.rfind("</mujoco>");
+  if (open_end == std::string::npos || close == std::string::npos || close < open_end) {
+    throw Error(path + ": expected a <mujoco> ... </mujoco> document");
+  }
+  return text.substr(open_end + 1, close - open_end - 1);
+}
+
+std::string resolve_scene_path(const std::string& name, const std::string& assets) {
+  if (name.ends_with(".json") || name.find('/') != std::string::npos) {
+    if (!fs::exists(name)) throw Error("scene file '" + name + "' does not exist");
+    return name;
+  }
+  const fs::path path = fs::path(assets) / "scenes" / (name + ".json");
+  if (fs::exists(path)) return path.string();
+  std::string known;
+  if (fs::is_directory(fs::path(assets) / "scenes")) {
+    for (const auto& entry : fs::directory_iterator(fs::path(assets) / "scenes")) {
+      if (entry.path().extension() == ".json") {
+        known += (known.empty() ? "" : ", ") + entry.path().stem().string();
+      }
+    }
+  }
+  throw Error("unknown scene '" + name + "' (no " + path.string() + "); known scenes: " +
+              (known.empty() ? "none" : known));
+}
+
+// The cell of the static-body grid a point lies in (clamped: positions far
+// out of any room are the scene reader's to refuse, not a reason to overflow).
+std::pair<long, long> static_cell(const Eigen::Vector3d& p) {
+  auto index = [](double v) {
+    return static_cast<long>(std::floor(std::clamp(v, -1e6, 1e6) / Scene::kStaticCell));
+  };
+  return {index(p.x()), index(p.y())};
+}
+
+std::string static_body_name(const std::pair<long, long>& cell) {
+  return "static_" + std::to_string(cell.first) + "_" + std::to_string(cell.second);
+}
+
+// Parses an MJCF document from memory through MuJoCo's virtual file system.
+mjModel* compile_mjcf(const std::string& xml, const std::string& what) {
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  const char* file = "chore_scene.xml";
+  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(xml.size())) != 0) {
+    throw Error(what + ": cannot allocate the model in MuJoCo's VFS");
+  }
+  const int index = mj_findFileVFS(&vfs, file);
+  std::memcpy(vfs.filedata[index], xml.data(), xml.size());
+  char error[2048] = "";
+  mjModel* model = mj_loadXML(file, &vfs, error, sizeof error);
+  mj_deleteVFS(&vfs);
+  if (!model) throw Error(what + ": MuJoCo rejected the compiled scene: " + error);
+  return model;
+}
+
+}  // namespace
+
+std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOptions& options) {
+  install_mujoco_handlers();
+  const std::string assets = options.assets_dir.empty() ? default_assets_dir() : options.assets_dir;
+  const std::string path = resolve_scene_path(name, assets);
+  const nlohmann::json json = read_json_file(path);
+  const JsonReader j(json, path);
+
+  std::shared_ptr<Scene> scene(new Scene());
+  scene->name_ = j.string("name", fs::path(path).stem().string());
+  scene->path_ = path;
+  scene->has_robot_ = options.robot;
+
+  const double wall_height = j.number("wall_height", 2.6);
+  const double wall_thickness = j.number("wall_thickness", 0.1);
+  StaticMesh mesh("static_visual", kMergedGroup);
+  // Ceilings in their own group, so that views from above can leave them out.
+  StaticMesh ceilings("ceiling_visual", kCeilingGroup);
+  std::string world;    // <worldbody> children
+  std::string welds;    // <equality> children
+  std::string lights;
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+
+  // Rooms: floor slabs (collision + static look) and ceilings (look only).
+  const JsonReader rooms = j.at("rooms");
+  for (size_t i = 0; i < rooms.size(); ++i) {
+    const JsonReader r = rooms.at(i);
+    Room room{r.string("name"), r.string("type"), {}};
+    for (const Room& other : scene->rooms_) {
+      if (other.name == room.name) r.fail("duplicate room name '" + room.name + "'");
+    }
+    const Rgb floor_rgb = to_rgb(r.numbers("floor_rgb", 3, {0.6, 0.6, 0.6}));
+    const JsonReader rects = r.at("rects");
+    for (size_t k = 0; k < rects.size(); ++k) {
+      const auto v = rects.at(k).as_numbers(4);
+      if (!(v[0] < v[2] && v[1] < v[3])) rects.at(k).fail("expected [xmin, ymin, xmax, ymax]");
+      room.rects.push_back({v[0], v[1], v[2], v[3]});
+      lo = lo.cwiseMin(Eigen::Vector2d(v[0], v[1]));
+      hi = hi.cwiseMax(Eigen::Vector2d(v[2], v[3]));
+      Eigen::Isometry3d floor = Eigen::Isometry3d::Identity();
+      const Eigen::Vector3d half((v[2] - v[0]) / 2, (v[3] - v[1]) / 2, 0.05);
+      floor.translation() = Eigen::Vector3d((v[0] + v[2]) / 2, (v[1] + v[3]) / 2, -0.05);
+      mesh.add_box(floor, half, floor_rgb);
+      world += "    <geom name=\"floor_" + room.name + "_" + std::to_string(k) +
+               "\" type=\"box\" size=\"" + fmt(half) + "\" pos=\"" +
+               fmt(Eigen::Vector3d(floor.translation())) + "\"/>\n";
+      Eigen::Isometry3d ceiling = floor;
+      ceiling.translation().z() = wall_height + 0.05;
+      ceilings.add_box(ceiling, half, kCeilingColor);
+    }
+    if (room.rects.empty()) r.fail("a room needs at least one rect");
+    scene->rooms_.push_back(std::move(room));
+  }
+
+  const JsonReader walls = j.at("walls");
+  for (size_t i = 0; i < walls.size(); ++i) {
+    const auto w = walls.at(i).as_numbers(4);
+    const Eigen::Vector2d a(w[0], w[1]), b(w[2], w[3]);
+    const double length = (b - a).norm();
+    if (length < 1e-6) walls.at(i).fail("wall has zero length");
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d((a.x() + b.x()) / 2, (a.y() + b.y()) / 2, wall_height / 2);
+    pose.linear() = Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()),
+                                      Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    // Extended by half a thickness at both ends so corners close.
+    const Eigen::Vector3d half((length + wall_thickness) / 2, wall_thickness / 2, wall_height / 2);
+    mesh.add_box(pose, half, kWallColor);
+    world += "    <geom name=\"wall_" + std::to_string(i) + "\" type=\"box\" size=\"" + fmt(half) +
+             "\" " + pose_attributes(pose) + "/>\n";
+  }
+
+  if (j.has("ceiling_lights")) {
+    const JsonReader cl = j.at("ceiling_lights");
+    for (size_t i = 0; i < cl.size(); ++i) {
+      const auto pos = cl.at(i).numbers("pos", 3);
+      const Rgb rgb = to_rgb(cl.at(i).numbers("rgb", 3, {0.5, 0.5, 0.5}));
+      lights += "    <light name=\"ceiling_" + std::to_string(i) + "\" pos=\"" +
+                fmt(Eigen::Vector3d(pos[0], pos[1], pos[2])) +
+                "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"85\" "
+                "exponent=\"1\" attenuation=\"1 0 0\" diffuse=\"" + fmt(rgb[0]) + " " + fmt(rgb[1]) +
+                " " + fmt(rgb[2]) + "\" specular=\"0.1 0.1 0.1\"/>\n";
+    }
+  }
+
+  // Objects.
+  std::map<std::string, ObjectModel> models;
+  std::vector<std::string> holder_bodies;  // per object: its root body's name, or its static body's
+  std::vector<char> in_static_body;        // per object: its geoms are in a static body
+  std::vector<std::optional<Cloth>> cloths;  // per object: its cloth, if simulated
+  std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
+  std::vector<std::string> static_roots;  // fixed objects with moving parts: their static roots
+  const JsonReader objects = j.at("objects");
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const JsonReader o = objects.at(i);
+    SceneObject object;
+    object.name = o.string("name");
+    if (object.name.find('/') != std::string::npos) o.fail("object names may not contain '/'");
+    if (scene->find_object(object.name)) o.fail("duplicate object name '" + object.name + "'");
+    object.model = o.string("model");
+    auto found = models.find(object.model);
+    if (found == models.end()) {
+      // A model is a name in <assets>/objects, or a .json path relative to the scene file.
+      const fs::path model_path = object.model.ends_with(".json")
+                                      ? fs::path(path).parent_path() / object.model
+                                      : fs::path(assets) / "objects" / (object.model + ".json");
+      if (!fs::exists(model_path)) {
+        o.fail("unknown object model '" + object.model + "' (no " + model_path.string() + ")");
+      }
+      found = models.emplace(object.model, read_object_model(model_path.string())).first;
+    }
+    const ObjectModel& model = found->second;
+    object.category = model.category;
+    object.synset = o.string("synset", model.synset);
+    object.fixed = o.boolean("fixed", false);
+    const auto pos = o.numbers("pos", 3);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+    pose.linear() = Eigen::AngleAxisd(o.number("yaw", 0.0) * M_PI / 180.0,
+                                      Eigen::Vector3d::UnitZ()).toRotationMatrix();
+
+    if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(object.mat.data()) = pose.linear();
+    Eigen::Map<Eigen::Vector3d>(object.pos.data()) = pose.translation();
+    if (model.light) {
+      lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" +
+                fmt(Eigen::Vector3d(pose * model.light->pos)) +
+                "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"90\" "
+                "exponent=\"0\" attenuation=\"1 0 0.2\" diffuse=\"" + fmt(model.light->rgb[0]) +
+                " " + fmt(model.light->rgb[1]) + " " + fmt(model.light->rgb[2]) +
+                "\" specular=\"0.1 0.1 0.1\"/>\n";
+    }
+    if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
+    if (object.fixed && !model.cloth && model.root.links.empty()) {
+      // Furniture without moving parts: its geoms, posed in the world, join
+      // the static body of the cell it stands in.
+      const auto key = static_cell(pose.translation());
+      std::string& cell = static_cells[key];
+      for (size_t g = 0; g < model.root.geoms.size(); ++g) {
+        Geom placed = model.root.geoms[g];
+        placed.pose = pose * placed.pose;
+        add_to_static_mesh(mesh, Eigen::Isometry3d::Identity(), placed);
+        cell += "      " + geom_xml(object.name + "/" + std::to_string(g), placed, false, 0) + "\n";
+      }
+      holder_bodies.push_back(static_body_name(key));
+      in_static_body.push_back(1);
+      cloths.emplace_back();
+      scene->objects_.push_back(std::move(object));
+      continue;
+    }
+    const std::string body = root_body_name(object.name, model, options.cloth);
+    holder_bodies.push_back(body);
+    in_static_body.push_back(0);
+    cloths.push_back(model.cloth && options.cloth ? model.cloth : std::nullopt);
+    world += "    <body name=\"" + body + "\" " + pose_attributes(pose) + ">\n";
+    if (!object.fixed) {
+      world += "      <freejoint name=\"" + object.name + "\"/>\n";
+      welds += "    <weld name=\"grasp_" + object.name + "\" body1=\"gripper\" body2=\"" + body +
+               "\" active=\"false\" solref=\"0.005 1\"/>\n";
+    } else {
+      static_roots.push_back(body);
+    }
+    if (model.cloth && options.cloth) {
+      world += cloth_xml(object.name, *model.cloth, model.root.mass);
+    } else if (model.cloth) {
+      // Cloth simulation off: one rigid tile of the cloth's size.
+      const Cloth& c = *model.cloth;
+      Geom tile;
+      tile.type = "box";
+      tile.size = {c.count * c.spacing / 2, c.count * c.spacing / 2, c.radius};
+      tile.rgb = c.rgb;
+      world += "      " + geom_xml(object.name + "/0", tile, true, model.root.mass) + "\n";
+    } else {
+      emit_link_geoms(world, mesh, object.name, model.root, object.fixed, pose, "      ");
+      emit_child_links(world, welds, mesh, object.name, model.root, pose, "      ");
+    }
+    world += "    </body>\n";
+    scene->objects_.push_back(std::move(object));
+  }
+
+  // The static bodies, and the pairs among what never moves (the world, the
+  // static bodies, the roots of fixed objects with moving parts) excluded:
+  // MuJoCo 2.2.2 pairs the world body with every body and would otherwise
+  // run every geom pair of two touching static bodies through its filters.
+  // They come last in the document, so that their geoms are the model's last
+  // (Scene::first_static_geom). The drawn static meshes get a body of their
+  // own: the world body is paired with every body each step, and each of its
+  // geoms visited in the pair. (Welded to the world, its inertia is never
+  // used; massless geoms need one given.)
+  std::string statics = "    <body name=\"static_visuals\">\n"
+                        "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n" +
+                        mesh.mjcf_geom() + ceilings.mjcf_geom() + "    </body>\n";
+  std::vector<std::string> unmoving = {"world", "static_visuals"};
+  for (const auto& [cell, geoms] : static_cells) {
+    const std::string name = static_body_name(cell);
+    statics += "    <body name=\"" + name + "\">\n" + geoms + "    </body>\n";
+    unmoving.push_back(name);
+  }
+  unmoving.insert(unmoving.end(), static_roots.begin(), static_roots.end());
+  std::string excludes;
+  for (size_t a = 0; a < unmoving.size(); ++a) {
+    for (size_t b = a + 1; b < unmoving.size(); ++b) {
+      excludes += "    <exclude body1=\"" + unmoving[a] + "\" body2=\"" + unmoving[b] + "\"/>\n";
+    }
+  }
+
+  const JsonReader robot = j.at("robot");
+  const auto start = robot.numbers("pos", 2);
+  scene->robot_start_ = {start[0], start[1], robot.number("yaw", 0.0) * M_PI / 180.0};
+
+  // Cameras: a top-down overview, and a stand-in for the head camera when the
+  // robot is left out.
+  const Eigen::Vector2d center = (lo + hi) / 2, span = hi - lo;
+  const double overview_height =
+      wall_height + 0.5 * std::max(span.x(), span.y()) / std::tan(30.0 * M_PI / 180.0);
+  world += "    <camera name=\"overview\" pos=\"" +
+           fmt(Eigen::Vector3d(center.x(), center.y(), overview_height)) +
+           "\" xyaxes=\"1 0 0 0 1 0\" fovy=\"60\"/>\n";
+  if (!options.robot) {
+    const Pose2& p = scene->robot_start_;
+    world += "    <camera name=\"scene_camera\" pos=\"" +
+             fmt(Eigen::Vector3d(p.x, p.y, kCameraHeight)) + "\" xyaxes=\"" +
+             fmt(std::sin(p.yaw)) + " " + fmt(-std::cos(p.yaw)) + " 0 0 0 1\" fovy=\"58\"/>\n";
+  }
+
+  // <size>: MuJoCo 2.2.2 preallocates for njmax constraint rows; each mjData
+  // costs ~25 MB at 500 rows and ~780 MB at 8000. A resting free object has
+  // about 4 contacts of 4 rows each (pyramidal cones): room for each free
+  // object's 8 contacts, plus the robot's and joint limits.
+  int free_objects = 0;
+  for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
+  const int nconmax = 200 + 8 * free_objects, njmax = 4 * nconmax;
+  std::string xml =
+      "<mujoco model=\"" + scene->name_ + "\">\n"
+      "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"
+      "  <option timestep=\"" + fmt(kTimestep) + "\" integrator=\"Euler\" solver=\"Newton\" "
+      "iterations=\"30\" tolerance=\"1e-6\"/>\n"
+      "  <size nconmax=\"" + std::to_string(nconmax) + "\" njmax=\"" + std::to_string(njmax) + "\"/>\n"
+      "  <visual>\n"
+      "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
+      "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"
+      "    <map znear=\"" + fmt(kZNear) + "\" zfar=\"" + fmt(kZFar) + "\"/>\n"
+      "    <headlight ambient=\"0.25 0.25 0.25\" diffuse=\"0 0 0\" specular=\"0 0 0\"/>\n"
+      "  </visual>\n"
+      "  <statistic extent=\"" + fmt(kExtent) + "\" center=\"" +
+      fmt(Eigen::Vector3d(center.x(), center.y(), 1.0)) + "\"/>\n"
+      "  <default>\n"
+      "    <geom contype=\"1\" conaffinity=\"1\" group=\"" + std::to_string(kCollisionGroup) +
+      "\" friction=\"0.8 0.02 0.001\"/>\n"
+      "    <default class=\"visual\"><geom contype=\"0\" conaffinity=\"0\" group=\"" +
+      std::to_string(kStaticGroup) + "\" mass=\"0\"/></default>\n"
+      "    <default class=\"object\"><geom group=\"" + std::to_string(kStaticGroup) +
+      "\"/></default>\n"
+      "  </default>\n"
+      "  <asset>\n" + mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n"
+      "  <worldbody>\n" + lights + world + "  </worldbody>\n";
+  if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
+  if (options.robot) {
+    const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
+    xml += robot_mjcf_children(robot_path);
+    if (!welds.empty()) xml += "  <equality>\n" + welds + "  </equality>\n";
+  }
+  xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";
+  scene->mjcf_ = xml;
+
+  mjModel* model = compile_mjcf(xml, path);
+  scene->model_ = model;  // owned from here: ~Scene frees it on any later error
+  mesh.paint_palette(model);
+  ceilings.paint_palette(model);
+
+  std::vector<int> root_object(model->nbody, -1);
+  std::map<std::string, int, std::less<>> static_object;  // name -> index, furniture in static bodies
+  for (size_t i = 0; i < scene->objects_.size(); ++i) {
+    SceneObject& object = scene->objects_[i];
+    const int body = mj_name2id(model, mjOBJ_BODY, holder_bodies[i].c_str());
+    if (in_static_body[i]) {
+      object.static_body = body;
+      static_object[object.name] = static_cast<int>(i);
+    } else {
+      object.body = body;
+      root_object[body] = static_cast<int>(i);
+    }
+  }
+  // Objects are children of the world: their links share the root body.
+  scene->body_object_.resize(model->nbody);
+  for (int b = 0; b < model->nbody; ++b) scene->body_object_[b] = root_object[model->body_rootid[b]];
+  // Geoms of a static body are named "<object>/<index>".
+  scene->geom_object_.resize(model->ngeom);
+  for (int g = 0; g < model->ngeom; ++g) {
+    int& object = scene->geom_object_[g] = scene->body_object_[model->geom_bodyid[g]];
+    const char* name = mj_id2name(model, mjOBJ_GEOM, g);
+    if (object < 0 && name && model->body_rootid[model->geom_bodyid[g]] != 0) {
+      const std::string_view n(name);
+      const auto it = static_object.find(n.substr(0, n.find('/')));
+      if (it != static_object.end()) object = it->second;
+    }
+    const bool collides = model->geom_contype[g] || model->geom_conaffinity[g];
+    if (collides && object >= 0) scene->objects_[object].geoms.push_back(g);
+  }
+  for (const auto& [cell, geoms] : static_cells) {
+    scene->static_bodies_.push_back(mj_name2id(model, mjOBJ_BODY, static_body_name(cell).c_str()));
+  }
+  // The static bodies are the last bodies (static_visuals first): their geoms the last geoms.
+  const int visuals = mj_name2id(model, mjOBJ_BODY, "static_visuals");
+  scene->first_static_geom_ = model->ngeom;
+  while (scene->first_static_geom_ > 0 && model->geom_bodyid[scene->first_static_geom_ - 1] >= visuals) {
+    --scene->first_static_geom_;
+  }
+  for (size_t i = 0; i < scene->objects_.size(); ++i) {
+    SceneObject& object = scene->objects_[i];
+    if (const auto& cloth = cloths[i]) {
+      const std::string last = std::to_string(cloth->count - 1);
+      for (const std::string& corner : {std::string("0_0"), "0_" + last, last + "_0", last + "_" + last}) {
+        object.keypoints.push_back(mj_name2id(model, mjOBJ_BODY, (object.name + "B" + corner).c_str()));
+      }
+      object.flat_diagonal = (cloth->count - 1) * cloth->spacing * std::sqrt(2.0);
+    }
+    if (options.robot && !object.fixed) {
+      object.grasp_weld = mj_name2id(model, mjOBJ_EQUALITY, ("grasp_" + object.name).c_str());
+    }
+    for (int jnt = 0; jnt < model->njnt; ++jnt) {
+      const char* jname = mj_id2name(model, mjOBJ_JOINT, jnt);
+      if (jname && std::string_view(jname).starts_with(object.name + "/")) {
+        object.joints.push_back(jnt);
+        object.link_welds.push_back(
+            options.robot ? mj_name2id(model, mjOBJ_EQUALITY, ("grasp_" + std::string(jname)).c_str()) : -1);
+      }
+    }
+  }
+  for (const Room& room : scene->rooms_) {
+    std::vector<int> floors;
+    for (size_t k = 0; k < room.rects.size(); ++k) {
+      floors.push_back(mj_name2id(model, mjOBJ_GEOM, ("floor_" + room.name + "_" + std::to_string(k)).c_str()));
+    }
+    scene->floor_geoms_.push_back(std::move(floors));
+  }
+  for (int l = 0; l < model->nlight; ++l) {
+    const char* lname = mj_id2name(model, mjOBJ_LIGHT, l);
+    if (lname && std::string_view(lname).starts_with("ceiling_")) scene->ceiling_lights_.push_back(l);
+  }
+  scene->overview_camera_ = mj_name2id(model, mjOBJ_CAMERA, "overview");
+  scene->camera_ = mj_name2id(model, mjOBJ_CAMERA, options.robot ? "head_camera" : "scene_camera");
+  if (scene->camera_ < 0) throw Error(path + ": the robot has no camera named 'head_camera'");
+  return scene;
+}
+
+Scene::~Scene() {
+  if (model_) mj_deleteModel(model_);
+}
+
+const SceneObject* Scene::find_object(std::string_view name) const {
+  for (const SceneObject& o : objects_) {
+    if (o.name == name) return &o;
+  }
+  return nullptr;
+}
+
+const Room* Scene::room_at(double x, double y) const {
+  for (const Room& room : rooms_) {
+    for (const auto& r : room.rects) {
+      if (x >= r[0] && x <= r[2] && y >= r[1] && y <= r[3]) return &room;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace chore

@@ -1,0 +1,197 @@
+#include "world/state_rules.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kSoakSeconds = 0.5;     // in water this long: saturated
+constexpr double kCoolingRate = 0.01;    // towards room temperature, per second
+
+// A soakable object overlapping the water of a container (`moved` has
+// `moved_box` instead of its box in the world).
+void soak(World& w, double dt, int moved, const Aabb* moved_box) {
+  std::map<int, ObjectState>& state_of = w.states().all_states();
+  const std::map<int, ObjectAbilities>& abilities_of = w.states().all_abilities();
+  const auto box = [&](int object) { return object == moved ? *moved_box : object_aabb(w, object); };
+  for (const auto& [container, ca] : abilities_of) {
+    const double level = state_of[container].liquid_level;
+    if (!ca.holds_liquid || level <= 0) continue;
+    const std::string& liquid = state_of[container].liquid;
+    Aabb water = box(container);
+    water.lo.head<2>().array() += 0.01;
+    water.hi.head<2>().array() -= 0.01;
+    water.hi.z() = water.lo.z() + level * (water.hi.z() - water.lo.z());
+    for (const auto& [object, oa] : abilities_of) {
+      if (object == container || !oa.soakable) continue;
+      if (box(object).overlaps(water)) {
+        double& soaked = state_of[object].soaked[liquid];
+        soaked = std::min(1.0, soaked + dt / kSoakSeconds);
+      }
+    }
+  }
+}
+
+// Whether a contact joins an object whose states are kept.
+bool acts_on(const ObjectStates& states, const World& w, const mjContact& con) {
+  const int o1 = w.scene().object_of_geom(con.geom1);
+  const int o2 = w.scene().object_of_geom(con.geom2);
+  return (o1 >= 0 && states.abilities(o1)) || (o2 >= 0 && states.abilities(o2));
+}
+
+// Cleaning, breaking, slicing: what one contact does to the objects it joins.
+void touch(ObjectStates& states, const World& w, const mjContact& con, double normal_force) {
+  const int o1 = w.scene().object_of_geom(con.geom1);
+  const int o2 = w.scene().object_of_geom(con.geom2);
+  const ObjectAbilities* a1 = o1 >= 0 ? states.abilities(o1) : nullptr;
+  const ObjectAbilities* a2 = o2 >= 0 ? states.abilities(o2) : nullptr;
+  std::map<int, ObjectState>& state_of = states.all_states();
+  for (const auto& [self, mine, other, theirs] :
+       {std::tuple{o1, a1, o2, a2}, std::tuple{o2, a2, o1, a1}}) {
+    if (!mine) continue;
+    ObjectState& s = state_of[self];
+    if (mine->breakable && normal_force > mine->break_force) s.broken = true;
+    if (mine->sliceable && theirs && theirs->slicer && normal_force > mine->slice_force) s.sliced = true;
+    if (mine->cleaning_tool && other >= 0 && theirs && theirs->covered) {
+      const Eigen::Vector3d p(con.pos[0], con.pos[1], con.pos[2]);
+      for (auto& [name, particles] : state_of[other].dirt) {
+        const Substance* sub = states.substance(name);
+        if (sub && sub->needs_soaked_tool &&
+            !(s.soaked.count("water") && s.soaked.at("water") >= ObjectStates::kSoakedLevel)) {
+          continue;
+        }
+        const Frame frame = object_frame(w, other);
+        std::erase_if(particles, [&](const Eigen::Vector3d& local) {
+          return (frame.to_world(local) - p).head<2>().norm() < ObjectStates::kCleaningRadius;
+        });
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void update_states_after_physics_step(World& w, double dt) {
+  ObjectStates& states = w.states();
+  if (states.all_states().empty()) return;
+  soak(w, dt, -1, nullptr);
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  for (int c = 0; c < d->ncon; ++c) {
+    if (!acts_on(states, w, d->contact[c])) continue;  // most contacts: the force is not worth computing
+    double force[6];
+    mj_contactForce(m, d, c, force);
+    touch(states, w, d->contact[c], std::abs(force[0]));
+  }
+}
+
+void update_states_at_motion_waypoint(World& w, double dt, int moved, const Aabb& moved_box,
+                                      const std::vector<mjContact>& moved_contacts) {
+  ObjectStates& states = w.states();
+  if (states.all_states().empty()) return;
+  soak(w, dt, moved, &moved_box);
+  for (const mjContact& con : moved_contacts) {
+    if (acts_on(states, w, con)) touch(states, w, con, 0.0);
+  }
+}
+
+void update_states_after_env_step(World& w, double dt) {
+  std::map<int, ObjectState>& state_of = w.states().all_states();
+  const std::map<int, ObjectAbilities>& abilities_of = w.states().all_abilities();
+  if (state_of.empty()) return;
+  // Toggling: the hand held at the toggle point (top centre) for a few steps.
+  if (const Robot* r = w.robot()) {
+    const double* hand = w.data()->site_xpos + 3 * r->gripper_site;
+    for (auto& [object, s] : state_of) {
+      if (!abilities_of.at(object).toggleable) continue;
+      const Aabb box = object_aabb(w, object);
+      const Eigen::Vector3d point(box.center().x(), box.center().y(), box.hi.z());
+      const bool near = (point - Eigen::Vector3d(hand[0], hand[1], hand[2])).norm() < ObjectStates::kToggleDistance;
+      s.toggle_steps = near ? s.toggle_steps + 1 : 0;
+      if (s.toggle_steps == ObjectStates::kToggleSteps) s.toggled = !s.toggled;
+    }
+  }
+  // Heat: each source in force pulls temperatures towards its own.
+  for (auto& [object, s] : state_of) {
+    if (!abilities_of.at(object).temperature) continue;
+    bool heated = false;
+    for (const auto& [source, sa] : abilities_of) {
+      for (const std::optional<ThermalSource>& t : {sa.heat_source, sa.cold_source}) {
+        if (!t || source == object) continue;
+        const ObjectState& ss = state_of.at(source);
+        if (t->requires_toggled_on && !ss.toggled) continue;
+        if (t->requires_closed && is_open(w, source)) continue;
+        const bool near = t->requires_inside
+                              ? inside(w, object, source)
+                              : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
+        if (!near) continue;
+        s.temperature += (t->temperature - s.temperature) * std::min(1.0, t->rate * dt);
+        heated = true;
+      }
+    }
+    if (!heated) s.temperature += (kRoomTemperature - s.temperature) * std::min(1.0, kCoolingRate * dt);
+    s.max_temperature = std::max(s.max_temperature, s.temperature);
+  }
+}
+
+void draw_states(const World& w, mjvScene* scene) {
+  const std::map<int, ObjectState>& state_of = w.states().all_states();
+  // OmniGibson's StatefulObject texture change: albedo = tint * (albedo + add),
+  // with the parameters of its states' get_texture_change_params (a colourless
+  // liquid such as water tints blue) and its priority frozen > burnt > cooked >
+  // soaked. Without it a soaked rag would look dry, and an image-based policy
+  // could not tell whether it has dipped.
+  struct TextureChange {
+    float add;
+    float tint[3];
+  };
+  constexpr TextureChange kFrozen{0.3f, {1, 1, 1}}, kBurnt{-0.3f, {1, 1, 1}},
+      kCooked{0.1f, {1.5f, 0.75f, 0.25f}}, kSoaked{0.1f, {0.5f, 0.5f, 1.5f}};
+  std::map<int, const TextureChange*> changes;
+  for (const auto& [object, state] : state_of) {
+    const bool wet = std::any_of(state.soaked.begin(), state.soaked.end(),
+                                 [&](const auto& liquid) { return soaked(w, object, liquid.first); });
+    const TextureChange* change = frozen(w, object)   ? &kFrozen
+                                  : burnt(w, object)  ? &kBurnt
+                                  : cooked(w, object) ? &kCooked
+                                  : wet               ? &kSoaked
+                                                      : nullptr;
+    if (change) changes[object] = change;
+  }
+  if (!changes.empty()) {
+    for (int i = 0; i < scene->ngeom; ++i) {
+      mjvGeom& g = scene->geoms[i];
+      if (g.objtype != mjOBJ_GEOM) continue;
+      const auto it = changes.find(w.scene().object_of_geom(g.objid));
+      if (it == changes.end()) continue;
+      for (int c = 0; c < 3; ++c) g.rgba[c] = std::clamp(it->second->tint[c] * (g.rgba[c] + it->second->add), 0.0f, 1.0f);
+    }
+  }
+
+  constexpr float kRadius = 0.03f, kHalfThickness = 0.001f;
+  const float stain[4] = {0.12f, 0.09f, 0.05f, 1.0f}, dust[4] = {0.78f, 0.76f, 0.70f, 1.0f};
+  for (const auto& [object, state] : state_of) {
+    for (const auto& [name, particles] : state.dirt) {
+      const float* rgba = name == "dust" ? dust : stain;
+      const Frame frame = object_frame(w, object);
+      for (const Eigen::Vector3d& local : particles) {
+        if (scene->ngeom >= scene->maxgeom) return;
+        const Eigen::Vector3d p = frame.to_world(local) + Eigen::Vector3d(0, 0, kHalfThickness);
+        const mjtNum size[3] = {kRadius, kHalfThickness, 0};
+        const mjtNum pos[3] = {p.x(), p.y(), p.z()};
+        mjvGeom* g = scene->geoms + scene->ngeom++;
+        mjv_initGeom(g, mjGEOM_CYLINDER, size, pos, nullptr, rgba);
+        g->category = mjCAT_DECOR;
+        g->modelrbound = kRadius;  // lets the renderer cull it like a model geom
+      }
+    }
+  }
+}
+
+}  // namespace chore

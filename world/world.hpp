@@ -1,0 +1,149 @@
+// One simulated world: a private copy of the scene's model (MuJoCo 2.2.2 keeps
+// eq_active and light_active on mjModel, which grasping and lighting change)
+// and its mjData. Physics runs at 1/120 s; assistive grasping runs after every
+// physics step, as OmniGibson's does.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "world/appearance.hpp"
+#include "world/object_states.hpp"
+#include "world/robot.hpp"
+#include "world/scene.hpp"
+#include "world/sleeping.hpp"
+
+struct mjData_;
+
+namespace chore {
+
+class World {
+ public:
+  // Objects heavier than this (kg) are refused by the assistive grasp (OmniGibson's limit).
+  static constexpr double kGraspMassLimit = 10.0;
+
+  explicit World(std::shared_ptr<const Scene> scene);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const Scene& scene() const { return *scene_; }
+  const mjModel_* model() const { return model_; }
+  mjModel_* model() { return model_; }
+  const mjData_* data() const { return data_; }
+  mjData_* data() { return data_; }
+  // nullptr when the scene was built without a robot.
+  const Robot* robot() const { return robot_ ? &*robot_ : nullptr; }
+
+  // Back to the scene's initial state with the robot's base at `base`, arm
+  // tucked, gripper open, no grasp, zero velocities.
+  void reset(const Pose2& base);
+  void set_lighting(Lighting lighting);
+  // Domain randomisation (world/appearance.hpp): the scene's lights and
+  // colours perturbed by draws from `rng`; all-zero spreads restore them.
+  void randomize_appearance(const AppearanceRandomization& r, Rng& rng);
+  // Changes whenever the model's textures do (0: the scene's own), so that a
+  // renderer knows when to upload them again.
+  int texture_version() const { return texture_version_; }
+
+  // Robot commands, held until changed. Base velocity is in the robot frame
+  // (m/s, m/s, rad/s) and is re-projected to the world every physics step.
+  void command_base_velocity(double forward, double left, double turn);
+  // Position target of an actuated joint, clamped to its range, and the
+  // velocity it is moving at (torso and arm): the drive feeds forward the
+  // force the joint's damping takes at that velocity, as it does gravity, so
+  // the servo corrects only the tracking error (a trajectory's speed is not
+  // capped at force limit / damping). 0: holding still.
+  void command_position(const RobotJoint& joint, double target, double velocity = 0);
+  double commanded_position(const RobotJoint& joint) const;
+
+  struct StepReport {
+    bool diverged = false;      // MuJoCo found bad accelerations and reset the state
+    bool grasp_refused = false; // the gripper closed on an object over the mass limit
+  };
+  // Runs `substeps` physics steps of 1/120 s.
+  StepReport step(int substeps);
+
+  // A scratch mjData for what-if queries (the primitives' collision checks),
+  // made on first use and kept: mj_makeData of a large scene costs
+  // milliseconds. Its contents are whatever the last user left.
+  mjData_* scratch() const;
+
+  // Extended object states (temperature, soaked, dirt, toggles, ...).
+  ObjectStates& states() { return states_; }
+  const ObjectStates& states() const { return states_; }
+  // Off: states stay as they are (Table A.10's "- Object State Update" row).
+  void set_state_updates(bool enabled) { state_updates_ = enabled; }
+  bool state_updates() const { return state_updates_; }
+
+  // Sleeping (world/sleeping.hpp), on unless turned off: physics skips
+  // the collisions of objects at rest away from the robot and holds them
+  // still; their resting contacts stay in the contact list. Turning it off
+  // wakes them all and recomputes the contacts (mj_forward). reset() wakes
+  // everyone and keeps the setting.
+  void set_sleeping(bool enabled);
+  bool sleeping() const { return sleeping_on_; }
+  // Objects asleep after the last step.
+  int sleepers() const { return sleeping_on_ ? sleeping_->sleepers() : 0; }
+  bool asleep(int object) const { return sleeping_on_ && sleeping_->asleep(object); }
+
+  // Index into scene().objects() of the object held by the gripper, or -1.
+  // A drawer or door held by its handle counts as grasping its object.
+  int grasped_object() const { return grasped_; }
+  // The body the gripper holds (an object's root or an articulated link), or -1.
+  int grasped_body() const;
+  // The free object the hand carries (held by its root, not a drawer's handle), or -1.
+  int carried_object() const;
+  // The equality constraint of the current grasp (its eq_data holds the grip), or -1.
+  int grasp_weld() const { return grasped_weld_; }
+
+  // Kinematic move (symbolic primitives): the base, torso and arm jump to the
+  // given joint values, their controllers hold them there, velocities are zero,
+  // and a held object moves with the gripper. Contacts are recomputed (those
+  // of the awake objects while sleeping is on).
+  void set_robot_configuration(const Pose2& base, const double* torso_and_arm);
+  // Kinematic head turn (symbolic primitives), clamped to the joints' ranges:
+  // its controllers hold it there. The head touches nothing: only the poses
+  // of bodies and cameras are recomputed.
+  void set_head(double pan, double tilt);
+  // Moves the held free object, in `d` after mj_kinematics, to where the grasp
+  // holds it relative to the gripper; true if it moved one (then kinematics
+  // must run again).
+  bool carry_grasped(mjData_* d) const;
+  // Gripper command: open (the assistive grasp releases) or closed.
+  void command_gripper(bool open);
+  // Symbolic grasping: attaches free object `object` to the hand where it is
+  // now, as the assistive grasp would; false (nothing attached) over the mass limit.
+  bool hold(int object);
+  // Lets go of whatever the hand holds.
+  void release();
+  Pose2 base_pose() const;
+  double time() const;
+
+ private:
+  void update_grasp(StepReport& report);
+  // Joint values and controller targets of a kinematic move, the load carried, kinematics.
+  void pose_robot(const Pose2& base, const double* torso_and_arm);
+  // One MuJoCo stage (mj_step, mj_forward, mj_collision) with the sleepers
+  // masked and the static geoms left out of its per-geom loops.
+  void run_masked(void (*stage)(const mjModel_*, mjData_*));
+  void attach(int object, int weld);
+
+  std::shared_ptr<const Scene> scene_;
+  mjModel_* model_ = nullptr;
+  mjData_* data_ = nullptr;
+  std::optional<Robot> robot_;
+  double base_command_[3] = {0, 0, 0};
+  int grasped_ = -1, grasped_weld_ = -1;
+  ObjectStates states_;
+  bool state_updates_ = true;
+  std::optional<Sleeping> sleeping_;  // made with the world: it needs the scene and model
+  bool sleeping_on_ = true;
+  int texture_version_ = 0;
+  mutable mjData_* scratch_ = nullptr;
+  std::vector<double> payload_jacobian_;
+  std::vector<double> velocity_command_;  // per actuator, m/s or rad/s  // 3 x nv, for the load's gravity compensation
+};
+
+}  // namespace chore
