@@ -5,7 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "test_util.hpp"
-#include "training/plot.hpp"
+#include "app/plot.hpp"
 
 namespace chore {
 namespace {

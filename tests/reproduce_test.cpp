@@ -13,7 +13,8 @@
 #include <sstream>
 #include <string>
 
-#include "training/reproduce.hpp"
+#include "app/baselines_report.hpp"
+#include "app/reproduce.hpp"
 
 namespace chore {
 namespace {

@@ -35,7 +35,7 @@ BENCHMARK(BM_SacUpdate)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterati
 }  // namespace chore
 
 int main(int argc, char** argv) {
-  // As the chore executable does (training/main.cpp): freed tensors stay
+  // As the chore executable does (app/main.cpp): freed tensors stay
   // mapped, else each update pays page faults for its fresh batches.
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);

@@ -19,7 +19,7 @@
 #include "policies/networks.hpp"
 #include "test_util.hpp"
 #include "training/checkpoint.hpp"
-#include "training/evaluate.hpp"
+#include "policies/evaluate.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {

@@ -10,7 +10,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "test_util.hpp"
-#include "training/video.hpp"
+#include "app/video.hpp"
 
 namespace chore {
 namespace {

@@ -1,4 +1,4 @@
-#include "training/train_command.hpp"
+#include "app/train_command.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "training/evaluate.hpp"
+#include "policies/evaluate.hpp"
 
 #include <algorithm>
 #include <chrono>

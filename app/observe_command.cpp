@@ -1,4 +1,4 @@
-#include "training/observe_command.hpp"
+#include "app/observe_command.hpp"
 
 #include <algorithm>
 #include <cmath>

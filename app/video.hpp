@@ -15,7 +15,7 @@
 #include <ostream>
 #include <string>
 
-#include "training/evaluate.hpp"
+#include "policies/evaluate.hpp"
 
 namespace chore {
 

@@ -1,4 +1,4 @@
-#include "training/activity_commands.hpp"
+#include "app/activity_commands.hpp"
 
 #include <chrono>
 

@@ -10,16 +10,16 @@
 #include <tuple>
 
 #include "base/error.hpp"
-#include "training/activity_commands.hpp"
-#include "training/bench.hpp"
+#include "app/activity_commands.hpp"
+#include "app/bench.hpp"
 #include "training/checkpoint.hpp"
-#include "training/evaluate.hpp"
-#include "training/expert_command.hpp"
-#include "training/observe_command.hpp"
-#include "training/plot.hpp"
-#include "training/reproduce.hpp"
-#include "training/train_command.hpp"
-#include "training/video.hpp"
+#include "policies/evaluate.hpp"
+#include "app/expert_command.hpp"
+#include "app/observe_command.hpp"
+#include "app/plot.hpp"
+#include "app/reproduce.hpp"
+#include "app/train_command.hpp"
+#include "app/video.hpp"
 
 namespace {
 

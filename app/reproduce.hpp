@@ -12,11 +12,11 @@
 // child processes of this executable, `jobs` at a time, one thread each.
 //
 // At the end (and with --report-only, from whatever cells are done) it writes
-// OUT/baselines.json and OUT/baselines.md (the table beside the paper's, the
-// failure breakdown, wall-clock per run, the machine and the commit),
-// OUT/curves/ACTIVITY.png (Q over training steps, mean and spread over seeds
-// per method) and OUT/videos/ACTIVITY.mp4 (the best policy's episode at
-// evaluation seed 0).
+// OUT/baselines.json and OUT/baselines.md (baselines_report.hpp: the table
+// beside the paper's, the failure breakdown, wall-clock per run, the machine
+// and the commit), OUT/curves/ACTIVITY.png (Q over training steps, mean and
+// spread over seeds per method) and OUT/videos/ACTIVITY.mp4 (the best policy's
+// episode at evaluation seed 0).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -51,11 +51,5 @@ struct ReproduceOptions {
 // content. chore::Error for bad options; a failed run is reported (its log's
 // last lines) and left out of the table, not thrown.
 nlohmann::json reproduce(const ReproduceOptions& options, std::ostream& log);
-
-// The paper's Table A.13 (success score Q, mean and std over training seeds).
-struct PaperQ {
-  double mean, std;
-};
-PaperQ paper_q(const std::string& method, const std::string& activity);
 
 }  // namespace chore

@@ -1,4 +1,4 @@
-#include "training/bench.hpp"
+#include "app/bench.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "training/expert_command.hpp"
+#include "app/expert_command.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -1,4 +1,4 @@
-#include "training/video.hpp"
+#include "app/video.hpp"
 
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-#include "training/plot.hpp"
+#include "app/plot.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,313 @@
+#include "app/baselines_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "app/plot.hpp"
+#include "base/error.hpp"
+#include "base/json_file.hpp"
+#include "world/scene.hpp"
+
+namespace chore {
+namespace fs = std::filesystem;
+namespace {
+
+std::string fixed(double v, int digits = 2) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+// The paper's table (assets/paper/table_a13.json), read once.
+const nlohmann::json& paper_table() {
+  static const nlohmann::json table = read_json_file(default_assets_dir() + "/paper/table_a13.json");
+  return table;
+}
+
+// The first line a command prints, or "" (machine and commit for the report).
+std::string first_line_of(const std::string& command) {
+  std::string out;
+  if (FILE* p = popen(command.c_str(), "r")) {
+    char buffer[256];
+    if (fgets(buffer, sizeof buffer, p)) out = buffer;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+nlohmann::json machine() {
+  const std::string cpu = first_line_of("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'");
+  const std::string memory_kb = first_line_of("grep -m1 MemTotal /proc/meminfo | tr -s ' ' | cut -d' ' -f2");
+  const double gib = memory_kb.empty() ? 0 : std::stod(memory_kb) / (1024.0 * 1024.0);
+  const std::string source = fs::path(CHORE_SOURCE_DIR).string();
+  const std::string commit = first_line_of("git -C '" + source + "' rev-parse --short HEAD 2>/dev/null");
+  const std::string dirty = first_line_of("git -C '" + source + "' status --porcelain --untracked-files=no 2>/dev/null");
+  return {{"cpu", cpu.empty() ? "unknown" : cpu},
+          {"cores", std::thread::hardware_concurrency()},
+          {"memory_gib", std::round(gib * 10) / 10},
+          {"commit", commit.empty() ? "unknown" : commit},
+          {"local_changes", !dirty.empty()}};
+}
+
+struct Stat {
+  double mean = 0, std = 0;
+  int n = 0;
+};
+Stat mean_std(const std::vector<double>& v) {
+  Stat s;
+  s.n = static_cast<int>(v.size());
+  if (v.empty()) return s;
+  for (double x : v) s.mean += x;
+  s.mean /= static_cast<double>(v.size());
+  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+  s.std = std::sqrt(s.std / static_cast<double>(v.size()));  // population std, over training seeds
+  return s;
+}
+nlohmann::json to_json(const Stat& s) { return {{"mean", s.mean}, {"std", s.std}, {"runs", s.n}}; }
+std::string format(const Stat& s) { return s.n == 0 ? "-" : fixed(s.mean) + " ± " + fixed(s.std); }
+
+}  // namespace
+
+nlohmann::json baselines_report(const std::vector<TableCell>& cells, const ReproduceOptions& o, std::ostream& log) {
+  const fs::path out(o.out);
+  nlohmann::json rows = nlohmann::json::array(), runs = nlohmann::json::array(), missing = nlohmann::json::array();
+  std::map<std::pair<std::string, std::string>, std::vector<nlohmann::json>> by;  // (activity, method) -> cells
+  double train_s = 0, eval_s = 0;
+  for (const TableCell& c : cells) {
+    if (!c.done) {
+      missing.push_back(c.label());
+      continue;
+    }
+    nlohmann::json summary = read_json_file((c.dir / "cell.json").string());
+    summary["dir"] = c.dir.string();
+    train_s += summary["train_wall_s"].get<double>();
+    eval_s += summary["eval_wall_s"].get<double>();
+    runs.push_back({{"activity", c.activity}, {"method", c.method}, {"seed", c.seed},
+                    {"train_wall_s", summary["train_wall_s"]}, {"eval_wall_s", summary["eval_wall_s"]},
+                    {"q_seed0", summary["seed0"]["q"]["mean"]},
+                    {"success_seed0", summary["seed0"]["success_rate"]["mean"]},
+                    {"q_generalisation", summary["generalisation"]["q"]["mean"]},
+                    {"success_generalisation", summary["generalisation"]["success_rate"]["mean"]},
+                    {"dir", c.dir.string()}});
+    by[{c.activity, c.method}].push_back(std::move(summary));
+  }
+
+  // Per (activity, method): mean +- std over training seeds; failures summed.
+  for (const std::string& a : o.activities) {
+    for (const std::string& m : o.methods) {
+      const auto& done = by[{a, m}];
+      std::vector<double> q0, s0, qg, sg;
+      nlohmann::json failed = nlohmann::json::object(), ended = nlohmann::json::object();
+      for (const nlohmann::json& c : done) {
+        q0.push_back(c["seed0"]["q"]["mean"]);
+        s0.push_back(c["seed0"]["success_rate"]["mean"]);
+        qg.push_back(c["generalisation"]["q"]["mean"]);
+        sg.push_back(c["generalisation"]["success_rate"]["mean"]);
+        for (const char* key : {"seed0", "generalisation"}) {
+          for (const auto& [k, v] : c[key]["failed_primitives"].items()) failed[k] = failed.value(k, 0) + v.get<int>();
+          for (const auto& [k, v] : c[key]["episodes_ended_by"].items()) ended[k] = ended.value(k, 0) + v.get<int>();
+        }
+      }
+      const PaperQ paper = paper_q(m, a);
+      rows.push_back({{"activity", a}, {"method", m}, {"runs", done.size()},
+                      {"q_seed0", to_json(mean_std(q0))}, {"success_seed0", to_json(mean_std(s0))},
+                      {"q_generalisation", to_json(mean_std(qg))},
+                      {"success_generalisation", to_json(mean_std(sg))},
+                      {"paper_q", {{"mean", paper.mean}, {"std", paper.std}}},
+                      {"failed_primitives", failed}, {"episodes_ended_by", ended}});
+    }
+  }
+
+  // Curves: Q over training steps per activity, the methods overlaid.
+  nlohmann::json curves = nlohmann::json::object();
+  fs::create_directories(out / "curves");
+  for (const std::string& a : o.activities) {
+    PlotOptions plot;
+    for (const TableCell& c : cells) {
+      const fs::path metrics = c.dir / "metrics.csv";
+      // A run with at least one report row (a header alone has nothing to draw).
+      if (c.activity == a && c.done && last_metric(metrics, "env_steps", -1) >= 0) {
+        plot.runs.push_back(method_title(c.method) + "=" + metrics.string());
+      }
+    }
+    if (plot.runs.empty()) continue;
+    plot.out = (out / "curves" / (a + ".png")).string();
+    plot.y = "mean_q";
+    plot.title = activity_title(a) + ": success score Q while training (" + o.mode + " primitives)";
+    try {
+      plot_curves(plot);
+      curves[a] = plot.out;
+    } catch (const Error& e) {
+      log << "reproduce: no curve for " << a << ": " << e.what() << "\n";
+    }
+  }
+
+  nlohmann::json result = {
+      {"protocol", {{"activities", o.activities}, {"methods", o.methods}, {"training_seeds", o.seeds},
+                    {"steps", o.steps}, {"mode", o.mode}, {"eval_seed", 0}, {"eval_episodes", o.eval_episodes},
+                    {"eval_policy", "sampled"},
+                    {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
+                    {"generalisation_episodes_per_seed", 1}, {"settings", o.settings}}},
+      {"command", o.command_line},
+      {"machine", machine()},
+      {"rows", rows},
+      {"runs", runs},
+      {"missing", missing},
+      {"curves", curves},
+      {"train_wall_s", train_s},
+      {"eval_wall_s", eval_s}};
+  return result;
+}
+
+
+std::string method_title(const std::string& method) {
+  return paper_table()["methods"].contains(method) ? paper_table()["methods"][method]["title"].get<std::string>()
+                                                   : method;
+}
+
+std::string activity_title(const std::string& activity) {
+  return paper_table()["activities"].value(activity, activity);
+}
+
+PaperQ paper_q(const std::string& method, const std::string& activity) {
+  const nlohmann::json& methods = paper_table()["methods"];
+  if (!methods.contains(method) || !methods[method]["q"].contains(activity)) return {std::nan(""), std::nan("")};
+  const nlohmann::json& q = methods[method]["q"][activity];
+  return {q.at(0).get<double>(), q.at(1).get<double>()};
+}
+
+std::string format_hours(double seconds) {
+  char text[32];
+  if (seconds >= 3600) {
+    std::snprintf(text, sizeof text, "%.2f h", seconds / 3600);
+  } else {
+    std::snprintf(text, sizeof text, "%.1f min", seconds / 60);
+  }
+  return text;
+}
+
+double last_metric(const fs::path& path, const std::string& column, double fallback) {
+  std::ifstream in(path);
+  std::string header, line, last;
+  if (!std::getline(in, header)) return fallback;
+  while (std::getline(in, line)) {
+    if (!line.empty()) last = line;
+  }
+  if (last.empty()) return fallback;
+  std::vector<std::string> names, values;
+  for (std::stringstream s(header); std::getline(s, line, ',');) names.push_back(line);
+  for (std::stringstream s(last); std::getline(s, line, ',');) values.push_back(line);
+  const auto it = std::find(names.begin(), names.end(), column);
+  const size_t k = static_cast<size_t>(it - names.begin());
+  if (it == names.end() || k >= values.size()) return fallback;
+  return std::stod(values[k]);
+}
+
+std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& o) {
+  std::ostringstream md;
+  const nlohmann::json& m = r["machine"];
+  md << "# BEHAVIOR-1K baselines (Table A.13), reproduced with chore\n\n"
+     << "Written by `scripts/reproduce` from the runs under `" << (fs::path(o.out) / "runs" / o.mode).string()
+     << "`; do not edit by hand.\n\n"
+     << "- Command: `" << r["command"].get<std::string>() << "`\n"
+     << "- Code: commit " << m["commit"].get<std::string>()
+     << (m["local_changes"].get<bool>() ? " with local changes" : "") << "\n"
+     << "- Machine: " << m["cpu"].get<std::string>() << ", " << m["cores"] << " cores, " << m["memory_gib"]
+     << " GiB, no GPU\n"
+     << "- Protocol: " << o.steps << " training steps per run, training seeds";
+  for (uint64_t s : o.seeds) md << " " << s;
+  md << "; " << o.mode << " primitive execution; evaluation at seed 0 (" << o.eval_episodes
+     << " episodes) and over seeds " << o.generalisation_first << "-" << o.generalisation_last
+     << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as in "
+        "training. Mean ± std over the training seeds.\n";
+  if (!o.settings.empty()) {
+    md << "- Settings beyond the paper's (`chore train --set`, ppo.* for RL-Prim. and RL-Prim.Hist., sac.* for RL-VMC):";
+    for (const std::string& s : o.settings) md << " `" << s << "`";
+    md << "\n";
+  }
+  md << "- Wall-clock: training " << format_hours(r["train_wall_s"].get<double>()) << " and evaluation "
+     << format_hours(r["eval_wall_s"].get<double>()) << " summed over runs (one core each, " << o.jobs
+     << " at a time)\n\n";
+
+  const auto table = [&](const std::string& title, const std::string& key, bool with_paper) {
+    md << "## " << title << "\n\n| Method |";
+    for (const std::string& a : o.activities) md << " " << activity_title(a) << " |";
+    md << "\n|---|";
+    for (size_t i = 0; i < o.activities.size(); ++i) md << "---|";
+    md << "\n";
+    for (const std::string& method : o.methods) {
+      md << "| " << method_title(method) << " |";
+      for (const std::string& a : o.activities) {
+        for (const nlohmann::json& row : r["rows"]) {
+          if (row["activity"] != a || row["method"] != method) continue;
+          Stat s{row[key]["mean"].get<double>(), row[key]["std"].get<double>(), row[key]["runs"].get<int>()};
+          md << " " << (s.n ? "**" + format(s) + "**" : std::string("not run"));
+          if (s.n && s.n < static_cast<int>(o.seeds.size())) md << " (" << s.n << " of " << o.seeds.size() << " seeds)";
+          if (with_paper && row["paper_q"]["mean"].is_number() && !std::isnan(row["paper_q"]["mean"].get<double>())) {
+            md << " (paper " << fixed(row["paper_q"]["mean"].get<double>()) << " ± "
+               << fixed(row["paper_q"]["std"].get<double>()) << ")";
+          }
+          md << " |";
+        }
+      }
+      md << "\n";
+    }
+    md << "\n";
+  };
+  table("Success score Q at evaluation seed 0 (chore, and the paper's Table A.13)", "q_seed0", true);
+  table("Success rate at evaluation seed 0", "success_seed0", false);
+  table("Success score Q over fresh instances (seeds " + std::to_string(o.generalisation_first) + "-" +
+            std::to_string(o.generalisation_last) + ")",
+        "q_generalisation", false);
+
+  md << "## How episodes ended and which primitives failed (all evaluation episodes, summed over runs)\n\n"
+     << "| Activity | Method | success | policy failure (same invalid action 3x) | time limit | motion planning "
+        "| grasp | place | precondition |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const nlohmann::json& row : r["rows"]) {
+    if (row["runs"].get<int>() == 0) continue;
+    const nlohmann::json& e = row["episodes_ended_by"];
+    const nlohmann::json& f = row["failed_primitives"];
+    md << "| " << activity_title(row["activity"]) << " | " << method_title(row["method"]) << " | "
+       << e.value("success", 0) << " | " << e.value("policy_failure", 0) << " | " << e.value("time_limit", 0)
+       << " | " << f.value("motion_planning_failure", 0) << " | " << f.value("grasp_failure", 0) << " | "
+       << f.value("place_failure", 0) << " | " << f.value("precondition_failure", 0) << " |\n";
+  }
+  md << "\nRL-VMC acts in the low-level action space: it has no primitives to fail.\n\n";
+
+  md << "## Runs\n\n| Activity | Method | Seed | Train wall-clock | Eval wall-clock | Q seed 0 | Q fresh |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const nlohmann::json& run : r["runs"]) {
+    md << "| " << activity_title(run["activity"]) << " | " << method_title(run["method"]) << " | "
+       << run["seed"] << " | " << format_hours(run["train_wall_s"].get<double>()) << " | "
+       << format_hours(run["eval_wall_s"].get<double>()) << " | " << fixed(run["q_seed0"].get<double>()) << " | "
+       << fixed(run["q_generalisation"].get<double>()) << " |\n";
+  }
+  if (!r["missing"].empty()) {
+    md << "\nNot done yet (run `scripts/reproduce` with the same options to continue):";
+    for (const auto& c : r["missing"]) md << " " << c.get<std::string>() << ";";
+    md << "\n";
+  }
+  if (!r["curves"].empty()) {
+    md << "\n## Learning curves\n\n";
+    for (const auto& [a, file] : r["curves"].items()) {
+      md << "![" << activity_title(a) << "](" << fs::relative(file.get<std::string>(), o.out).string() << ")\n";
+    }
+  }
+  if (!r["videos"].empty()) {
+    md << "\n## Videos (the best run's policy at evaluation seed 0)\n\n";
+    for (const auto& [a, v] : r["videos"].items()) {
+      md << "- " << activity_title(a) << ": [" << fs::relative(v["file"].get<std::string>(), o.out).string()
+         << "](" << fs::relative(v["file"].get<std::string>(), o.out).string() << ") ("
+         << method_title(v["method"]) << ", seed " << v["seed"] << ")\n";
+    }
+  }
+  return md.str();
+}
+
+}  // namespace chore

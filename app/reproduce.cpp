@@ -1,0 +1,382 @@
+#include "app/reproduce.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "app/baselines_report.hpp"
+#include "app/train_command.hpp"
+#include "base/error.hpp"
+#include "base/json_file.hpp"
+#include "tasks/activity.hpp"
+#include "training/checkpoint.hpp"
+#include "training/trainer.hpp"
+
+extern char** environ;
+
+namespace chore {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const std::array<std::string, 3> kMethods = {"rl-vmc", "rl-prim", "rl-prim-hist"};
+
+// Written whole or not at all: a stop mid-write leaves the old file.
+void write_text(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << text;
+    if (!out) throw Error(tmp.string() + ": cannot write");
+  }
+  fs::rename(tmp, path);
+}
+
+std::string tail(const fs::path& path, size_t lines) {
+  std::ifstream in(path);
+  std::deque<std::string> last;
+  for (std::string line; std::getline(in, line);) {
+    last.push_back(line);
+    if (last.size() > lines) last.pop_front();
+  }
+  std::string out;
+  for (const std::string& l : last) out += l + "\n";
+  return out;
+}
+
+using Cell = TableCell;
+
+// The --set settings that reach `method`'s trainer.
+std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
+  std::vector<std::string> kept;
+  for (const std::string& s : settings) {
+    if (!s.starts_with(uses_sac(method) ? "ppo." : "sac.")) kept.push_back(s);
+  }
+  return kept;
+}
+
+// The cell's `chore train` (a new run).
+TrainOptions train_options(const Cell& c, const ReproduceOptions& o) {
+  TrainOptions t;
+  t.activity = c.activity;
+  t.baseline = c.method;
+  t.seed = c.seed;
+  t.steps = o.steps;
+  t.mode = o.mode;
+  t.threads = 1;
+  t.out = c.dir.string();
+  t.settings = settings_for(c.method, o.settings);
+  return t;
+}
+
+// What a finished cell must match to be skipped (settings only where given,
+// so cells from before they existed still match).
+nlohmann::json cell_spec(const Cell& c, const ReproduceOptions& o) {
+  nlohmann::json spec = {{"activity", c.activity}, {"method", c.method}, {"seed", c.seed}, {"steps", o.steps},
+                         {"mode", o.mode}, {"eval_episodes", o.eval_episodes}, {"eval_policy", "sampled"},
+                         {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
+  if (const auto settings = settings_for(c.method, o.settings); !settings.empty()) spec["settings"] = settings;
+  return spec;
+}
+
+// A cell's checkpoint is resumed only if it is the run these options would
+// start (all but the step count): other settings or code defaults mean another run.
+void check_resumable(const Cell& c, const ReproduceOptions& o) {
+  const fs::path checkpoint = c.dir / "checkpoint.pt";
+  nlohmann::json saved;
+  try {
+    // Read back through today's reader: fields added since take their defaults.
+    saved = to_json(train_config_from_json(read_checkpoint(checkpoint.string()).meta.at("config")));
+  } catch (const std::exception&) {
+    return;  // unreadable: the run fails on it and the table reports that
+  }
+  nlohmann::json wanted = to_json(new_run_config(train_options(c, o)));
+  saved.erase("total_steps");
+  wanted.erase("total_steps");
+  if (saved == wanted) return;
+  std::string differs;
+  for (const nlohmann::json& op : nlohmann::json::diff(saved, wanted)) {
+    differs += (differs.empty() ? "" : ", ") + op.at("path").get<std::string>().substr(1);
+  }
+  throw Error("reproduce: " + checkpoint.string() + " is a run with other settings (" + differs +
+              ") than these options; remove it or give another --out");
+}
+
+bool cell_done(const Cell& c, const ReproduceOptions& o) {
+  const fs::path path = c.dir / "cell.json";
+  if (!fs::exists(path)) return false;
+  try {
+    return read_json_file(path.string())["spec"] == cell_spec(c, o);
+  } catch (const Error&) {
+    return false;  // unreadable: run it again
+  }
+}
+
+// A child process of this executable: `args` after the program name, stdout
+// to `out` (truncated) and stderr appended to `log`.
+pid_t spawn(const std::vector<std::string>& args, const fs::path& out, const fs::path& log) {
+  static const std::string self = fs::read_symlink("/proc/self/exe").string();
+  std::vector<std::string> all = {self};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) throw Error("reproduce: cannot start " + self + ": " + std::strerror(error));
+  return pid;
+}
+
+// A cell's work, one child after another: train (or resume), evaluate at the
+// paper's seed, evaluate over the generalisation seeds, then cell.json.
+class CellRun {
+ public:
+  CellRun(Cell cell, const ReproduceOptions& o) : cell_(std::move(cell)), o_(o) {}
+  const Cell& cell() const { return cell_; }
+
+  // Starts the next child; false when the cell has nothing left to run.
+  // `what` says what the child does.
+  bool start_next(std::string& what) {
+    const fs::path log = cell_.dir / "train.log";
+    const std::string range = std::to_string(o_.generalisation_first) + "-" + std::to_string(o_.generalisation_last);
+    const std::string steps = std::to_string(o_.steps);
+    switch (stage_++) {
+      case 0:
+        what = "training (" + log.string() + ")";
+        started_ = Clock::now();
+        if (fs::exists(cell_.dir / "checkpoint.pt")) {
+          pid_ = spawn({"train", "--resume", cell_.dir.string(), "--steps", steps}, "/dev/null", log);
+        } else {
+          const TrainOptions t = train_options(cell_, o_);
+          std::vector<std::string> args = {"train", "--activity", t.activity, "--baseline", t.baseline, "--seed",
+                                           std::to_string(t.seed), "--steps", steps, "--mode", t.mode,
+                                           "--threads", std::to_string(t.threads), "--out", t.out};
+          for (const std::string& setting : t.settings) args.insert(args.end(), {"--set", setting});
+          pid_ = spawn(args, "/dev/null", log);
+        }
+        return true;
+      case 1:
+        what = "evaluating at seed 0";
+        eval_started_ = Clock::now();
+        evaluate("0-0", o_.eval_episodes, "eval_seed0.json");
+        return true;
+      case 2:
+        what = "evaluating on seeds " + range;
+        fs::rename(cell_.dir / "eval_seed0.json.part", cell_.dir / "eval_seed0.json");
+        evaluate(range, 1, "eval_generalisation.json");
+        return true;
+      case 3: {
+        fs::rename(cell_.dir / "eval_generalisation.json.part", cell_.dir / "eval_generalisation.json");
+        nlohmann::json summary = {
+            {"spec", cell_spec(cell_, o_)},
+            {"train_wall_s", last_metric(cell_.dir / "metrics.csv", "wall_s", 0.0)},
+            {"eval_wall_s", std::chrono::duration<double>(Clock::now() - eval_started_).count()},
+            {"seed0", read_json_file((cell_.dir / "eval_seed0.json").string()).at(0)},
+            {"generalisation", read_json_file((cell_.dir / "eval_generalisation.json").string()).at(0)}};
+        // The per-episode lists stay in the eval files; the summary keeps the totals.
+        for (const char* key : {"seed0", "generalisation"}) {
+          summary[key].erase("per_episode");
+          summary[key].erase("per_seed");
+        }
+        write_text(cell_.dir / "cell.json", summary.dump(2) + "\n");
+        return false;
+      }
+      default:
+        return false;
+    }
+  }
+  pid_t pid() const { return pid_; }
+  // The log of the child now running, for a failure's report.
+  fs::path current_log() const { return cell_.dir / (stage_ <= 1 ? "train.log" : "eval.log"); }
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - started_).count(); }
+
+ private:
+  // `chore eval` of the run's checkpoint, sampling, its JSON to `file`.part.
+  void evaluate(const std::string& seeds, int episodes, const std::string& file) {
+    pid_ = spawn({"eval", "--checkpoint", (cell_.dir / "checkpoint.pt").string(), "--sample", "--seeds", seeds,
+                  "--episodes", std::to_string(episodes), "--threads", "1", "--json"},
+                 cell_.dir / (file + ".part"), cell_.dir / "eval.log");
+  }
+
+  Cell cell_;
+  const ReproduceOptions& o_;
+  int stage_ = 0;
+  pid_t pid_ = -1;
+  Clock::time_point started_, eval_started_;
+};
+
+void validate(const ReproduceOptions& o) {
+  if (o.activities.empty() || o.methods.empty() || o.seeds.empty()) {
+    throw Error("reproduce: give at least one activity, method and seed");
+  }
+  for (const std::string& m : o.methods) {
+    if (std::find(kMethods.begin(), kMethods.end(), m) == kMethods.end()) {
+      throw Error("reproduce: unknown method '" + m + "' (rl-vmc, rl-prim, rl-prim-hist)");
+    }
+  }
+  for (const std::string& a : o.activities) {
+    if (a.empty() || a.find('/') != std::string::npos || a.ends_with(".bddl")) {
+      throw Error("reproduce: '" + a + "': give activities by name (a run folder is named after it)");
+    }
+    resolve_activity_path(a);  // throws naming the known ones
+  }
+  if (o.mode != "physical" && o.mode != "symbolic") throw Error("reproduce: --mode is physical or symbolic");
+  if (o.steps < 1) throw Error("reproduce: --steps must be at least 1");
+  if (o.jobs < 1) throw Error("reproduce: --jobs must be at least 1");
+  if (o.eval_episodes < 1) throw Error("reproduce: --eval-episodes must be at least 1");
+  if (o.generalisation_last < o.generalisation_first) throw Error("reproduce: --generalisation-seeds: B is below A");
+  for (const std::string& m : o.methods) {
+    for (const std::string& setting : settings_for(m, o.settings)) {
+      with_setting(baseline_config(m, ""), setting);  // throws naming a bad one
+    }
+  }
+}
+
+std::vector<Cell> cells_of(const ReproduceOptions& o) {
+  std::vector<Cell> cells;
+  for (const std::string& a : o.activities) {
+    for (const std::string& m : o.methods) {
+      for (uint64_t s : o.seeds) {
+        cells.push_back({a, m, s, fs::path(o.out) / "runs" / o.mode / a / (m + "_seed" + std::to_string(s))});
+      }
+    }
+  }
+  return cells;
+}
+
+// Runs the cells that are not done, `jobs` at a time; returns the failures.
+nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions& o, std::ostream& log) {
+  std::deque<Cell> todo;
+  for (const Cell& c : cells) {
+    if (cell_done(c, o)) {
+      log << "reproduce: " << c.label() << ": done already (" << (c.dir / "cell.json").string() << ")\n";
+    } else {
+      if (fs::exists(c.dir / "checkpoint.pt")) check_resumable(c, o);
+      todo.push_back(c);
+    }
+  }
+  nlohmann::json failures = nlohmann::json::array();
+  std::map<pid_t, std::unique_ptr<CellRun>> running;
+  const size_t total = todo.size();
+  size_t finished = 0;
+  while (!todo.empty() || !running.empty()) {
+    while (!todo.empty() && running.size() < static_cast<size_t>(o.jobs)) {
+      auto run = std::make_unique<CellRun>(todo.front(), o);
+      todo.pop_front();
+      fs::create_directories(run->cell().dir);
+      std::string what;
+      run->start_next(what);
+      log << "reproduce: " << run->cell().label() << ": " << what << std::endl;
+      running.emplace(run->pid(), std::move(run));
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) throw Error(std::string("reproduce: waitpid: ") + std::strerror(errno));
+    auto it = running.find(pid);
+    if (it == running.end()) continue;
+    std::unique_ptr<CellRun> run = std::move(it->second);
+    running.erase(it);
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!ok) {
+      const std::string last = tail(run->current_log(), 5);
+      log << "reproduce: " << run->cell().label() << ": FAILED (see " << run->current_log().string() << "):\n"
+          << last << std::flush;
+      failures.push_back({{"cell", run->cell().label()}, {"log", run->current_log().string()}, {"last_lines", last}});
+      ++finished;
+      continue;
+    }
+    if (std::string what; run->start_next(what)) {
+      log << "reproduce: " << run->cell().label() << ": " << what << std::endl;
+      running.emplace(run->pid(), std::move(run));
+      continue;
+    }
+    ++finished;
+    log << "reproduce: " << run->cell().label() << ": done in " << format_hours(run->seconds()) << " (" << finished
+        << "/" << total << ")" << std::endl;
+  }
+  return failures;
+}
+
+// Videos: per activity, the run with the best Q at seed 0 whose checkpoint is here;
+// the other activities keep the videos an earlier invocation made.
+nlohmann::json make_videos(const nlohmann::json& runs, const ReproduceOptions& o, std::ostream& log) {
+  const fs::path out(o.out);
+  nlohmann::json videos = fs::exists(out / "baselines.json")
+                              ? read_json_file((out / "baselines.json").string()).value("videos", nlohmann::json::object())
+                              : nlohmann::json::object();
+  // ...while their file and their run are still here (a run moved away takes its video's entry along).
+  for (auto it = videos.begin(); it != videos.end();) {
+    const bool here = fs::exists(it->value("file", "")) && fs::exists(fs::path(it->value("run", "")) / "cell.json");
+    it = here ? std::next(it) : videos.erase(it);
+  }
+  if (o.videos && !o.report_only) {
+    fs::create_directories(out / "videos");
+    for (const std::string& a : o.activities) {
+      const nlohmann::json* best = nullptr;
+      for (const nlohmann::json& r : runs) {
+        if (r["activity"] != a || !fs::exists(fs::path(r["dir"].get<std::string>()) / "checkpoint.pt")) continue;
+        if (!best || r["q_seed0"].get<double>() > (*best)["q_seed0"].get<double>()) best = &r;
+      }
+      if (!best) continue;
+      const fs::path video = out / "videos" / (a + ".mp4");
+      const fs::path dir = (*best)["dir"].get<std::string>();
+      const pid_t pid = spawn({"video", "--checkpoint", (dir / "checkpoint.pt").string(), "--sample", "--seed", "0",
+                               "--out", video.string()},
+                              "/dev/null", dir / "video.log");
+      int status = 0;
+      waitpid(pid, &status, 0);
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        videos[a] = {{"file", video.string()}, {"run", dir.string()}, {"method", (*best)["method"]},
+                     {"seed", (*best)["seed"]}};
+      } else {
+        videos.erase(a);
+        log << "reproduce: no video for " << a << " (see " << (dir / "video.log").string() << ")\n";
+      }
+    }
+  }
+
+  return videos;
+}
+
+}  // namespace
+
+nlohmann::json reproduce(const ReproduceOptions& o, std::ostream& log) {
+  validate(o);
+  const auto start = Clock::now();
+  std::vector<Cell> cells = cells_of(o);
+  nlohmann::json failures = nlohmann::json::array();
+  if (!o.report_only) failures = run_cells(cells, o, log);
+  for (Cell& c : cells) c.done = cell_done(c, o);
+  nlohmann::json result = baselines_report(cells, o, log);
+  result["failures"] = failures;
+  result["videos"] = make_videos(result["runs"], o, log);
+  result["this_invocation_wall_s"] = std::chrono::duration<double>(Clock::now() - start).count();
+  write_text(fs::path(o.out) / "baselines.json", result.dump(2) + "\n");
+  write_text(fs::path(o.out) / "baselines.md", baselines_markdown(result, o));
+  log << "reproduce: " << (cells.size() - result["missing"].size()) << "/" << cells.size() << " runs done; "
+      << (fs::path(o.out) / "baselines.md").string() << ", " << (fs::path(o.out) / "baselines.json").string()
+      << std::endl;
+  return result;
+}
+
+}  // namespace chore

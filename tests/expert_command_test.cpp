@@ -1,0 +1,55 @@
+// `chore expert` (app/expert_command.hpp) against evaluation over seeds
+// (policies/evaluate.hpp): the expert as a Policy plays the same episodes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "app/expert_command.hpp"
+#include "policies/evaluate.hpp"
+
+namespace chore {
+namespace {
+
+EvalOptions seeds(uint64_t first, uint64_t last, int episodes, int threads) {
+  EvalOptions o;
+  o.first_seed = first;
+  o.last_seed = last;
+  o.episodes = episodes;
+  o.threads = threads;
+  return o;
+}
+
+TEST(Evaluate, TheExpertPolicyPlaysTheEpisodesOfChoreExpert) {
+  std::ostringstream log;
+  const nlohmann::json eval =
+      evaluate(expert_source("store_decoration", ExecutionMode::symbolic, 60), seeds(0, 1, 3, 2), log);
+  ASSERT_EQ(eval["per_episode"].size(), 6u);
+  // Episode j of seed s is env seed s * 1000000 + j: chore expert --seed <that> plays it.
+  for (const uint64_t seed : {uint64_t{0}, uint64_t{1}}) {
+    ExpertOptions expert;
+    expert.activity = "store_decoration";
+    expert.episodes = 3;
+    expert.seed = seed * kEpisodeSeedStride;
+    expert.mode = ExecutionMode::symbolic;
+    const nlohmann::json reference = run_expert(expert, log);
+    for (int j = 0; j < 3; ++j) {
+      const nlohmann::json& e = eval["per_episode"][seed * 3 + j];
+      const nlohmann::json& r = reference["per_episode"][j];
+      EXPECT_EQ(e["env_seed"].get<uint64_t>(), expert.seed + j);
+      EXPECT_EQ(e["success"], r["success"]) << "seed " << seed << " episode " << j;
+      EXPECT_DOUBLE_EQ(e["q"].get<double>(), r["q"].get<double>()) << "seed " << seed << " episode " << j;
+      if (r["success"].get<bool>()) {
+        EXPECT_EQ(e["length"], r["steps"]);
+      }
+    }
+  }
+  // Mean and population std over the two seeds' success rates.
+  const double a = eval["per_seed"][0]["success_rate"], b = eval["per_seed"][1]["success_rate"];
+  EXPECT_DOUBLE_EQ(eval["success_rate"]["mean"].get<double>(), (a + b) / 2);
+  EXPECT_DOUBLE_EQ(eval["success_rate"]["std"].get<double>(), std::abs(a - b) / 2);
+  EXPECT_GT(eval["success_rate"]["mean"].get<double>(), 0.5);  // the expert mostly succeeds (91%)
+}
+
+}  // namespace
+}  // namespace chore
