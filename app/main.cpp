@@ -9,17 +9,18 @@
 #include <string>
 #include <tuple>
 
-#include "base/error.hpp"
 #include "app/activity_commands.hpp"
 #include "app/bench.hpp"
-#include "training/checkpoint.hpp"
-#include "policies/evaluate.hpp"
 #include "app/expert_command.hpp"
 #include "app/observe_command.hpp"
 #include "app/plot.hpp"
 #include "app/reproduce.hpp"
 #include "app/train_command.hpp"
 #include "app/video.hpp"
+#include "base/error.hpp"
+#include "policies/evaluate.hpp"
+#include "training/checkpoint.hpp"
+#include "training/trainer.hpp"
 
 namespace {
 
@@ -209,12 +210,18 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("--width", plot.width, "Picture width")->check(CLI::Range(320, 4096))->capture_default_str();
   plot_cmd->add_option("--height", plot.height, "Picture height")->check(CLI::Range(240, 4096))->capture_default_str();
 
+  // The baselines' registry (training/trainer.cpp): "rl-vmc (sac), rl-prim (ppo), ...".
+  std::vector<std::string> baseline_names;
+  std::string baselines_trained_by;
+  for (const chore::Baseline& b : chore::baselines()) {
+    baseline_names.push_back(b.name);
+    baselines_trained_by += (baselines_trained_by.empty() ? "" : ", ") + b.name + " (" + b.algorithm + ")";
+  }
   chore::TrainOptions train;
   int64_t train_steps = 0;
-  CLI::App* train_cmd = app.add_subcommand("train", "Train a baseline (SAC rl-vmc, PPO rl-prim / rl-prim-hist) on an activity");
+  CLI::App* train_cmd = app.add_subcommand("train", "Train a baseline on an activity: " + baselines_trained_by);
   train_cmd->add_option("--activity", train.activity, "Activity name or .bddl path");
-  train_cmd->add_option("--baseline", train.baseline, "rl-vmc, rl-prim or rl-prim-hist")
-      ->check(CLI::IsMember({"rl-vmc", "rl-prim", "rl-prim-hist"}));
+  train_cmd->add_option("--baseline", train.baseline, "The baseline")->check(CLI::IsMember(baseline_names));
   train_cmd->add_option("--seed", train.seed, "Seed (env i of the vector env: seed + i)")->capture_default_str();
   auto* train_steps_option = train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
       ->check(CLI::PositiveNumber);
@@ -239,8 +246,8 @@ int main(int argc, char** argv) {
   CLI::App* reproduce_cmd = app.add_subcommand(
       "reproduce", "The paper's baseline table (A.13) through train and eval: resumable, to OUT/baselines.{json,md}");
   reproduce_cmd->add_option("--activities", reproduce.activities, "Activities")->capture_default_str();
-  reproduce_cmd->add_option("--methods", reproduce.methods, "Methods: rl-vmc, rl-prim, rl-prim-hist")
-      ->check(CLI::IsMember({"rl-vmc", "rl-prim", "rl-prim-hist"}))->capture_default_str();
+  reproduce_cmd->add_option("--methods", reproduce.methods, "Methods (baselines)")
+      ->check(CLI::IsMember(baseline_names))->capture_default_str();
   reproduce_cmd->add_option("--seeds", reproduce.seeds, "Training seeds")->capture_default_str();
   reproduce_cmd->add_option("--steps", reproduce.steps, "Training env steps per run")->check(CLI::PositiveNumber)->capture_default_str();
   reproduce_cmd->add_option("--mode", reproduce.mode, "Primitive execution: physical (the paper's) or symbolic")

@@ -33,8 +33,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const std::array<std::string, 3> kMethods = {"rl-vmc", "rl-prim", "rl-prim-hist"};
-
 // Written whole or not at all: a stop mid-write leaves the old file.
 void write_text(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp";
@@ -62,9 +60,13 @@ using Cell = TableCell;
 
 // The --set settings that reach `method`'s trainer.
 std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
+  const std::string& mine = algorithm_of(method).name;
   std::vector<std::string> kept;
   for (const std::string& s : settings) {
-    if (!s.starts_with(uses_sac(method) ? "ppo." : "sac.")) kept.push_back(s);
+    const std::string group = s.substr(0, s.find('.'));
+    const bool others = group != mine && std::any_of(algorithms().begin(), algorithms().end(),
+                                                     [&](const Algorithm& a) { return a.name == group; });
+    if (!others) kept.push_back(s);
   }
   return kept;
 }
@@ -230,8 +232,10 @@ void validate(const ReproduceOptions& o) {
     throw Error("reproduce: give at least one activity, method and seed");
   }
   for (const std::string& m : o.methods) {
-    if (std::find(kMethods.begin(), kMethods.end(), m) == kMethods.end()) {
-      throw Error("reproduce: unknown method '" + m + "' (rl-vmc, rl-prim, rl-prim-hist)");
+    try {
+      algorithm_of(m);
+    } catch (const Error& e) {
+      throw Error(std::string("reproduce: ") + e.what());
     }
   }
   for (const std::string& a : o.activities) {

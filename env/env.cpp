@@ -1,12 +1,11 @@
 #include "env/env.hpp"
 
-#include <mujoco/mujoco.h>
-
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "base/error.hpp"
+#include "env/observations.hpp"
+#include "env/rewards.hpp"
 
 namespace chore {
 namespace {
@@ -14,13 +13,7 @@ namespace {
 constexpr double kActionDt = Env::kPhysicsSubsteps / 120.0;
 constexpr double kBaseSpeed = 0.5, kTurnSpeed = 1.0;  // m/s, rad/s at |action| = 1
 constexpr double kTorsoSpeed = 0.1, kJointSpeed = 1.0;
-constexpr int kProprioSize = 30;
-// In the order of the observation Dict (the layout of batched buffers).
-const std::vector<std::string> kKnownObservations = {
-    "rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow", "lidar",
-    "proprio", "is_grasping", "action_mask"};
-
-bool wants(const EnvConfig& c, const char* name) {
+bool wants(const EnvConfig& c, const std::string& name) {
   return std::find(c.observations.begin(), c.observations.end(), name) != c.observations.end();
 }
 
@@ -58,24 +51,26 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
   }
   std::vector<std::pair<std::string, Space>> fields;
   for (const std::string& name : config_.observations) {
-    if (std::find(kKnownObservations.begin(), kKnownObservations.end(), name) ==
-        kKnownObservations.end()) {
-      std::string known;
-      for (const std::string& k : kKnownObservations) known += (known.empty() ? "" : ", ") + k;
-      throw Error("env config: unknown observation '" + name + "' (known: " + known + ")");
+    const Modality* m = nullptr;
+    try {
+      m = &find_modality(name);
+    } catch (const Error& e) {
+      throw Error(std::string("env config: ") + e.what());
     }
-    if (!config_.robot && (name == "proprio" || name == "is_grasping" || name == "lidar")) {
-      throw Error("env config: observation '" + name + "' needs the robot");
-    }
-    if (name == "action_mask" && config_.action_space != "primitives") {
-      throw Error("env config: observation 'action_mask' needs the primitive action space (action_space is '" +
+    if (!config_.robot && m->needs_robot) throw Error("env config: observation '" + name + "' needs the robot");
+    if (m->needs_primitives && config_.action_space != "primitives") {
+      throw Error("env config: observation '" + name + "' needs the primitive action space (action_space is '" +
                   config_.action_space + "')");
     }
   }
-  if (config_.reward != "activity" && config_.reward != "reach") {
-    throw Error("env config: unknown reward '" + config_.reward + "' (known: activity, reach)");
+  try {
+    reward_ = &find_reward(config_.reward);
+  } catch (const Error& e) {
+    throw Error(std::string("env config: ") + e.what());
   }
-  if (config_.reward == "reach" && !config_.robot) throw Error("env config: the reach reward needs the robot");
+  if (reward_->needs_robot && !config_.robot) {
+    throw Error("env config: the " + config_.reward + " reward needs the robot");
+  }
   try {
     validate(config_.lidar);
     validate(config_.noise);
@@ -115,38 +110,9 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     }
   }
   // A fixed order, whatever the config's: the layout of batched buffers.
-  const double inf = std::numeric_limits<double>::infinity();
-  if (wants(config_, "rgb")) {
-    fields.push_back({"rgb", Space::box({config_.height, config_.width, 3}, DType::uint8, 0, 255)});
-  }
-  if (wants(config_, "depth")) {
-    fields.push_back({"depth", Space::box({config_.height, config_.width}, DType::float32, 0, inf)});
-  }
-  if (wants(config_, "seg_semantic")) {
-    const int classes = static_cast<int>(segmentation().classes().size());
-    fields.push_back({"seg_semantic", Space::box({config_.height, config_.width}, DType::int32, 0, classes - 1)});
-  }
-  if (wants(config_, "seg_instance")) {
-    const int instances = static_cast<int>(segmentation().instances().size());
-    fields.push_back({"seg_instance", Space::box({config_.height, config_.width}, DType::int32, 0, instances - 1)});
-  }
-  if (wants(config_, "normal")) {
-    fields.push_back({"normal", Space::box({config_.height, config_.width, 3}, DType::float32, -1, 1)});
-  }
-  if (wants(config_, "flow")) {
-    fields.push_back({"flow", Space::box({config_.height, config_.width, 2}, DType::float32, -inf, inf)});
-  }
-  if (wants(config_, "lidar")) {
-    fields.push_back({"lidar", Space::box({config_.lidar.beams}, DType::float32, 0, config_.lidar.range)});
-  }
-  if (wants(config_, "proprio")) {
-    fields.push_back({"proprio", Space::box({kProprioSize}, DType::float32, -inf, inf)});
-  }
-  if (wants(config_, "is_grasping")) {
-    fields.push_back({"is_grasping", Space::box({1}, DType::float32, 0, 1)});
-  }
-  if (wants(config_, "action_mask")) {
-    fields.push_back({"action_mask", Space::box({static_cast<int>(primitive_actions_.size())}, DType::uint8, 0, 1)});
+  const ObservationSource source = observation_source();
+  for (const Modality& m : modalities()) {
+    if (wants(config_, m.name)) fields.push_back({m.name, m.space(source)});
   }
   observation_space_ = Space::dict(std::move(fields));
   obs_ = ArrayDict(observation_space_, 1);
@@ -245,16 +211,14 @@ Env::Outcome Env::advance(std::span<const float> action) {
   diverged_ = report.diverged;
   Outcome out;
   std::optional<Score> score;
+  const double potential_before = potential_;
   if (activity_ && !report.diverged) {
-    // BEHAVIOR's potential reward: positive when a literal of the goal's first
-    // option becomes true, negative when one is undone; success terminates.
     const Activity::Evaluation goal = activity_->evaluate(*world_);
     score = goal.score;
-    out.reward = goal.potential - potential_;
     potential_ = goal.potential;
     out.terminated = score->success;
   }
-  if (config_.reward == "reach" && !report.diverged) out.reward = -reach_distance();
+  if (!report.diverged) out.reward = reward_->reward({config_, *world_, potential_before, potential_});
   // The seed's policy failure: the same invalid action repeated ends the episode.
   const bool policy_failure = invalid_repeats_ >= config_.policy_failure_repeats;
   out.terminated = out.terminated || policy_failure;
@@ -315,27 +279,15 @@ int64_t Env::act_primitive(std::span<const float> action, World::StepReport& rep
   return result.physics_steps;
 }
 
-double Env::reach_distance() const {
-  const Pose2 base = world_->base_pose();
-  const double c = std::cos(base.yaw), s = std::sin(base.yaw);
-  const auto& t = config_.reach_target;
-  const double target[3] = {base.x + c * t[0] - s * t[1], base.y + s * t[0] + c * t[1], t[2]};
-  const double* gripper = world_->data()->site_xpos + 3 * world_->robot()->gripper_site;
-  return mju_dist3(gripper, target);
-}
-
 SensorFrame Env::sensor_frame(ArrayDict& obs, int index) const {
-  auto item = [&](const char* name) { return obs.contains(name) ? obs[name].item(index) : nullptr; };
   SensorFrame f;
-  f.rgb = static_cast<std::uint8_t*>(item("rgb"));
-  f.depth = static_cast<float*>(item("depth"));
-  f.semantic = static_cast<std::int32_t*>(item("seg_semantic"));
-  f.instance = static_cast<std::int32_t*>(item("seg_instance"));
-  f.normal = static_cast<float*>(item("normal"));
-  f.flow = static_cast<float*>(item("flow"));
-  f.lidar = static_cast<float*>(item("lidar"));
+  for (const Modality& m : modalities()) {
+    if (m.bind && obs.contains(m.name)) m.bind(f, obs[m.name].item(index));
+  }
   return f;
 }
+
+ObservationSource Env::observation_source() const { return {config_, *world_, *sensors_, primitive_actions_}; }
 
 std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {
   check_open();
@@ -349,40 +301,9 @@ void Env::finish_observation(ArrayDict& obs, int index) {
 }
 
 void Env::write_state(ArrayDict& obs, int index) const {
-  const World& w = *world_;
-  const Robot* r = w.robot();
-  if (!r) return;
-  const mjData* d = w.data();
-  const bool grasping = w.grasped_object() >= 0;
-  if (obs.contains("proprio")) {
-    float* p = static_cast<float*>(obs["proprio"].item(index));
-    const Pose2 base = w.base_pose();
-    const double c = std::cos(base.yaw), s = std::sin(base.yaw);
-    const double vx = d->qvel[r->base_x.dof], vy = d->qvel[r->base_y.dof];
-    int k = 0;
-    for (double v : {base.x, base.y, s, c, c * vx + s * vy, -s * vx + c * vy,
-                     d->qvel[r->base_yaw.dof]}) {
-      p[k++] = static_cast<float>(v);
-    }
-    const auto arm = r->torso_and_arm();
-    const std::array<const RobotJoint*, 2> head = {&r->head_pan, &r->head_tilt};
-    for (const RobotJoint* j : arm) p[k++] = static_cast<float>(d->qpos[j->qpos]);
-    for (const RobotJoint* j : head) p[k++] = static_cast<float>(d->qpos[j->qpos]);
-    for (const RobotJoint* j : arm) p[k++] = static_cast<float>(d->qvel[j->dof]);
-    for (const RobotJoint* j : head) p[k++] = static_cast<float>(d->qvel[j->dof]);
-    p[k++] = static_cast<float>(d->qpos[r->gripper_left.qpos]);
-    p[k++] = static_cast<float>(d->qpos[r->gripper_right.qpos]);
-    p[k++] = grasping ? 1.0f : 0.0f;
-  }
-  if (obs.contains("is_grasping")) {
-    *static_cast<float*>(obs["is_grasping"].item(index)) = grasping ? 1.0f : 0.0f;
-  }
-  if (obs.contains("action_mask")) {
-    auto* mask = static_cast<std::uint8_t*>(obs["action_mask"].item(index));
-    for (size_t i = 0; i < primitive_actions_.size(); ++i) {
-      const PrimitiveAction& a = primitive_actions_[i];
-      mask[i] = unmet_precondition(w, a.type, a.object).empty() ? 1 : 0;
-    }
+  const ObservationSource source = observation_source();
+  for (const Modality& m : modalities()) {
+    if (m.write && obs.contains(m.name)) m.write(source, obs[m.name].item(index));
   }
 }
 

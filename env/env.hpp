@@ -179,15 +179,16 @@ class Env {
   // Applies one action to the world; returns physics steps run.
   int64_t act_low_level(std::span<const float> action, World::StepReport& report);
   int64_t act_primitive(std::span<const float> action, World::StepReport& report);
-  double reach_distance() const;  // gripper to reach_target (m)
   std::string first_out_of_reach();  // a reach check failing in the sampled instance, or ""
   void observe();  // renders and writes into obs_ with this env's own renderer
   SensorFrame sensor_frame(ArrayDict& obs, int index) const;
+  struct ObservationSource observation_source() const;
 
   EnvConfig config_;
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<const Activity> activity_;
   double potential_ = 0;  // BEHAVIOR's potential after the last step
+  const struct RewardKind* reward_ = nullptr;
   std::unique_ptr<World> world_;
   std::unique_ptr<Renderer> renderer_;  // made on first use, on the calling thread
   std::unique_ptr<Sensors> sensors_;

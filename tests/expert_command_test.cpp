@@ -11,19 +11,14 @@
 namespace chore {
 namespace {
 
-EvalOptions seeds(uint64_t first, uint64_t last, int episodes, int threads) {
-  EvalOptions o;
-  o.first_seed = first;
-  o.last_seed = last;
-  o.episodes = episodes;
-  o.threads = threads;
-  return o;
-}
-
 TEST(Evaluate, TheExpertPolicyPlaysTheEpisodesOfChoreExpert) {
   std::ostringstream log;
-  const nlohmann::json eval =
-      evaluate(expert_source("store_decoration", ExecutionMode::symbolic, 60), seeds(0, 1, 3, 2), log);
+  EvalOptions seeds_0_1;  // 3 episodes each, 2 threads
+  seeds_0_1.first_seed = 0;
+  seeds_0_1.last_seed = 1;
+  seeds_0_1.episodes = 3;
+  seeds_0_1.threads = 2;
+  const nlohmann::json eval = evaluate(expert_source("store_decoration", ExecutionMode::symbolic, 60), seeds_0_1, log);
   ASSERT_EQ(eval["per_episode"].size(), 6u);
   // Episode j of seed s is env seed s * 1000000 + j: chore expert --seed <that> plays it.
   for (const uint64_t seed : {uint64_t{0}, uint64_t{1}}) {

@@ -189,35 +189,37 @@ void set_policy_threads(int threads) {
   torch::set_num_threads(threads);
 }
 
-LoadedPolicy load_policy(const std::string& checkpoint_path, bool sample) {
-  const CheckpointFile file = read_checkpoint(checkpoint_path);
-  const std::string what = "checkpoint " + checkpoint_path;
-  LoadedPolicy loaded;
+NetworkSpec read_network(const CheckpointFile& file, torch::serialize::InputArchive& archive) {
+  const std::string what = "checkpoint " + file.path;
   NetworkSpec spec;
   try {
-    const TrainConfig config = train_config_from_json(file.meta.at("config"));
     spec = network_spec_from_json(file.meta.at("network"));
-    loaded.env = config.env;
-    loaded.baseline = config.baseline;
-    loaded.steps = file.meta.at("steps").get<int64_t>();
   } catch (const nlohmann::json::exception& e) {
     throw Error(what + ": bad metadata: " + e.what());
   } catch (const Error& e) {
     throw Error(what + ": " + e.what());
   }
-  torch::serialize::InputArchive archive;
   read_archive(archive, file.tensors, what);
-  if (uses_sac(loaded.baseline)) {
-    SacCritic critic(spec);
-    SacActor actor(spec);
-    load_module(*critic, archive, "critic", what);
-    load_module(*actor, archive, "actor", what);
-    loaded.policy = make_sac_policy(critic, actor, spec, {.sample = sample});
-  } else {
-    ActorCritic net(spec);
-    load_module(*net, archive, "net", what);
-    loaded.policy = make_ppo_policy(net, spec, {.sample = sample});
+  return spec;
+}
+
+LoadedPolicy load_policy(const std::string& checkpoint_path, bool sample) {
+  const CheckpointFile file = read_checkpoint(checkpoint_path);
+  const std::string what = "checkpoint " + checkpoint_path;
+  LoadedPolicy loaded;
+  const Algorithm* algorithm = nullptr;
+  try {
+    const TrainConfig config = train_config_from_json(file.meta.at("config"));
+    loaded.env = config.env;
+    loaded.baseline = config.baseline;
+    loaded.steps = file.meta.at("steps").get<int64_t>();
+    algorithm = &algorithm_of(config.baseline);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(what + ": bad metadata: " + e.what());
+  } catch (const Error& e) {
+    throw Error(what + ": " + e.what());
   }
+  loaded.policy = algorithm->load_policy(file, sample);
   return loaded;
 }
 

@@ -282,10 +282,21 @@ class PpoTrainer : public Trainer {
   double wall_s_ = 0;
 };
 
+std::unique_ptr<Policy> load_ppo_policy(const CheckpointFile& file, bool sample) {
+  torch::serialize::InputArchive archive;
+  const NetworkSpec spec = read_network(file, archive);
+  ActorCritic net(spec);
+  load_module(*net, archive, "net", "checkpoint " + file.path);
+  return make_ppo_policy(net, spec, {.sample = sample});
+}
+
 }  // namespace
 
-std::unique_ptr<Trainer> make_ppo_trainer(const TrainConfig& config, const CheckpointFile* resume) {
-  return std::make_unique<PpoTrainer>(config, resume);
+Algorithm ppo_algorithm() {
+  return {"ppo", [](const TrainConfig& config, const CheckpointFile* resume) -> std::unique_ptr<Trainer> {
+            return std::make_unique<PpoTrainer>(config, resume);
+          },
+          load_ppo_policy};
 }
 
 }  // namespace chore

@@ -333,10 +333,23 @@ class SacTrainer : public Trainer {
   double wall_s_ = 0;
 };
 
+std::unique_ptr<Policy> load_sac_policy(const CheckpointFile& file, bool sample) {
+  torch::serialize::InputArchive archive;
+  const NetworkSpec spec = read_network(file, archive);
+  SacCritic critic(spec);
+  SacActor actor(spec);
+  load_module(*critic, archive, "critic", "checkpoint " + file.path);
+  load_module(*actor, archive, "actor", "checkpoint " + file.path);
+  return make_sac_policy(critic, actor, spec, {.sample = sample});
+}
+
 }  // namespace
 
-std::unique_ptr<Trainer> make_sac_trainer(const TrainConfig& config, const CheckpointFile* resume) {
-  return std::make_unique<SacTrainer>(config, resume);
+Algorithm sac_algorithm() {
+  return {"sac", [](const TrainConfig& config, const CheckpointFile* resume) -> std::unique_ptr<Trainer> {
+            return std::make_unique<SacTrainer>(config, resume);
+          },
+          load_sac_policy};
 }
 
 }  // namespace chore

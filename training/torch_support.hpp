@@ -8,7 +8,11 @@
 #include <functional>
 #include <string>
 
+#include "policies/networks.hpp"
+
 namespace chore {
+
+struct CheckpointFile;
 
 std::string archive_bytes(torch::serialize::OutputArchive& archive);
 // Throws chore::Error naming `what` when the bytes are not a torch archive.
@@ -27,6 +31,10 @@ void load_rng(torch::serialize::InputArchive& archive, at::Generator& generator)
 // (libtorch would silently take another shape); throws chore::Error naming `what`.
 void load_module(torch::nn::Module& module, torch::serialize::InputArchive& archive, const std::string& key,
                  const std::string& what);
+
+// Where an algorithm's load_policy starts: the checkpoint's network spec, and
+// its tensors read into `archive`; throws chore::Error naming the file.
+NetworkSpec read_network(const CheckpointFile& file, torch::serialize::InputArchive& archive);
 
 // Runs `load`, turning a torch exception (a missing name, a shape mismatch)
 // into a chore::Error naming `what`.

@@ -9,25 +9,68 @@ namespace chore {
 
 const char* const kMetricsHeader = "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length";
 
-bool uses_sac(const std::string& baseline) { return baseline == "rl-vmc"; }
+// The algorithms (one file each) and the baselines: a new one is a line here.
+Algorithm ppo_algorithm();  // training/ppo.cpp
+Algorithm sac_algorithm();  // training/sac.cpp
+
+const std::vector<Algorithm>& algorithms() {
+  static const std::vector<Algorithm> list = {ppo_algorithm(), sac_algorithm()};
+  return list;
+}
+
+const std::vector<Baseline>& baselines() {
+  static const std::vector<Baseline> list = {
+      // Figure A.11 (a): egocentric RGB and proprioception, joint-level control.
+      {"rl-vmc", "sac",
+       [](TrainConfig& c) {
+         c.env.observations = {"rgb", "proprio", "is_grasping"};
+         c.env.action_space = "low_level";
+       }},
+      // Figure A.11 (b), appendix F.1: RGB and is-grasping, physical primitives;
+      // with history, the policy also sees the last K steps.
+      {"rl-prim", "ppo",
+       [](TrainConfig& c) {
+         c.env.observations = {"rgb", "is_grasping"};
+         c.env.action_space = "primitives";
+         c.env.primitive_mode = ExecutionMode::physical;
+         c.ppo.history = 0;
+       }},
+      {"rl-prim-hist", "ppo",
+       [](TrainConfig& c) {
+         c.env.observations = {"rgb", "is_grasping"};
+         c.env.action_space = "primitives";
+         c.env.primitive_mode = ExecutionMode::physical;
+       }},
+  };
+  return list;
+}
+
+namespace {
+
+const Baseline& find_baseline(const std::string& name) {
+  std::string known;
+  for (const Baseline& b : baselines()) {
+    if (b.name == name) return b;
+    known += (known.empty() ? "" : ", ") + b.name;
+  }
+  throw Error("unknown baseline '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+const Algorithm& algorithm_of(const std::string& baseline) {
+  const std::string& name = find_baseline(baseline).algorithm;
+  for (const Algorithm& a : algorithms()) {
+    if (a.name == name) return a;
+  }
+  throw Error("baseline '" + baseline + "': no algorithm '" + name + "'");
+}
 
 TrainConfig baseline_config(const std::string& baseline, const std::string& activity) {
   TrainConfig c;
   c.baseline = baseline;
   c.env.activity = activity;
-  if (baseline == "rl-vmc") {
-    // Figure A.11 (a): egocentric RGB and proprioception, joint-level control.
-    c.env.observations = {"rgb", "proprio", "is_grasping"};
-    c.env.action_space = "low_level";
-  } else if (baseline == "rl-prim" || baseline == "rl-prim-hist") {
-    // Figure A.11 (b), appendix F.1: RGB and is-grasping, physical primitives.
-    c.env.observations = {"rgb", "is_grasping"};
-    c.env.action_space = "primitives";
-    c.env.primitive_mode = ExecutionMode::physical;
-    if (baseline == "rl-prim") c.ppo.history = 0;
-  } else {
-    throw Error("unknown baseline '" + baseline + "' (known: rl-vmc, rl-prim, rl-prim-hist)");
-  }
+  find_baseline(baseline).setup(c);
   return c;
 }
 
@@ -256,8 +299,7 @@ RunProgress load_run_meta(const nlohmann::json& meta, EpisodeStats& stats) {
 std::unique_ptr<Trainer> make_trainer(const TrainConfig& config) {
   if (config.num_envs < 1) throw Error("train: --envs must be at least 1");
   if (config.threads < 1) throw Error("train: --threads must be at least 1");
-  baseline_config(config.baseline, "");  // names an unknown baseline
-  return uses_sac(config.baseline) ? make_sac_trainer(config, nullptr) : make_ppo_trainer(config, nullptr);
+  return algorithm_of(config.baseline).make(config, nullptr);  // names an unknown baseline
 }
 
 std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint) {
@@ -265,14 +307,14 @@ std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint) {
   TrainConfig config;
   try {
     config = train_config_from_json(file.meta.at("config"));
-    baseline_config(config.baseline, "");
+    algorithm_of(config.baseline);
   } catch (const nlohmann::json::exception& e) {
     throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
   } catch (const Error& e) {
     throw Error("checkpoint " + checkpoint + ": " + e.what());
   }
   try {
-    return uses_sac(config.baseline) ? make_sac_trainer(config, &file) : make_ppo_trainer(config, &file);
+    return algorithm_of(config.baseline).make(config, &file);
   } catch (const nlohmann::json::exception& e) {
     throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
   }

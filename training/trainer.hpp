@@ -1,5 +1,7 @@
 // The baselines' trainers behind one torch-free interface (training/ppo.cpp and
-// training/sac.cpp hold the algorithms, each readable top to bottom):
+// training/sac.cpp hold the algorithms, each readable top to bottom), and the
+// two registries (trainer.cpp, one line each): the algorithms, and the
+// baselines of the paper that they train:
 //
 //   rl-vmc        SAC on the 14-d low-level control, RGB + proprio + is-grasping
 //   rl-prim       PPO over the primitive action space, RGB + is-grasping
@@ -22,6 +24,7 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
+#include "policies/policy.hpp"
 
 namespace chore {
 
@@ -67,7 +70,6 @@ struct TrainConfig {
 // The paper's setup for a baseline on an activity: observations, action space
 // and primitive mode as in appendix F. Throws chore::Error for an unknown baseline.
 TrainConfig baseline_config(const std::string& baseline, const std::string& activity);
-bool uses_sac(const std::string& baseline);
 
 nlohmann::json to_json(const TrainConfig& config);
 TrainConfig train_config_from_json(const nlohmann::json& j);  // throws chore::Error
@@ -143,10 +145,26 @@ class Trainer {
 };
 
 struct CheckpointFile;
-// The algorithms (training/ppo.cpp, training/sac.cpp), for make_trainer and
-// resume_trainer: `resume` is a checkpoint the same algorithm wrote, or nullptr.
-std::unique_ptr<Trainer> make_ppo_trainer(const TrainConfig& config, const CheckpointFile* resume);
-std::unique_ptr<Trainer> make_sac_trainer(const TrainConfig& config, const CheckpointFile* resume);
+// A learning algorithm behind Trainer. Its `name` is also the group of its
+// settings in TrainConfig's JSON (`--set ppo.lr=...`).
+struct Algorithm {
+  std::string name;
+  // A fresh run (resume: nullptr) or one continued from a checkpoint it wrote.
+  std::unique_ptr<Trainer> (*make)(const TrainConfig& config, const CheckpointFile* resume);
+  // The policy in a checkpoint it wrote (checkpoint.hpp's load_policy), acting
+  // as in training with `sample`; throws chore::Error naming the file.
+  std::unique_ptr<Policy> (*load_policy)(const CheckpointFile& file, bool sample);
+};
+// A baseline: the algorithm that trains it and the setup it trains with.
+struct Baseline {
+  std::string name;       // "rl-prim-hist"
+  std::string algorithm;  // "ppo"
+  void (*setup)(TrainConfig& config);  // observations, action space, primitive mode, history
+};
+const std::vector<Algorithm>& algorithms();
+const std::vector<Baseline>& baselines();
+// The algorithm that trains `baseline`; throws chore::Error naming the known baselines.
+const Algorithm& algorithm_of(const std::string& baseline);
 
 // A fresh run; throws chore::Error for a bad config.
 std::unique_ptr<Trainer> make_trainer(const TrainConfig& config);
