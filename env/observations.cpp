@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "base/error.hpp"
+#include "base/registry.hpp"
 
 namespace chore {
 namespace {
@@ -100,12 +101,7 @@ const std::vector<Modality>& modalities() {
 }
 
 const Modality& find_modality(const std::string& name) {
-  std::string known;
-  for (const Modality& m : modalities()) {
-    if (m.name == name) return m;
-    known += (known.empty() ? "" : ", ") + m.name;
-  }
-  throw Error("unknown observation '" + name + "' (known: " + known + ")");
+  return find_by_name(modalities(), name, "observation");
 }
 
 }  // namespace chore

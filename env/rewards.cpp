@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "base/error.hpp"
+#include "base/registry.hpp"
 
 namespace chore {
 namespace {
@@ -35,12 +36,7 @@ const std::vector<RewardKind>& reward_kinds() {
 }
 
 const RewardKind& find_reward(const std::string& name) {
-  std::string known;
-  for (const RewardKind& k : reward_kinds()) {
-    if (k.name == name) return k;
-    known += (known.empty() ? "" : ", ") + k.name;
-  }
-  throw Error("unknown reward '" + name + "' (known: " + known + ")");
+  return find_by_name(reward_kinds(), name, "reward");
 }
 
 }  // namespace chore

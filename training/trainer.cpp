@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "base/error.hpp"
+#include "base/registry.hpp"
 #include "training/checkpoint.hpp"
 
 namespace chore {
@@ -48,12 +49,7 @@ const std::vector<Baseline>& baselines() {
 namespace {
 
 const Baseline& find_baseline(const std::string& name) {
-  std::string known;
-  for (const Baseline& b : baselines()) {
-    if (b.name == name) return b;
-    known += (known.empty() ? "" : ", ") + b.name;
-  }
-  throw Error("unknown baseline '" + name + "' (known: " + known + ")");
+  return find_by_name(baselines(), name, "baseline");
 }
 
 }  // namespace
