@@ -41,19 +41,6 @@ struct VectorEnvConfig {
   int render_tiles = 0;
 };
 
-// Views into the vector env's buffers, valid until the next reset/step/recv.
-struct Batch {
-  const ArrayDict* obs;                // (size, ...) per field
-  std::span<const float> rewards;
-  std::span<const std::uint8_t> terminated, truncated;
-  std::span<const int> env_ids;        // env id of each row
-  std::span<const Info> infos;
-  // same_step only: for rows whose episode ended, its last observation and info.
-  const ArrayDict* final_obs;
-  std::span<const Info> final_infos;
-  int size() const { return static_cast<int>(env_ids.size()); }
-};
-
 class VectorEnv {
  public:
   explicit VectorEnv(const VectorEnvConfig& config);

@@ -49,6 +49,15 @@ std::unique_ptr<Policy> load_policy_plugin(const std::string& library, const Pol
                 (!create ? "chore_create_policy" : "chore_destroy_policy") +
                 " (define them with CHORE_POLICY_PLUGIN(YourPolicy), policies/policy.hpp)");
   }
+  // Its types must be laid out as this process's: the same API version. Plugins
+  // from before versions existed (API 1) export no version.
+  auto version = reinterpret_cast<chore_policy_api_version_fn>(dlsym(handle, "chore_policy_api_version"));
+  const int built_for = version ? version() : 1;
+  if (built_for != CHORE_POLICY_API_VERSION) {
+    throw Error(where + ": built against chore's policy API version " + std::to_string(built_for) +
+                ", this chore has version " + std::to_string(CHORE_POLICY_API_VERSION) +
+                ": rebuild it against this chore's headers");
+  }
   char error[1024] = "";
   Policy* policy = create(&spec, error, sizeof error);
   if (!policy) {

@@ -1,5 +1,7 @@
 // chore::Policy: what chore's CLI (eval, video) and trainers call to act in a
-// VectorEnv. No torch here: a custom policy needs only chore's env headers.
+// VectorEnv. No torch here, and none of the env's internals: a custom policy
+// compiles against this header, env/types.hpp, env/spaces.hpp and
+// primitives/primitive_types.hpp alone.
 //
 //   class MyPolicy : public chore::Policy {
 //     void act(const chore::Batch& batch, std::span<float> actions) override;
@@ -19,7 +21,13 @@
 #include <span>
 
 #include "env/spaces.hpp"
-#include "env/vector_env.hpp"
+#include "env/types.hpp"
+
+// The version of the plugin API: this header's, env/types.hpp's and
+// env/spaces.hpp's types as a plugin sees them. A plugin built against another
+// version is refused when it is loaded (policies/plugin.hpp). Raise it when
+// any of those layouts or the Policy interface change.
+#define CHORE_POLICY_API_VERSION 2
 
 namespace chore {
 
@@ -41,17 +49,20 @@ struct PolicySpec {
 
 }  // namespace chore
 
-// The plugin entry points (C linkage, so dlsym finds them by name): the
-// factory returns a new policy, or nullptr and a message in `error`
-// (at most error_size bytes, NUL-terminated) when it cannot serve `spec`.
+// The plugin entry points (C linkage, so dlsym finds them by name): the API
+// version the plugin was built against; the factory, which returns a new
+// policy, or nullptr and a message in `error` (at most error_size bytes,
+// NUL-terminated) when it cannot serve `spec`; and its deleter.
 extern "C" {
+using chore_policy_api_version_fn = int (*)();
 using chore_create_policy_fn = chore::Policy* (*)(const chore::PolicySpec* spec, char* error,
                                                   int error_size);
 using chore_destroy_policy_fn = void (*)(chore::Policy* policy);
 }
 
-// Defines both entry points for a Policy class constructible from a PolicySpec.
+// Defines the entry points for a Policy class constructible from a PolicySpec.
 #define CHORE_POLICY_PLUGIN(PolicyClass)                                                     \
+  extern "C" int chore_policy_api_version() { return CHORE_POLICY_API_VERSION; }            \
   extern "C" chore::Policy* chore_create_policy(const chore::PolicySpec* spec, char* error, \
                                                 int error_size) {                            \
     try {                                                                                    \

@@ -18,32 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "primitives/primitive_types.hpp"
 #include "world/world.hpp"
 
 namespace chore {
-
-enum class PrimitiveType { navigate, pick, place, push, dip, wipe };
-inline constexpr int kPrimitiveTypes = 6;
-
-enum class ExecutionMode { physical, symbolic };
-
-// The seed's failure taxonomy (appendix G), less object detection (we know
-// where objects are).
-enum class PrimitiveStatus {
-  success,
-  motion_planning_failure,  // no base pose, IK solution or collision-free path; object out of reach
-  grasp_failure,            // the hand closed but holds nothing, or dropped it
-  place_failure,            // the released object did not end up on or in the target
-  precondition_failure,     // e.g. pick while holding, place with an empty hand
-};
-inline constexpr int kPrimitiveStatuses = 5;
-
-const char* to_string(PrimitiveType type);
-const char* to_string(ExecutionMode mode);
-const char* to_string(PrimitiveStatus status);
-// chore::Error naming the accepted values.
-PrimitiveType parse_primitive_type(const std::string& name);
-ExecutionMode parse_execution_mode(const std::string& name);
 
 struct PrimitiveResult {
   PrimitiveStatus status = PrimitiveStatus::success;

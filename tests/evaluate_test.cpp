@@ -97,6 +97,15 @@ TEST(PolicyPlugin, BadPluginsAreClearErrors) {
   EXPECT_NE(test::error_of([&] { load_policy_plugin(CHORE_NO_ENTRY_POINTS_PLUGIN, spec); })
                 .find("it does not export chore_create_policy"),
             std::string::npos);
+  // Built against another API version (or before versions existed): refused, saying so.
+  EXPECT_EQ(test::error_of([&] { load_policy_plugin(CHORE_NEXT_API_VERSION_PLUGIN, spec); }),
+            std::string("policy plugin '") + CHORE_NEXT_API_VERSION_PLUGIN +
+                "': built against chore's policy API version " + std::to_string(CHORE_POLICY_API_VERSION + 1) +
+                ", this chore has version " + std::to_string(CHORE_POLICY_API_VERSION) +
+                ": rebuild it against this chore's headers");
+  EXPECT_NE(test::error_of([&] { load_policy_plugin(CHORE_UNVERSIONED_API_PLUGIN, spec); })
+                .find("built against chore's policy API version 1, this chore has version"),
+            std::string::npos);
   const PolicySpec bad_options{spec.observation_space, spec.action_space, "seed=x"};
   EXPECT_EQ(test::error_of([&] { load_policy_plugin(CHORE_MASKED_RANDOM_PLUGIN, bad_options); }),
             std::string("policy plugin '") + CHORE_MASKED_RANDOM_PLUGIN +

@@ -1,0 +1,33 @@
+// The names of the action primitives, their execution modes and their
+// failure taxonomy: the small part of primitives/ that the env's public types
+// (Info's counts) and the policy API need, without the world behind it.
+#pragma once
+
+#include <string>
+
+namespace chore {
+
+enum class PrimitiveType { navigate, pick, place, push, dip, wipe };
+inline constexpr int kPrimitiveTypes = 6;
+
+enum class ExecutionMode { physical, symbolic };
+
+// The seed's failure taxonomy (appendix G), less object detection (we know
+// where objects are).
+enum class PrimitiveStatus {
+  success,
+  motion_planning_failure,  // no base pose, IK solution or collision-free path; object out of reach
+  grasp_failure,            // the hand closed but holds nothing, or dropped it
+  place_failure,            // the released object did not end up on or in the target
+  precondition_failure,     // e.g. pick while holding, place with an empty hand
+};
+inline constexpr int kPrimitiveStatuses = 5;
+
+const char* to_string(PrimitiveType type);
+const char* to_string(ExecutionMode mode);
+const char* to_string(PrimitiveStatus status);
+// chore::Error naming the accepted values.
+PrimitiveType parse_primitive_type(const std::string& name);
+ExecutionMode parse_execution_mode(const std::string& name);
+
+}  // namespace chore
