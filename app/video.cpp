@@ -14,7 +14,7 @@ constexpr int kCaptionHeight = 44;
 
 // What step `step` did, in words: the primitive and its outcome, or the first
 // low-level action values.
-std::string describe_action(const Env& env, std::span<const float> action, const Info& info) {
+std::string describe_action(const EnvState& env, std::span<const float> action, const Info& info) {
   if (!env.primitive_actions().empty()) {
     const std::string outcome =
         info.primitive_status >= 0 ? to_string(static_cast<PrimitiveStatus>(info.primitive_status)) : "-";
@@ -38,7 +38,7 @@ nlohmann::json record_video(const PolicySource& source, const VideoOptions& opti
   VectorEnvConfig config;
   config.env = source.env;
   VectorEnv envs(config);
-  const Env& env = envs.env(0);
+  const EnvState& env = envs.state(0);
   const std::unique_ptr<Policy> policy = source.make(envs);
   const bool primitives = !env.primitive_actions().empty();
   const double fps = options.fps > 0 ? options.fps : primitives ? 2.0 : 30.0;

@@ -18,6 +18,7 @@
 
 #include "env/primitive_actions.hpp"
 #include "env/spaces.hpp"
+#include "env/state.hpp"
 #include "env/types.hpp"
 #include "base/random.hpp"
 #include "world/renderer.hpp"
@@ -83,7 +84,7 @@ struct EnvAssets {
 };
 EnvAssets load_assets(const EnvConfig& config);
 
-class Env {
+class Env : public EnvState {
  public:
   // Physics steps of 1/120 s per env step of 1/30 s (the seed's time steps).
   static constexpr int kPhysicsSubsteps = 4;
@@ -92,13 +93,13 @@ class Env {
   explicit Env(const EnvConfig& config);
   // Shares what load_assets(config) compiled (scene, activity) with other envs.
   Env(const EnvConfig& config, const EnvAssets& assets);
-  ~Env();
+  ~Env() override;
 
   const Space& observation_space() const { return observation_space_; }
   const Space& action_space() const { return action_space_; }
   // The primitive action space's actions, in action order (empty for low_level).
-  const std::vector<PrimitiveAction>& primitive_actions() const { return primitive_actions_; }
-  const EnvConfig& config() const { return config_; }
+  const std::vector<PrimitiveAction>& primitive_actions() const override { return primitive_actions_; }
+  const EnvConfig& config() const override { return config_; }
 
   struct ResetResult {
     const ArrayDict& obs;
@@ -139,9 +140,9 @@ class Env {
   // The last primitive's full result (reason, timings), primitive action space only.
   const PrimitiveResult& last_primitive() const { return last_primitive_; }
   // The activity (nullptr without one).
-  const Activity* activity() const { return activity_.get(); }
+  const Activity* activity() const override { return activity_.get(); }
   World& world() { return *world_; }
-  const World& world() const { return *world_; }
+  const World& world() const override { return *world_; }
 
  private:
   void check_open() const;

@@ -279,7 +279,7 @@ VectorEnv::~VectorEnv() = default;
 int VectorEnv::num_envs() const { return impl_->num_envs; }
 int VectorEnv::batch_size() const { return impl_->batch; }
 const Space& VectorEnv::single_observation_space() const { return impl_->envs[0]->observation_space(); }
-const Env& VectorEnv::env(int i) const {
+const EnvState& VectorEnv::state(int i) const {
   if (i < 0 || i >= impl_->num_envs) throw Error("vector env: no env " + std::to_string(i));
   return *impl_->envs[i];
 }

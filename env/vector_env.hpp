@@ -64,9 +64,9 @@ class VectorEnv {
   void send(std::span<const float> actions, std::span<const int> env_ids);
   // Waits for the first batch_size results.
   Batch recv();
-  // Env i, read-only, for policies that read the state (the scripted expert).
+  // Env i's state, read-only, for policies that read it (the scripted expert).
   // Not while it is in flight.
-  const Env& env(int i) const;
+  const EnvState& state(int i) const;
   // Stops the workers; idempotent.
   void close();
 

@@ -1,11 +1,12 @@
 #include "policies/expert.hpp"
 
 #include "base/error.hpp"
+#include "env/env.hpp"
 #include "world/predicates.hpp"
 
 namespace chore {
 
-ScriptedExpert::ScriptedExpert(const Env& env) : actions_(&env.primitive_actions()) {
+ScriptedExpert::ScriptedExpert(const EnvState& env) : actions_(&env.primitive_actions()) {
   if (env.config().action_space != "primitives") {
     throw Error("scripted expert: the env must use the primitive action space");
   }
@@ -19,12 +20,12 @@ std::optional<int> ScriptedExpert::action(PrimitiveType type, int object) const 
 }
 
 // Navigate first unless the hand already reaches the object from here.
-std::optional<int> ScriptedExpert::go_and(const Env& env, PrimitiveType type, int object) const {
+std::optional<int> ScriptedExpert::go_and(const EnvState& env, PrimitiveType type, int object) const {
   if (!within_reach(env.world(), object)) return action(PrimitiveType::navigate, object);
   return action(type, object);
 }
 
-std::optional<int> ScriptedExpert::put(const Env& env, int item, int target) const {
+std::optional<int> ScriptedExpert::put(const EnvState& env, int item, int target) const {
   const World& w = env.world();
   const int held = w.grasped_object();
   if (held == item) return go_and(env, PrimitiveType::place, target);
@@ -35,7 +36,7 @@ std::optional<int> ScriptedExpert::put(const Env& env, int item, int target) con
   return go_and(env, PrimitiveType::pick, item);
 }
 
-std::optional<int> ScriptedExpert::clean(const Env& env, int surface, bool needs_soaked_tool) const {
+std::optional<int> ScriptedExpert::clean(const EnvState& env, int surface, bool needs_soaked_tool) const {
   const World& w = env.world();
   const ObjectStates& states = w.states();
   // The tool: a cleaning tool of the action space, the one in hand first.
@@ -59,7 +60,7 @@ std::optional<int> ScriptedExpert::clean(const Env& env, int surface, bool needs
   return go_and(env, PrimitiveType::wipe, surface);
 }
 
-std::optional<int> ScriptedExpert::act(const Env& env) const {
+std::optional<int> ScriptedExpert::act(const EnvState& env) const {
   const Activity* activity = env.activity();
   const World& w = env.world();
   const GroundGoal& goal = activity->goal();
@@ -77,11 +78,11 @@ std::optional<int> ScriptedExpert::act(const Env& env) const {
   return std::nullopt;
 }
 
-ExpertPolicy::ExpertPolicy(const VectorEnv& envs) : envs_(envs), expert_(envs.env(0)) {}
+ExpertPolicy::ExpertPolicy(const VectorEnv& envs) : envs_(envs), expert_(envs.state(0)) {}
 
 void ExpertPolicy::act(const Batch& batch, std::span<float> actions) {
   for (int row = 0; row < batch.size(); ++row) {
-    const Env& env = envs_.env(batch.env_ids[row]);
+    const EnvState& env = envs_.state(batch.env_ids[row]);
     std::optional<int> a = expert_.act(env);
     for (size_t i = 0; !a && i < env.primitive_actions().size(); ++i) {
       const PrimitiveAction& p = env.primitive_actions()[i];

@@ -13,7 +13,7 @@
 
 #include <optional>
 
-#include "env/env.hpp"
+#include "env/state.hpp"
 #include "env/vector_env.hpp"
 #include "policies/policy.hpp"
 
@@ -22,21 +22,21 @@ namespace chore {
 class ScriptedExpert {
  public:
   // `env` must use the primitive action space; chore::Error otherwise.
-  explicit ScriptedExpert(const Env& env);
+  explicit ScriptedExpert(const EnvState& env);
   // The next action index, or nullopt when the goal holds or no literal is one it knows.
-  std::optional<int> act(const Env& env) const;
+  std::optional<int> act(const EnvState& env) const;
 
  private:
   std::optional<int> action(PrimitiveType type, int object) const;
-  std::optional<int> go_and(const Env& env, PrimitiveType type, int object) const;
-  std::optional<int> put(const Env& env, int item, int target) const;
-  std::optional<int> clean(const Env& env, int surface, bool needs_soaked_tool) const;
+  std::optional<int> go_and(const EnvState& env, PrimitiveType type, int object) const;
+  std::optional<int> put(const EnvState& env, int item, int target) const;
+  std::optional<int> clean(const EnvState& env, int surface, bool needs_soaked_tool) const;
 
   const std::vector<PrimitiveAction>* actions_;
 };
 
 // The scripted expert as a Policy over a VectorEnv's envs (it reads their
-// state through VectorEnv::env, not the observations). Where the script has
+// state through VectorEnv::state, not the observations). Where the script has
 // no action (a literal it does not know), it gives up the seed's way: it
 // repeats an action whose precondition fails, which changes nothing and ends
 // the episode as a policy failure.

@@ -459,7 +459,7 @@ TEST(Primitives, OneSeedFixesAPrimitiveEpisodeWhateverTheThreadCount) {
       rewards.push_back(r);
       std::vector<double> q;
       for (int e = 0; e < 2; ++e) {
-        const World& w = envs.env(e).world();
+        const World& w = envs.state(e).world();
         q.insert(q.end(), w.data()->qpos, w.data()->qpos + w.model()->nq);
       }
       qpos.push_back(q);
