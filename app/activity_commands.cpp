@@ -5,8 +5,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "env/env.hpp"
 #include "base/error.hpp"
+#include "env/env.hpp"
 #include "tasks/activity.hpp"
 
 namespace chore {
@@ -25,10 +25,10 @@ void check_activities(const std::vector<std::string>& files, std::ostream& out) 
     });
     size_t literals = 0;
     for (const GroundOption& o : goal.options) literals = std::max(literals, o.size());
-    out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size()
-        << " objects, " << p.init.size() << " initial literals, " << goal.conditions.size()
-        << " goal conditions, " << goal.options.size() << " ground options of up to " << literals
-        << " literals (" << goal.literals.size() << " distinct)\n";
+    out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size() << " objects, "
+        << p.init.size() << " initial literals, " << goal.conditions.size() << " goal conditions, "
+        << goal.options.size() << " ground options of up to " << literals << " literals (" << goal.literals.size()
+        << " distinct)\n";
   }
 }
 
@@ -43,8 +43,8 @@ cv::Mat to_bgr(const Array& rgb, int height, int width) {
 
 }  // namespace
 
-void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed,
-                     const std::string& png, std::ostream& out) {
+void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed, const std::string& png,
+                     std::ostream& out) {
   constexpr int kHead = 384, kTop = 768;
   EnvConfig config;
   config.activity = activity;
@@ -56,23 +56,21 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   // The third-person view: the whole scene from above, ceilings left out.
   Renderer top(env.world().model(), kTop, kTop);
   ArrayDict overview(Space::dict({{"rgb", Space::box({kTop, kTop, 3}, DType::uint8, 0, 255)}}), 1);
-  std::vector<CameraView> view = {{env.world().model(), env.world().data(),
-                                   env.world().scene().overview_camera(),
-                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0,
-                                   false, &env.world()}};
+  std::vector<CameraView> view = {{env.world().model(), env.world().data(), env.world().scene().overview_camera(),
+                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false,
+                                   &env.world()}};
   top.render(view);
   cv::Mat head = to_bgr(reset.obs["rgb"], kHead, kHead);
   cv::Mat panel(kTop, kHead + kTop, CV_8UC3, cv::Scalar(0, 0, 0));
   head.copyTo(panel(cv::Rect(0, (kTop - kHead) / 2, kHead, kHead)));
   to_bgr(overview["rgb"], kTop, kTop).copyTo(panel(cv::Rect(kHead, 0, kTop, kTop)));
   if (!cv::imwrite(png, panel)) throw Error("cannot write '" + png + "'");
-  out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q "
-      << reset.info.q << ", " << reset.info.satisfied << "/" << reset.info.total
-      << " goal literals hold; picture: " << png << "\n";
+  out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q " << reset.info.q << ", "
+      << reset.info.satisfied << "/" << reset.info.total << " goal literals hold; picture: " << png << "\n";
 }
 
-void sample_activity_seeds(const std::string& activity, const std::string& scene, uint64_t first,
-                           uint64_t last, std::ostream& out) {
+void sample_activity_seeds(const std::string& activity, const std::string& scene, uint64_t first, uint64_t last,
+                           std::ostream& out) {
   EnvConfig config;
   config.activity = activity;
   config.scene = scene;
@@ -81,9 +79,8 @@ void sample_activity_seeds(const std::string& activity, const std::string& scene
   const auto start = std::chrono::steady_clock::now();
   for (uint64_t seed = first; seed <= last; ++seed) env.reset_state(seed);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out << activity << " in " << env.world().scene().name() << ": seeds " << first << "-" << last
-      << " all instantiated (" << (last - first + 1) << "), " << 1000 * seconds / (last - first + 1)
-      << " ms each\n";
+  out << activity << " in " << env.world().scene().name() << ": seeds " << first << "-" << last << " all instantiated ("
+      << (last - first + 1) << "), " << 1000 * seconds / (last - first + 1) << " ms each\n";
 }
 
 }  // namespace chore

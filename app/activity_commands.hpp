@@ -14,11 +14,11 @@ void check_activities(const std::vector<std::string>& files, std::ostream& out);
 
 // Instantiates `activity` with `seed` and writes a PNG: the robot's head
 // camera beside a top-down view of the scene.
-void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed,
-                     const std::string& png, std::ostream& out);
+void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed, const std::string& png,
+                     std::ostream& out);
 // Instantiates `activity` with every seed in [first, last]; prints how many
 // succeeded and the time each took. Throws chore::Error at the first failure.
-void sample_activity_seeds(const std::string& activity, const std::string& scene, uint64_t first,
-                           uint64_t last, std::ostream& out);
+void sample_activity_seeds(const std::string& activity, const std::string& scene, uint64_t first, uint64_t last,
+                           std::ostream& out);
 
 }  // namespace chore

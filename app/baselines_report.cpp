@@ -47,7 +47,8 @@ nlohmann::json machine() {
   const double gib = memory_kb.empty() ? 0 : std::stod(memory_kb) / (1024.0 * 1024.0);
   const std::string source = fs::path(CHORE_SOURCE_DIR).string();
   const std::string commit = first_line_of("git -C '" + source + "' rev-parse --short HEAD 2>/dev/null");
-  const std::string dirty = first_line_of("git -C '" + source + "' status --porcelain --untracked-files=no 2>/dev/null");
+  const std::string dirty =
+      first_line_of("git -C '" + source + "' status --porcelain --untracked-files=no 2>/dev/null");
   return {{"cpu", cpu.empty() ? "unknown" : cpu},
           {"cores", std::thread::hardware_concurrency()},
           {"memory_gib", std::round(gib * 10) / 10},
@@ -69,8 +70,12 @@ Stat mean_std(const std::vector<double>& v) {
   s.std = std::sqrt(s.std / static_cast<double>(v.size()));  // population std, over training seeds
   return s;
 }
-nlohmann::json to_json(const Stat& s) { return {{"mean", s.mean}, {"std", s.std}, {"runs", s.n}}; }
-std::string format(const Stat& s) { return s.n == 0 ? "-" : fixed(s.mean) + " ± " + fixed(s.std); }
+nlohmann::json to_json(const Stat& s) {
+  return {{"mean", s.mean}, {"std", s.std}, {"runs", s.n}};
+}
+std::string format(const Stat& s) {
+  return s.n == 0 ? "-" : fixed(s.mean) + " ± " + fixed(s.std);
+}
 
 }  // namespace
 
@@ -88,8 +93,11 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     summary["dir"] = c.dir.string();
     train_s += summary["train_wall_s"].get<double>();
     eval_s += summary["eval_wall_s"].get<double>();
-    runs.push_back({{"activity", c.activity}, {"method", c.method}, {"seed", c.seed},
-                    {"train_wall_s", summary["train_wall_s"]}, {"eval_wall_s", summary["eval_wall_s"]},
+    runs.push_back({{"activity", c.activity},
+                    {"method", c.method},
+                    {"seed", c.seed},
+                    {"train_wall_s", summary["train_wall_s"]},
+                    {"eval_wall_s", summary["eval_wall_s"]},
                     {"q_seed0", summary["seed0"]["q"]["mean"]},
                     {"success_seed0", summary["seed0"]["success_rate"]["mean"]},
                     {"q_generalisation", summary["generalisation"]["q"]["mean"]},
@@ -115,12 +123,16 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
         }
       }
       const PaperQ paper = paper_q(m, a);
-      rows.push_back({{"activity", a}, {"method", m}, {"runs", done.size()},
-                      {"q_seed0", to_json(mean_std(q0))}, {"success_seed0", to_json(mean_std(s0))},
+      rows.push_back({{"activity", a},
+                      {"method", m},
+                      {"runs", done.size()},
+                      {"q_seed0", to_json(mean_std(q0))},
+                      {"success_seed0", to_json(mean_std(s0))},
                       {"q_generalisation", to_json(mean_std(qg))},
                       {"success_generalisation", to_json(mean_std(sg))},
                       {"paper_q", {{"mean", paper.mean}, {"std", paper.std}}},
-                      {"failed_primitives", failed}, {"episodes_ended_by", ended}});
+                      {"failed_primitives", failed},
+                      {"episodes_ended_by", ended}});
     }
   }
 
@@ -148,23 +160,28 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     }
   }
 
-  nlohmann::json result = {
-      {"protocol", {{"activities", o.activities}, {"methods", o.methods}, {"training_seeds", o.seeds},
-                    {"steps", o.steps}, {"mode", o.mode}, {"eval_seed", 0}, {"eval_episodes", o.eval_episodes},
-                    {"eval_policy", "sampled"},
-                    {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
-                    {"generalisation_episodes_per_seed", 1}, {"settings", o.settings}}},
-      {"command", o.command_line},
-      {"machine", machine()},
-      {"rows", rows},
-      {"runs", runs},
-      {"missing", missing},
-      {"curves", curves},
-      {"train_wall_s", train_s},
-      {"eval_wall_s", eval_s}};
+  nlohmann::json result = {{"protocol",
+                            {{"activities", o.activities},
+                             {"methods", o.methods},
+                             {"training_seeds", o.seeds},
+                             {"steps", o.steps},
+                             {"mode", o.mode},
+                             {"eval_seed", 0},
+                             {"eval_episodes", o.eval_episodes},
+                             {"eval_policy", "sampled"},
+                             {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
+                             {"generalisation_episodes_per_seed", 1},
+                             {"settings", o.settings}}},
+                           {"command", o.command_line},
+                           {"machine", machine()},
+                           {"rows", rows},
+                           {"runs", runs},
+                           {"missing", missing},
+                           {"curves", curves},
+                           {"train_wall_s", train_s},
+                           {"eval_wall_s", eval_s}};
   return result;
 }
-
 
 std::string method_title(const std::string& method) {
   return paper_table()["methods"].contains(method) ? paper_table()["methods"][method]["title"].get<std::string>()
@@ -224,10 +241,12 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   for (uint64_t s : o.seeds) md << " " << s;
   md << "; " << o.mode << " primitive execution; evaluation at seed 0 (" << o.eval_episodes
      << " episodes) and over seeds " << o.generalisation_first << "-" << o.generalisation_last
-     << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as in "
+     << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as "
+        "in "
         "training. Mean ± std over the training seeds.\n";
   if (!o.settings.empty()) {
-    md << "- Settings beyond the paper's (`chore train --set`, ppo.* for RL-Prim. and RL-Prim.Hist., sac.* for RL-VMC):";
+    md << "- Settings beyond the paper's (`chore train --set`, ppo.* for RL-Prim. and RL-Prim.Hist., sac.* for "
+          "RL-VMC):";
     for (const std::string& s : o.settings) md << " `" << s << "`";
     md << "\n";
   }
@@ -274,8 +293,8 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
     const nlohmann::json& e = row["episodes_ended_by"];
     const nlohmann::json& f = row["failed_primitives"];
     md << "| " << activity_title(row["activity"]) << " | " << method_title(row["method"]) << " | "
-       << e.value("success", 0) << " | " << e.value("policy_failure", 0) << " | " << e.value("time_limit", 0)
-       << " | " << f.value("motion_planning_failure", 0) << " | " << f.value("grasp_failure", 0) << " | "
+       << e.value("success", 0) << " | " << e.value("policy_failure", 0) << " | " << e.value("time_limit", 0) << " | "
+       << f.value("motion_planning_failure", 0) << " | " << f.value("grasp_failure", 0) << " | "
        << f.value("place_failure", 0) << " | " << f.value("precondition_failure", 0) << " |\n";
   }
   md << "\nRL-VMC acts in the low-level action space: it has no primitives to fail.\n\n";
@@ -283,8 +302,8 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   md << "## Runs\n\n| Activity | Method | Seed | Train wall-clock | Eval wall-clock | Q seed 0 | Q fresh |\n"
         "|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& run : r["runs"]) {
-    md << "| " << activity_title(run["activity"]) << " | " << method_title(run["method"]) << " | "
-       << run["seed"] << " | " << format_hours(run["train_wall_s"].get<double>()) << " | "
+    md << "| " << activity_title(run["activity"]) << " | " << method_title(run["method"]) << " | " << run["seed"]
+       << " | " << format_hours(run["train_wall_s"].get<double>()) << " | "
        << format_hours(run["eval_wall_s"].get<double>()) << " | " << fixed(run["q_seed0"].get<double>()) << " | "
        << fixed(run["q_generalisation"].get<double>()) << " |\n";
   }
@@ -302,9 +321,9 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   if (!r["videos"].empty()) {
     md << "\n## Videos (the best run's policy at evaluation seed 0)\n\n";
     for (const auto& [a, v] : r["videos"].items()) {
-      md << "- " << activity_title(a) << ": [" << fs::relative(v["file"].get<std::string>(), o.out).string()
-         << "](" << fs::relative(v["file"].get<std::string>(), o.out).string() << ") ("
-         << method_title(v["method"]) << ", seed " << v["seed"] << ")\n";
+      md << "- " << activity_title(a) << ": [" << fs::relative(v["file"].get<std::string>(), o.out).string() << "]("
+         << fs::relative(v["file"].get<std::string>(), o.out).string() << ") (" << method_title(v["method"])
+         << ", seed " << v["seed"] << ")\n";
     }
   }
   return md.str();

@@ -9,9 +9,9 @@
 
 #include <mujoco/mujoco.h>
 
+#include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "base/error.hpp"
 #include "policies/expert.hpp"
 
 namespace chore {
@@ -329,8 +329,7 @@ std::string format_table(const nlohmann::json& r) {
   std::snprintf(buf, sizeof buf,
                 "Idle benchmark (seed Table A.10 protocol), %s RGB, env steps per second "
                 "(median of %d x %d steps)\n\n",
-                r["image"].get<std::string>().c_str(), r["repeats"].get<int>(),
-                r["steps"].get<int>());
+                r["image"].get<std::string>().c_str(), r["repeats"].get<int>(), r["steps"].get<int>());
   text += buf;
   const std::vector<std::string> scenes = r["scenes"].get<std::vector<std::string>>();
   std::snprintf(buf, sizeof buf, "%-24s", "Eval. conditions");
@@ -362,14 +361,14 @@ std::string format_vector_env(const nlohmann::json& r) {
   text += "\nVectorEnv, " + r["image"].get<std::string>() +
           " RGB-D + proprioception, zero action, env steps per second (speed-up: median of\n"
           "per-block ratios to 1 thread, blocks alternating)\n";
-  std::snprintf(buf, sizeof buf, "%-14s%18s%26s%28s\n", "scene", "1 thread, sync",
-                "2 threads, sync", "2 threads, async (B=N/2)");
+  std::snprintf(buf, sizeof buf, "%-14s%18s%26s%28s\n", "scene", "1 thread, sync", "2 threads, sync",
+                "2 threads, async (B=N/2)");
   text += buf;
   for (const std::string& s : scenes) {
     const auto& v = r["vector_env"][s];
-    std::snprintf(buf, sizeof buf, "%-14s%18.0f%18.0f (%.2fx)%20.0f (%.2fx)\n", s.c_str(),
-                  v["1"].get<double>(), v["2"].get<double>(), v["speedup"].get<double>(),
-                  v["2_async"].get<double>(), v["speedup_async"].get<double>());
+    std::snprintf(buf, sizeof buf, "%-14s%18.0f%18.0f (%.2fx)%20.0f (%.2fx)\n", s.c_str(), v["1"].get<double>(),
+                  v["2"].get<double>(), v["speedup"].get<double>(), v["2_async"].get<double>(),
+                  v["speedup_async"].get<double>());
     text += buf;
   }
   return text;

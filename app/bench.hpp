@@ -17,10 +17,10 @@ namespace chore {
 
 struct BenchOptions {
   std::vector<std::string> scenes = {"apartment", "studio", "restaurant"};
-  int steps = 600;     // measured steps per repetition
-  int repeats = 3;     // the median is reported
+  int steps = 600;  // measured steps per repetition
+  int repeats = 3;  // the median is reported
   int width = 128, height = 128;
-  int vector_envs = 16; // vector-env rows: several envs per thread shorten the idle tail of a round
+  int vector_envs = 16;  // vector-env rows: several envs per thread shorten the idle tail of a round
   // Primitive rows: the scripted expert's episodes (seeds 0 ..) on each scene's
   // activity, in both execution modes; 0 skips them.
   int primitive_episodes = 3;

@@ -8,8 +8,8 @@
 #include <numeric>
 #include <thread>
 
-#include "env/env.hpp"
 #include "base/error.hpp"
+#include "env/env.hpp"
 #include "policies/expert.hpp"
 
 namespace chore {
@@ -40,9 +40,8 @@ Episode run_episode(Env& env, uint64_t seed) {
     const Env::StepResult r = env.step({&value, 1});
     const PrimitiveAction& action = env.primitive_actions()[*a];
     if (r.info.primitive_status > 0) {
-      e.failures.push_back(to_string(action) + ": " +
-                           to_string(static_cast<PrimitiveStatus>(r.info.primitive_status)) + ": " +
-                           env.last_primitive().reason);
+      e.failures.push_back(to_string(action) + ": " + to_string(static_cast<PrimitiveStatus>(r.info.primitive_status)) +
+                           ": " + env.last_primitive().reason);
     }
     e.steps = static_cast<int>(r.info.elapsed_steps);
     e.physics_steps += r.info.physics_steps;
@@ -79,9 +78,8 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
     for (int i = next++; i < options.episodes; i = next++) {
       episodes[i] = run_episode(env, options.seed + static_cast<uint64_t>(i));
       const std::lock_guard<std::mutex> lock(log_mutex);
-      log << "episode " << i << " (seed " << options.seed + i << "): "
-          << (episodes[i].success ? "success" : "failure") << ", " << episodes[i].steps << " steps, Q "
-          << episodes[i].q << "\n";
+      log << "episode " << i << " (seed " << options.seed + i << "): " << (episodes[i].success ? "success" : "failure")
+          << ", " << episodes[i].steps << " steps, Q " << episodes[i].q << "\n";
     }
   };
   std::vector<std::thread> threads;
@@ -104,7 +102,8 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
     physics_steps += e.physics_steps;
     q += e.q;
     for (int s = 1; s < kPrimitiveStatuses; ++s) {
-      failures[to_string(static_cast<PrimitiveStatus>(s))] = failures[to_string(static_cast<PrimitiveStatus>(s))].get<int>() + e.counts[s];
+      failures[to_string(static_cast<PrimitiveStatus>(s))] =
+          failures[to_string(static_cast<PrimitiveStatus>(s))].get<int>() + e.counts[s];
     }
     per_episode.push_back({{"success", e.success}, {"q", e.q}, {"steps", e.steps}, {"failed_primitives", e.failures}});
   }
@@ -134,13 +133,15 @@ std::string format_expert(const nlohmann::json& r) {
                 r["activity"].get<std::string>().c_str(), r["mode"].get<std::string>().c_str(),
                 r["episodes"].get<int>(), static_cast<unsigned long long>(r["seed"].get<uint64_t>()));
   out += line;
-  std::snprintf(line, sizeof line, "  success rate         %.1f%%\n  mean Q               %.3f\n"
+  std::snprintf(line, sizeof line,
+                "  success rate         %.1f%%\n  mean Q               %.3f\n"
                 "  mean episode length  %.1f primitive steps\n",
                 100 * r["success_rate"].get<double>(), r["mean_q"].get<double>(),
                 r["mean_episode_length"].get<double>());
   out += line;
   out += "  failed primitives   ";
-  for (const auto& [name, count] : r["primitive_failures"].items()) out += " " + name + " " + std::to_string(count.get<int>());
+  for (const auto& [name, count] : r["primitive_failures"].items())
+    out += " " + name + " " + std::to_string(count.get<int>());
   std::snprintf(line, sizeof line, "\n  policy failures %d, expert stuck %d, diverged %d\n",
                 r["policy_failures"].get<int>(), r["expert_stuck"].get<int>(), r["diverged"].get<int>());
   out += line;

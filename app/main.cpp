@@ -1,8 +1,8 @@
 // The `chore` command line: bench, activity check/sample, expert, eval, video, observe, plot,
 // reproduce; train joins with the trainers. Bad arguments and bad input files
 // exit with status 2 and a message naming what is wrong.
-#include <CLI/CLI.hpp>
 #include <malloc.h>
+#include <CLI/CLI.hpp>
 
 #include <iostream>
 #include <regex>
@@ -50,7 +50,8 @@ struct PolicyArgs {
 };
 
 void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
-  auto* checkpoint = cmd->add_option("--checkpoint", a.checkpoints, "Checkpoint(s) of chore train (their env, greedy policy)");
+  auto* checkpoint =
+      cmd->add_option("--checkpoint", a.checkpoints, "Checkpoint(s) of chore train (their env, greedy policy)");
   auto* plugin = cmd->add_option("--policy-plugin", a.plugin, "Shared library defining a policy (CHORE_POLICY_PLUGIN)");
   auto* expert = cmd->add_flag("--expert", a.expert, "The scripted expert (primitive action space)");
   plugin->excludes(expert);
@@ -60,11 +61,16 @@ void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
   cmd->add_option("--policy-options", a.plugin_options, "Text handed to the plugin's factory")->needs(plugin);
   cmd->add_option("--activity", a.activity, "Activity name or .bddl path (a checkpoint's own by default)");
   cmd->add_option("--action-space", a.action_space, "primitives or low_level (plugins)")
-      ->check(CLI::IsMember({"primitives", "low_level"}))->needs(plugin)->capture_default_str();
+      ->check(CLI::IsMember({"primitives", "low_level"}))
+      ->needs(plugin)
+      ->capture_default_str();
   cmd->add_option("--observations", a.observations,
                   "Observations a plugin sees (default: rgb, depth, proprio, is_grasping, and action_mask for "
-                  "primitives)")->delimiter(',')->needs(plugin);
-  cmd->add_option("--mode", a.mode, "Primitive execution: physical or symbolic (default: a checkpoint's own, else physical)")
+                  "primitives)")
+      ->delimiter(',')
+      ->needs(plugin);
+  cmd->add_option("--mode", a.mode,
+                  "Primitive execution: physical or symbolic (default: a checkpoint's own, else physical)")
       ->check(CLI::IsMember({"physical", "symbolic"}));
   cmd->add_option("--max-steps", a.max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
       ->check(CLI::PositiveNumber);
@@ -93,7 +99,8 @@ std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::
   const bool primitives = a.expert || a.action_space == "primitives";
   const int max_steps = a.max_steps > 0 ? a.max_steps : primitives ? 60 : 500;
   if (a.expert) return {chore::expert_source(a.activity, mode, max_steps)};
-  if (a.plugin.empty()) throw chore::Error(command + ": give the policy: --checkpoint PATH, --policy-plugin LIB.so or --expert");
+  if (a.plugin.empty())
+    throw chore::Error(command + ": give the policy: --checkpoint PATH, --policy-plugin LIB.so or --expert");
   chore::EnvConfig env;
   env.activity = a.activity;
   env.action_space = a.action_space;
@@ -124,18 +131,28 @@ int main(int argc, char** argv) {
   bool bench_json = false;
   CLI::App* bench_cmd = app.add_subcommand("bench", "Idle benchmark (seed Table A.10 protocol)");
   bench_cmd->add_option("--scenes", bench.scenes, "Scenes to benchmark")->capture_default_str();
-  bench_cmd->add_option("--steps", bench.steps, "Steps per repetition")->check(CLI::PositiveNumber)->capture_default_str();
-  bench_cmd->add_option("--repeats", bench.repeats, "Repetitions (median reported)")->check(CLI::PositiveNumber)->capture_default_str();
+  bench_cmd->add_option("--steps", bench.steps, "Steps per repetition")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  bench_cmd->add_option("--repeats", bench.repeats, "Repetitions (median reported)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   bench_cmd->add_option("--width", bench.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
   bench_cmd->add_option("--height", bench.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
-  bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")->check(CLI::Range(2, 256))->capture_default_str();
-  bench_cmd->add_option("--primitive-episodes", bench.primitive_episodes,
-                        "Expert episodes per activity and mode for the primitive rows (0: none)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
-  bench_cmd->add_option("--sections", bench.sections,
-                        "What to run: table (Table A.10), vector (VectorEnv), primitives, modalities "
-                        "(ms per frame of each observation, first scene)")
-      ->check(CLI::IsMember({"table", "vector", "primitives", "modalities"}))->capture_default_str();
+  bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")
+      ->check(CLI::Range(2, 256))
+      ->capture_default_str();
+  bench_cmd
+      ->add_option("--primitive-episodes", bench.primitive_episodes,
+                   "Expert episodes per activity and mode for the primitive rows (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  bench_cmd
+      ->add_option("--sections", bench.sections,
+                   "What to run: table (Table A.10), vector (VectorEnv), primitives, modalities "
+                   "(ms per frame of each observation, first scene)")
+      ->check(CLI::IsMember({"table", "vector", "primitives", "modalities"}))
+      ->capture_default_str();
   bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
 
   CLI::App* activity_cmd = app.add_subcommand("activity", "BDDL activities");
@@ -151,8 +168,7 @@ int main(int argc, char** argv) {
   sample_cmd->add_option("--seed", sample_seed, "Seed")->capture_default_str();
   std::string sample_seeds;
   auto* out_option = sample_cmd->add_option("--out", sample_out, "PNG to write");
-  sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")
-      ->excludes(out_option);
+  sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")->excludes(out_option);
 
   chore::ExpertOptions expert;
   std::string expert_mode = "physical";
@@ -160,11 +176,17 @@ int main(int argc, char** argv) {
   CLI::App* expert_cmd = app.add_subcommand("expert", "Run the scripted expert on an activity (primitive actions)");
   expert_cmd->add_option("--activity", expert.activity, "Activity name or .bddl path")->required();
   expert_cmd->add_option("--episodes", expert.episodes, "Episodes")->check(CLI::PositiveNumber)->capture_default_str();
-  expert_cmd->add_option("--seed", expert.seed, "Seed of the first episode (episode i: seed + i)")->capture_default_str();
+  expert_cmd->add_option("--seed", expert.seed, "Seed of the first episode (episode i: seed + i)")
+      ->capture_default_str();
   expert_cmd->add_option("--mode", expert_mode, "Primitive execution: physical or symbolic")
-      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
-  expert_cmd->add_option("--max-steps", expert.max_steps, "Primitive steps per episode")->check(CLI::PositiveNumber)->capture_default_str();
-  expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+      ->check(CLI::IsMember({"physical", "symbolic"}))
+      ->capture_default_str();
+  expert_cmd->add_option("--max-steps", expert.max_steps, "Primitive steps per episode")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
   chore::EvalOptions eval;
@@ -175,8 +197,12 @@ int main(int argc, char** argv) {
   add_policy_options(eval_cmd, eval_policy);
   eval_cmd->add_option("--seeds", eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
       ->capture_default_str();
-  eval_cmd->add_option("--episodes", eval.episodes, "Episodes per seed")->check(CLI::PositiveNumber)->capture_default_str();
-  eval_cmd->add_option("--threads", eval.threads, "Envs run in parallel")->check(CLI::Range(1, 64))->capture_default_str();
+  eval_cmd->add_option("--episodes", eval.episodes, "Episodes per seed")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  eval_cmd->add_option("--threads", eval.threads, "Envs run in parallel")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   eval_cmd->add_flag("--json", eval_json, "Print the results as JSON (per seed and episode too)");
 
   chore::VideoOptions video;
@@ -185,7 +211,9 @@ int main(int argc, char** argv) {
   add_policy_options(video_cmd, video_policy);
   video_cmd->add_option("--seed", video.seed, "The episode's env seed")->capture_default_str();
   video_cmd->add_option("--out", video.out, "MP4 file to write")->required();
-  video_cmd->add_option("--size", video.size, "Pixels of each view")->check(CLI::Range(16, 2048))->capture_default_str();
+  video_cmd->add_option("--size", video.size, "Pixels of each view")
+      ->check(CLI::Range(16, 2048))
+      ->capture_default_str();
   video_cmd->add_option("--fps", video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
       ->check(CLI::PositiveNumber);
 
@@ -194,18 +222,25 @@ int main(int argc, char** argv) {
   observe_cmd->add_option("--activity", observe.activity, "Activity name or .bddl path (its scene)");
   observe_cmd->add_option("--scene", observe.scene, "Scene (default: the activity's, else the apartment)");
   observe_cmd->add_option("--seed", observe.seed, "The episode's env seed")->capture_default_str();
-  observe_cmd->add_option("--size", observe.size, "Pixels of each tile")->check(CLI::Range(32, 2048))->capture_default_str();
+  observe_cmd->add_option("--size", observe.size, "Pixels of each tile")
+      ->check(CLI::Range(32, 2048))
+      ->capture_default_str();
   observe_cmd->add_option("--steps", observe.steps, "Steps of motion before the frame (flow shows the last)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   observe_cmd->add_option("--out", observe.out, "PNG to write")->required();
 
   chore::PlotOptions plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "Learning curves from metrics.csv files to PNG");
-  plot_cmd->add_option("runs", plot.runs, "metrics.csv files, each optionally LABEL=path (default label: "
-                                          "the run directory less a _seedN suffix)")->required();
+  plot_cmd
+      ->add_option("runs", plot.runs,
+                   "metrics.csv files, each optionally LABEL=path (default label: "
+                   "the run directory less a _seedN suffix)")
+      ->required();
   plot_cmd->add_option("--out", plot.out, "PNG to write")->required();
   plot_cmd->add_option("--x", plot.x, "Column for the x axis")->capture_default_str();
-  plot_cmd->add_option("--y", plot.y, "Column for the y axis (success_rate, mean_q, mean_return, ...)")->capture_default_str();
+  plot_cmd->add_option("--y", plot.y, "Column for the y axis (success_rate, mean_q, mean_return, ...)")
+      ->capture_default_str();
   plot_cmd->add_option("--title", plot.title, "Title (default: Y over X)");
   plot_cmd->add_option("--width", plot.width, "Picture width")->check(CLI::Range(320, 4096))->capture_default_str();
   plot_cmd->add_option("--height", plot.height, "Picture height")->check(CLI::Range(240, 4096))->capture_default_str();
@@ -223,23 +258,33 @@ int main(int argc, char** argv) {
   train_cmd->add_option("--activity", train.activity, "Activity name or .bddl path");
   train_cmd->add_option("--baseline", train.baseline, "The baseline")->check(CLI::IsMember(baseline_names));
   train_cmd->add_option("--seed", train.seed, "Seed (env i of the vector env: seed + i)")->capture_default_str();
-  auto* train_steps_option = train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
-      ->check(CLI::PositiveNumber);
-  train_cmd->add_option("--envs", train.envs, "Envs of the vector env")->check(CLI::Range(1, 256))->capture_default_str();
-  train_cmd->add_option("--threads", train.threads, "Env worker and torch threads")->check(CLI::Range(1, 64))->capture_default_str();
+  auto* train_steps_option =
+      train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
+          ->check(CLI::PositiveNumber);
+  train_cmd->add_option("--envs", train.envs, "Envs of the vector env")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  train_cmd->add_option("--threads", train.threads, "Env worker and torch threads")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   train_cmd->add_option("--out", train.out, "Run folder: metrics.csv, checkpoint.pt, checkpoint_STEPS.pt");
   train_cmd->add_option("--resume", train.resume, "Continue the run in this folder from its checkpoint.pt");
   train_cmd->add_option("--mode", train.mode, "Primitive execution: physical (the paper's) or symbolic")
-      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
-  train_cmd->add_option("--observations", train.observations, "Observed fields (default: the baseline's), e.g. rgb is_grasping");
-  train_cmd->add_option("--episode-steps", train.episode_steps, "Steps per episode (default: 60 primitives, 500 low-level)")
+      ->check(CLI::IsMember({"physical", "symbolic"}))
+      ->capture_default_str();
+  train_cmd->add_option("--observations", train.observations,
+                        "Observed fields (default: the baseline's), e.g. rgb is_grasping");
+  train_cmd
+      ->add_option("--episode-steps", train.episode_steps, "Steps per episode (default: 60 primitives, 500 low-level)")
       ->check(CLI::PositiveNumber);
   train_cmd->add_option("--history", train.history, "rl-prim-hist: past steps the policy sees (default 4)")
       ->check(CLI::Range(1, 64));
   train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  train_cmd->add_option("--set", train.settings,
-                        "KEY=VALUE: a config field of the new run, as named in the run folder's config.json, e.g. ppo.entropy_coef=0.01");
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  train_cmd->add_option(
+      "--set", train.settings,
+      "KEY=VALUE: a config field of the new run, as named in the run folder's config.json, e.g. ppo.entropy_coef=0.01");
 
   chore::ReproduceOptions reproduce;
   std::string generalisation_seeds = "100-119";
@@ -247,21 +292,30 @@ int main(int argc, char** argv) {
       "reproduce", "The paper's baseline table (A.13) through train and eval: resumable, to OUT/baselines.{json,md}");
   reproduce_cmd->add_option("--activities", reproduce.activities, "Activities")->capture_default_str();
   reproduce_cmd->add_option("--methods", reproduce.methods, "Methods (baselines)")
-      ->check(CLI::IsMember(baseline_names))->capture_default_str();
+      ->check(CLI::IsMember(baseline_names))
+      ->capture_default_str();
   reproduce_cmd->add_option("--seeds", reproduce.seeds, "Training seeds")->capture_default_str();
-  reproduce_cmd->add_option("--steps", reproduce.steps, "Training env steps per run")->check(CLI::PositiveNumber)->capture_default_str();
+  reproduce_cmd->add_option("--steps", reproduce.steps, "Training env steps per run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   reproduce_cmd->add_option("--mode", reproduce.mode, "Primitive execution: physical (the paper's) or symbolic")
-      ->check(CLI::IsMember({"physical", "symbolic"}))->capture_default_str();
-  reproduce_cmd->add_option("--jobs", reproduce.jobs, "Runs at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
+      ->check(CLI::IsMember({"physical", "symbolic"}))
+      ->capture_default_str();
+  reproduce_cmd->add_option("--jobs", reproduce.jobs, "Runs at once (one core each)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   reproduce_cmd->add_option("--eval-episodes", reproduce.eval_episodes, "Episodes at evaluation seed 0")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  reproduce_cmd->add_option("--generalisation-seeds", generalisation_seeds, "Seeds A-B of fresh instances, one episode each")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  reproduce_cmd
+      ->add_option("--generalisation-seeds", generalisation_seeds, "Seeds A-B of fresh instances, one episode each")
       ->capture_default_str();
   reproduce_cmd->add_option("--out", reproduce.out, "Results folder (runs/ inside)")->capture_default_str();
   reproduce_cmd->add_flag("!--no-videos", reproduce.videos, "Skip the best policies' videos");
   reproduce_cmd->add_flag("--report-only", reproduce.report_only, "Train and evaluate nothing: report the runs done");
-  reproduce_cmd->add_option("--set", reproduce.settings,
-                            "KEY=VALUE for every new run's chore train --set (ppo.* for the PPO methods, sac.* for SAC)");
+  reproduce_cmd->add_option(
+      "--set", reproduce.settings,
+      "KEY=VALUE for every new run's chore train --set (ppo.* for the PPO methods, sac.* for SAC)");
 
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
@@ -272,8 +326,7 @@ int main(int argc, char** argv) {
       found |= sub->get_name() == argv[1];
     }
     if (!found) {
-      std::cerr << "chore: error: unknown subcommand '" << argv[1] << "' (known: " << known
-                << ")" << std::endl;
+      std::cerr << "chore: error: unknown subcommand '" << argv[1] << "' (known: " << known << ")" << std::endl;
       return 2;
     }
   }
@@ -312,14 +365,14 @@ int main(int argc, char** argv) {
     if (*video_cmd) {
       const std::vector<chore::PolicySource> sources = policy_sources(video_policy, "video");
       const nlohmann::json r = chore::record_video(sources.front(), video, std::cerr);
-      std::cout << "video: " << r["out"].get<std::string>() << ", " << r["frames"] << " frames of " << r["width"]
-                << "x" << r["height"] << " at " << r["fps"] << " fps (" << r["codec"].get<std::string>() << "); " << r["steps"] << " steps, "
-                << (r["success"].get<bool>() ? "success" : "no success") << ", Q " << r["q"] << "\n";
+      std::cout << "video: " << r["out"].get<std::string>() << ", " << r["frames"] << " frames of " << r["width"] << "x"
+                << r["height"] << " at " << r["fps"] << " fps (" << r["codec"].get<std::string>() << "); " << r["steps"]
+                << " steps, " << (r["success"].get<bool>() ? "success" : "no success") << ", Q " << r["q"] << "\n";
     }
     if (*observe_cmd) {
       const nlohmann::json r = chore::observe_panel(observe);
-      std::cout << "observe: " << r["out"].get<std::string>() << " (" << r["scene"].get<std::string>() << "): "
-                << r["instances"] << " instances of " << r["classes"].size() << " classes in view, depth to "
+      std::cout << "observe: " << r["out"].get<std::string>() << " (" << r["scene"].get<std::string>()
+                << "): " << r["instances"] << " instances of " << r["classes"].size() << " classes in view, depth to "
                 << r["max_depth_m"] << " m, flow up to " << r["max_flow_px"] << " px\n";
     }
     if (*plot_cmd) {

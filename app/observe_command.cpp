@@ -7,8 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "env/env.hpp"
 #include "base/error.hpp"
+#include "env/env.hpp"
 
 namespace chore {
 namespace {
@@ -100,11 +100,13 @@ cv::Mat lidar_tile(const Array& clean, const Array& noisy, const LidarConfig& li
   cv::Mat out(size, size, CV_8UC3, cv::Scalar(30, 30, 30));
   const cv::Point2d centre(size / 2.0, size / 2.0);
   const double scale = 0.47 * size / shown;
-  for (int r = 1; r <= shown; ++r) cv::circle(out, centre, static_cast<int>(scale * r), cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
+  for (int r = 1; r <= shown; ++r)
+    cv::circle(out, centre, static_cast<int>(scale * r), cv::Scalar(60, 60, 60), 1, cv::LINE_AA);
   auto at = [&](double angle, double r) {
     return centre + cv::Point2d(-std::sin(angle) * r * scale, -std::cos(angle) * r * scale);
   };
-  for (double a : {-lidar.fov / 2, lidar.fov / 2}) cv::line(out, centre, at(a, shown), cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
+  for (double a : {-lidar.fov / 2, lidar.fov / 2})
+    cv::line(out, centre, at(a, shown), cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
   for (int i = 0; i < lidar.beams; ++i) {
     const double a = beam_angle(lidar, i);
     cv::circle(out, at(a, clean.data<float>()[i]), 2, cv::Scalar(255, 255, 255), cv::FILLED, cv::LINE_AA);

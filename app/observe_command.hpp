@@ -17,9 +17,9 @@ struct ObserveOptions {
   std::string activity;  // an activity instance (in its scene), or
   std::string scene;     // a bare scene (the apartment when both are empty)
   uint64_t seed = 0;
-  int size = 256;        // pixels of each (square) tile
-  int steps = 3;         // steps of motion (forward and turning) before the frame
-  std::string out;       // the PNG to write
+  int size = 256;   // pixels of each (square) tile
+  int steps = 3;    // steps of motion (forward and turning) before the frame
+  std::string out;  // the PNG to write
 };
 
 // Writes the panel; returns what it saw (semantic classes in view, flow range,

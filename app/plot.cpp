@@ -21,7 +21,7 @@ constexpr int kGridPoints = 200;
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 const cv::Scalar kBlack(0, 0, 0), kGrey(120, 120, 120), kGridLine(228, 228, 228), kWhite(255, 255, 255);
 // Matplotlib's tab10, BGR.
-const cv::Scalar kColours[] = {{180, 119, 31}, {14, 127, 255}, {44, 160, 44},   {40, 39, 214},  {189, 103, 148},
+const cv::Scalar kColours[] = {{180, 119, 31}, {14, 127, 255},  {44, 160, 44},   {40, 39, 214},  {189, 103, 148},
                                {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23}};
 
 struct Curve {
@@ -129,8 +129,8 @@ void summarise(Group& g) {
     for (const Curve& r : g.runs) squares += std::pow(interpolate(r, x) - mean, 2);
     const double std = std::sqrt(squares / g.runs.size());
     // The band stays within the runs' values: a Q of 0, 0, 0.9 draws no band below 0.
-    for (auto [curve, y] : {std::pair{&g.mean, mean}, {&g.low, std::max(mean - std, lowest)},
-                            {&g.high, std::min(mean + std, highest)}}) {
+    for (auto [curve, y] :
+         {std::pair{&g.mean, mean}, {&g.low, std::max(mean - std, lowest)}, {&g.high, std::min(mean + std, highest)}}) {
       curve->x.push_back(x);
       curve->y.push_back(y);
     }
@@ -229,7 +229,8 @@ nlohmann::json plot_curves(const PlotOptions& options) {
   }
   for (size_t k = 0; k < groups.size(); ++k) {
     std::vector<cv::Point> line;
-    for (size_t i = 0; i < groups[k].mean.x.size(); ++i) line.push_back(fixed(px(groups[k].mean.x[i], groups[k].mean.y[i])));
+    for (size_t i = 0; i < groups[k].mean.x.size(); ++i)
+      line.push_back(fixed(px(groups[k].mean.x[i], groups[k].mean.y[i])));
     cv::polylines(image, line, false, kColours[k % 10], 2, cv::LINE_AA, shift);
   }
   cv::rectangle(image, area, kBlack, 1);
@@ -263,7 +264,8 @@ nlohmann::json plot_curves(const PlotOptions& options) {
   if (!cv::imwrite(options.out, image)) throw Error("plot: cannot write '" + options.out + "'");
 
   nlohmann::json summary = nlohmann::json::array();
-  for (const Group& g : groups) summary.push_back({{"label", g.label}, {"runs", g.runs.size()}, {"points", g.mean.x.size()}});
+  for (const Group& g : groups)
+    summary.push_back({{"label", g.label}, {"runs", g.runs.size()}, {"points", g.mean.x.size()}});
   return {{"out", options.out},
           {"groups", summary},
           {"area", {area.x, area.y, area.width, area.height}},

@@ -24,7 +24,7 @@ struct PlotOptions {
   std::vector<std::string> runs;  // [LABEL=]metrics.csv
   std::string out;                // .png
   std::string x = "env_steps", y = "success_rate";
-  std::string title;              // empty: "<y> over <x>"
+  std::string title;  // empty: "<y> over <x>"
   int width = 960, height = 600;
 };
 

@@ -88,9 +88,11 @@ TrainOptions train_options(const Cell& c, const ReproduceOptions& o) {
 // What a finished cell must match to be skipped (settings only where given,
 // so cells from before they existed still match).
 nlohmann::json cell_spec(const Cell& c, const ReproduceOptions& o) {
-  nlohmann::json spec = {{"activity", c.activity}, {"method", c.method}, {"seed", c.seed}, {"steps", o.steps},
-                         {"mode", o.mode}, {"eval_episodes", o.eval_episodes}, {"eval_policy", "sampled"},
-                         {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
+  nlohmann::json spec = {
+      {"activity", c.activity},   {"method", c.method},
+      {"seed", c.seed},           {"steps", o.steps},
+      {"mode", o.mode},           {"eval_episodes", o.eval_episodes},
+      {"eval_policy", "sampled"}, {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
   if (const auto settings = settings_for(c.method, o.settings); !settings.empty()) spec["settings"] = settings;
   return spec;
 }
@@ -170,9 +172,21 @@ class CellRun {
           pid_ = spawn({"train", "--resume", cell_.dir.string(), "--steps", steps}, "/dev/null", log);
         } else {
           const TrainOptions t = train_options(cell_, o_);
-          std::vector<std::string> args = {"train", "--activity", t.activity, "--baseline", t.baseline, "--seed",
-                                           std::to_string(t.seed), "--steps", steps, "--mode", t.mode,
-                                           "--threads", std::to_string(t.threads), "--out", t.out};
+          std::vector<std::string> args = {"train",
+                                           "--activity",
+                                           t.activity,
+                                           "--baseline",
+                                           t.baseline,
+                                           "--seed",
+                                           std::to_string(t.seed),
+                                           "--steps",
+                                           steps,
+                                           "--mode",
+                                           t.mode,
+                                           "--threads",
+                                           std::to_string(t.threads),
+                                           "--out",
+                                           t.out};
           for (const std::string& setting : t.settings) args.insert(args.end(), {"--set", setting});
           pid_ = spawn(args, "/dev/null", log);
         }
@@ -325,9 +339,10 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
 // the other activities keep the videos an earlier invocation made.
 nlohmann::json make_videos(const nlohmann::json& runs, const ReproduceOptions& o, std::ostream& log) {
   const fs::path out(o.out);
-  nlohmann::json videos = fs::exists(out / "baselines.json")
-                              ? read_json_file((out / "baselines.json").string()).value("videos", nlohmann::json::object())
-                              : nlohmann::json::object();
+  nlohmann::json videos =
+      fs::exists(out / "baselines.json")
+          ? read_json_file((out / "baselines.json").string()).value("videos", nlohmann::json::object())
+          : nlohmann::json::object();
   // ...while their file and their run are still here (a run moved away takes its video's entry along).
   for (auto it = videos.begin(); it != videos.end();) {
     const bool here = fs::exists(it->value("file", "")) && fs::exists(fs::path(it->value("run", "")) / "cell.json");
@@ -350,8 +365,8 @@ nlohmann::json make_videos(const nlohmann::json& runs, const ReproduceOptions& o
       int status = 0;
       waitpid(pid, &status, 0);
       if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
-        videos[a] = {{"file", video.string()}, {"run", dir.string()}, {"method", (*best)["method"]},
-                     {"seed", (*best)["seed"]}};
+        videos[a] = {
+            {"file", video.string()}, {"run", dir.string()}, {"method", (*best)["method"]}, {"seed", (*best)["seed"]}};
       } else {
         videos.erase(a);
         log << "reproduce: no video for " << a << " (see " << (dir / "video.log").string() << ")\n";

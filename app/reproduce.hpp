@@ -32,19 +32,19 @@ struct ReproduceOptions {
   std::vector<std::string> activities = {"store_decoration", "collect_trash", "clean_table"};
   std::vector<std::string> methods = {"rl-vmc", "rl-prim", "rl-prim-hist"};
   std::vector<uint64_t> seeds = {0, 1, 2};
-  int64_t steps = 30000;            // training env steps per run (the paper's)
-  std::string mode = "physical";    // primitive execution (the paper's)
-  int jobs = 2;                     // runs at once
-  int eval_episodes = 10;           // episodes at evaluation seed 0
+  int64_t steps = 30000;                                           // training env steps per run (the paper's)
+  std::string mode = "physical";                                   // primitive execution (the paper's)
+  int jobs = 2;                                                    // runs at once
+  int eval_episodes = 10;                                          // episodes at evaluation seed 0
   uint64_t generalisation_first = 100, generalisation_last = 119;  // one episode each
   std::string out = "results";
   bool videos = true;
-  bool report_only = false;         // no training or evaluation: report the cells done
+  bool report_only = false;  // no training or evaluation: report the cells done
   // `chore train --set KEY=VALUE` for every new run; ppo.* reach only the PPO
   // methods and sac.* only SAC's, so a method's runs are shared between tables
   // whose settings differ only for the other algorithm.
   std::vector<std::string> settings;
-  std::string command_line;         // as typed, for the report
+  std::string command_line;  // as typed, for the report
 };
 
 // Runs the cells not done yet, then writes the report; returns baselines.json's

@@ -126,8 +126,8 @@ void run_train(const TrainOptions& o, std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
   auto last_line = start - std::chrono::hours(1);
   auto report = [&](const MetricsRow& row) {
-    metrics << row.env_steps << "," << row.wall_s << "," << row.episodes << "," << row.success_rate
-            << "," << row.mean_q << "," << row.mean_return << "," << row.mean_length;
+    metrics << row.env_steps << "," << row.wall_s << "," << row.episodes << "," << row.success_rate << "," << row.mean_q
+            << "," << row.mean_return << "," << row.mean_length;
     for (double v : row.extras) metrics << "," << v;
     metrics << std::endl;
     const auto now = std::chrono::steady_clock::now();
@@ -139,10 +139,9 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     std::snprintf(line, sizeof line,
                   "train %s: %lld/%lld steps (%.1f%%), %.1f steps/s, %lld episodes, success %.2f, "
                   "return %.3f, ETA %s",
-                  config.baseline.c_str(), static_cast<long long>(row.env_steps),
-                  static_cast<long long>(total), 100.0 * row.env_steps / total, rate,
-                  static_cast<long long>(row.episodes), row.success_rate, row.mean_return,
-                  format_duration((total - row.env_steps) / std::max(rate, 1e-9)).c_str());
+                  config.baseline.c_str(), static_cast<long long>(row.env_steps), static_cast<long long>(total),
+                  100.0 * row.env_steps / total, rate, static_cast<long long>(row.episodes), row.success_rate,
+                  row.mean_return, format_duration((total - row.env_steps) / std::max(rate, 1e-9)).c_str());
     log << (tty ? "\r\033[K" : "") << line << (tty ? "" : "\n") << std::flush;
   };
 
@@ -153,8 +152,8 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     trainer->save((fs::path(dir) / ("checkpoint_" + std::to_string(trainer->env_steps()) + ".pt")).string());
   }
   if (tty) log << "\n";
-  log << "train: " << trainer->env_steps() << " steps done; checkpoint " << checkpoint.string()
-      << ", metrics " << metrics_path.string() << std::endl;
+  log << "train: " << trainer->env_steps() << " steps done; checkpoint " << checkpoint.string() << ", metrics "
+      << metrics_path.string() << std::endl;
 }
 
 }  // namespace chore

@@ -18,9 +18,9 @@ struct TrainOptions {
   uint64_t seed = 0;
   std::optional<int64_t> steps;  // total env steps; default 30000, or the resumed run's
   int envs = 1, threads = 1;
-  std::string out;     // run folder; defaults to `resume`
-  std::string resume;  // a run folder holding checkpoint.pt
-  std::string mode = "physical";  // primitive execution (rl-prim, rl-prim-hist)
+  std::string out;                        // run folder; defaults to `resume`
+  std::string resume;                     // a run folder holding checkpoint.pt
+  std::string mode = "physical";          // primitive execution (rl-prim, rl-prim-hist)
   std::vector<std::string> observations;  // empty: the baseline's
   int episode_steps = 0;                  // 0: the baseline's
   int history = 0;                        // rl-prim-hist's K; 0: PpoConfig's default

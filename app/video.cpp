@@ -93,7 +93,10 @@ nlohmann::json record_video(const PolicySource& source, const VideoOptions& opti
     const Info& info = batch.infos[0];
     ++steps;
     done = batch.terminated[0] || batch.truncated[0];
-    std::string status = done ? (info.success ? "  [success]" : info.policy_failure ? "  [policy failure]" : "  [end]") : "";
+    std::string status = done ? (info.success          ? "  [success]"
+                                 : info.policy_failure ? "  [policy failure]"
+                                                       : "  [end]")
+                              : "";
     write_frame("step " + std::to_string(steps) + "  " + describe_action(env, action, info) + status,
                 scores(batch.rewards[0], info));
     ++frames;
@@ -101,8 +104,15 @@ nlohmann::json record_video(const PolicySource& source, const VideoOptions& opti
   }
   writer.release();
   const Info& last = batch.infos[0];
-  return {{"out", options.out}, {"frames", frames}, {"width", frame_size.width}, {"height", frame_size.height},
-          {"fps", fps}, {"codec", codec}, {"steps", steps}, {"success", last.success}, {"q", last.q}};
+  return {{"out", options.out},
+          {"frames", frames},
+          {"width", frame_size.width},
+          {"height", frame_size.height},
+          {"fps", fps},
+          {"codec", codec},
+          {"steps", steps},
+          {"success", last.success},
+          {"q", last.q}};
 }
 
 }  // namespace chore

@@ -33,12 +33,15 @@ nlohmann::json read_json_file(const std::string& path) {
   }
 }
 
-JsonReader::JsonReader(const nlohmann::json& value, std::string where)
-    : value_(value), where_(std::move(where)) {}
+JsonReader::JsonReader(const nlohmann::json& value, std::string where) : value_(value), where_(std::move(where)) {}
 
-void JsonReader::fail(const std::string& message) const { throw Error(where_ + ": " + message); }
+void JsonReader::fail(const std::string& message) const {
+  throw Error(where_ + ": " + message);
+}
 
-bool JsonReader::has(const char* key) const { return value_.is_object() && value_.contains(key); }
+bool JsonReader::has(const char* key) const {
+  return value_.is_object() && value_.contains(key);
+}
 
 JsonReader JsonReader::at(const char* key) const {
   if (!value_.is_object()) fail("expected an object");
@@ -99,8 +102,7 @@ std::vector<double> JsonReader::numbers(const char* key, size_t count) const {
   return at(key).as_numbers(count);
 }
 
-std::vector<double> JsonReader::numbers(const char* key, size_t count,
-                                        std::vector<double> fallback) const {
+std::vector<double> JsonReader::numbers(const char* key, size_t count, std::vector<double> fallback) const {
   return has(key) ? numbers(key, count) : fallback;
 }
 

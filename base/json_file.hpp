@@ -20,9 +20,9 @@ class JsonReader {
   JsonReader(const nlohmann::json& value, std::string where);
 
   bool has(const char* key) const;
-  JsonReader at(const char* key) const;           // required object/array field
-  JsonReader at(size_t index) const;              // array element
-  size_t size() const;                            // array length (throws if not an array)
+  JsonReader at(const char* key) const;  // required object/array field
+  JsonReader at(size_t index) const;     // array element
+  size_t size() const;                   // array length (throws if not an array)
 
   std::string string(const char* key) const;
   std::string string(const char* key, const std::string& fallback) const;

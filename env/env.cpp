@@ -41,8 +41,8 @@ Env::Env(const EnvConfig& config) : Env(config, load_assets(config)) {}
 Env::Env(const EnvConfig& config, const EnvAssets& assets)
     : config_(config), scene_(assets.scene), activity_(assets.activity) {
   if (config_.width <= 0 || config_.height <= 0) {
-    throw Error("env config: image size " + std::to_string(config_.width) + "x" +
-                std::to_string(config_.height) + " must be positive");
+    throw Error("env config: image size " + std::to_string(config_.width) + "x" + std::to_string(config_.height) +
+                " must be positive");
   }
   if (config_.max_episode_steps <= 0) throw Error("env config: max_episode_steps must be positive");
   if (scene_->has_robot() != config_.robot) {
@@ -93,8 +93,7 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
     primitive_actions_ = chore::primitive_actions(*activity_, *world_);
     action_space_ = Space::discrete(static_cast<int64_t>(primitive_actions_.size()));
   } else {
-    throw Error("env config: unknown action space '" + config_.action_space +
-                "' (known: low_level, primitives)");
+    throw Error("env config: unknown action space '" + config_.action_space + "' (known: low_level, primitives)");
   }
   if (activity_ && config_.robot && config_.reachable_instances) {
     const auto placed_inside = [&](const std::string& instance) {
@@ -174,9 +173,9 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
     if (out_of_reach.empty()) break;
   }
   if (!out_of_reach.empty()) {
-    throw Error("env: no instance of activity '" + activity_->name() + "' in " +
-                std::to_string(kInstanceAttempts) + " samples had everything within the robot's reach; the last: " +
-                out_of_reach + " (EnvConfig::reachable_instances = false accepts such instances)");
+    throw Error("env: no instance of activity '" + activity_->name() + "' in " + std::to_string(kInstanceAttempts) +
+                " samples had everything within the robot's reach; the last: " + out_of_reach +
+                " (EnvConfig::reachable_instances = false accepts such instances)");
   }
   const Activity::Evaluation goal = activity_->evaluate(*world_);
   potential_ = goal.potential;
@@ -196,8 +195,7 @@ Env::Outcome Env::advance(std::span<const float> action) {
   if (episode_over_) throw Error("env: step() after the episode ended; call reset() first");
   const size_t expected = action_space_.element_count();
   if (action.size() != expected) {
-    throw Error("env: action has " + std::to_string(action.size()) + " values, expected " +
-                std::to_string(expected));
+    throw Error("env: action has " + std::to_string(action.size()) + " values, expected " + std::to_string(expected));
   }
   for (size_t i = 0; i < action.size(); ++i) {
     if (!std::isfinite(action[i])) {
@@ -287,7 +285,9 @@ SensorFrame Env::sensor_frame(ArrayDict& obs, int index) const {
   return f;
 }
 
-ObservationSource Env::observation_source() const { return {config_, *world_, *sensors_, primitive_actions_}; }
+ObservationSource Env::observation_source() const {
+  return {config_, *world_, *sensors_, primitive_actions_};
+}
 
 std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {
   check_open();

@@ -16,15 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "base/random.hpp"
 #include "env/primitive_actions.hpp"
 #include "env/spaces.hpp"
 #include "env/state.hpp"
 #include "env/types.hpp"
-#include "base/random.hpp"
+#include "tasks/activity.hpp"
 #include "world/renderer.hpp"
 #include "world/sensors.hpp"
 #include "world/world.hpp"
-#include "tasks/activity.hpp"
 
 namespace chore {
 
@@ -45,8 +45,8 @@ struct EnvConfig {
   // Domain randomisation of lights and colours, drawn afresh at every reset
   // from the episode seed (off by default).
   AppearanceRandomization randomization;
-  LidarConfig lidar;  // the "lidar" observation's beams, field of view and range
-  SensorNoise noise;  // off by default; drawn from the episode seed's sensor stream
+  LidarConfig lidar;            // the "lidar" observation's beams, field of view and range
+  SensorNoise noise;            // off by default; drawn from the episode seed's sensor stream
   int max_episode_steps = 500;  // then the episode is truncated
   bool robot = true;            // false: a fixed camera, no robot (benchmarks)
   bool object_states = true;    // false: extended states are not updated (benchmarks)
@@ -151,7 +151,7 @@ class Env : public EnvState {
   int64_t act_low_level(std::span<const float> action, World::StepReport& report);
   int64_t act_primitive(std::span<const float> action, World::StepReport& report);
   std::string first_out_of_reach();  // a reach check failing in the sampled instance, or ""
-  void observe();  // renders and writes into obs_ with this env's own renderer
+  void observe();                    // renders and writes into obs_ with this env's own renderer
   SensorFrame sensor_frame(ArrayDict& obs, int index) const;
   struct ObservationSource observation_source() const;
 
@@ -175,7 +175,5 @@ class Env : public EnvState {
   uint64_t episode_seed_ = 0;
   bool episode_over_ = true, closed_ = false, diverged_ = false;
 };
-
-
 
 }  // namespace chore

@@ -8,14 +8,13 @@ namespace {
 
 // Instances (or variable types, as "?type") that are argument `arg` of a
 // literal with one of `predicates`, anywhere in the formula.
-void arguments_of(const Formula& f, const std::set<std::string>& predicates, size_t arg,
-                  std::set<std::string>& names, std::vector<const Variable*>& scope) {
+void arguments_of(const Formula& f, const std::set<std::string>& predicates, size_t arg, std::set<std::string>& names,
+                  std::vector<const Variable*>& scope) {
   if (f.op == Op::literal) {
     const Literal& l = f.literal;
     if (predicates.count(l.predicate) && l.args.size() > arg) {
       const std::string& name = l.args[arg];
-      const auto var = std::find_if(scope.rbegin(), scope.rend(),
-                                    [&](const Variable* v) { return v->name == name; });
+      const auto var = std::find_if(scope.rbegin(), scope.rend(), [&](const Variable* v) { return v->name == name; });
       names.insert(var != scope.rend() ? "?" + (*var)->type : name);
     }
     return;

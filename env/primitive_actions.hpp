@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "world/world.hpp"
 #include "primitives/primitive.hpp"
 #include "tasks/activity.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 

@@ -11,20 +11,28 @@ namespace chore {
 
 size_t dtype_size(DType dtype) {
   switch (dtype) {
-    case DType::uint8: return 1;
-    case DType::int32: return 4;
-    case DType::float32: return 4;
-    case DType::int64: return 8;
+    case DType::uint8:
+      return 1;
+    case DType::int32:
+      return 4;
+    case DType::float32:
+      return 4;
+    case DType::int64:
+      return 8;
   }
   return 0;
 }
 
 const char* dtype_name(DType dtype) {
   switch (dtype) {
-    case DType::uint8: return "uint8";
-    case DType::int32: return "int32";
-    case DType::float32: return "float32";
-    case DType::int64: return "int64";
+    case DType::uint8:
+      return "uint8";
+    case DType::int32:
+      return "int32";
+    case DType::float32:
+      return "float32";
+    case DType::int64:
+      return "int64";
   }
   return "?";
 }

@@ -30,7 +30,7 @@ struct Space {
   static Space discrete(int64_t n);
   static Space dict(std::vector<std::pair<std::string, Space>> fields);
 
-  size_t element_count() const;  // box: product of shape; discrete: 1
+  size_t element_count() const;                          // box: product of shape; discrete: 1
   const Space& operator[](std::string_view name) const;  // dict field; throws chore::Error
   // e.g. Dict(rgb: Box(0, 255, (128, 128, 3), uint8), ...)
   std::string to_string() const;
@@ -46,8 +46,14 @@ struct Array {
   size_t item_bytes() const;  // bytes of one batch element
   void* item(int index) { return bytes.data() + index * item_bytes(); }
   const void* item(int index) const { return bytes.data() + index * item_bytes(); }
-  template <class T> T* data() { return reinterpret_cast<T*>(bytes.data()); }
-  template <class T> const T* data() const { return reinterpret_cast<const T*>(bytes.data()); }
+  template <class T>
+  T* data() {
+    return reinterpret_cast<T*>(bytes.data());
+  }
+  template <class T>
+  const T* data() const {
+    return reinterpret_cast<const T*>(bytes.data());
+  }
 };
 
 // Named arrays for the fields of a Dict space with `batch` elements each,

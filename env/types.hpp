@@ -24,14 +24,14 @@ struct Info {
   bool is_grasping = false;
   // Activity scores (all 0 without an activity).
   bool success = false;
-  double q = 0.0;       // success score Q: best fraction of satisfied goal literals
-  int satisfied = 0;    // literals of the best option that hold ...
-  int total = 0;        // ... out of its literals
+  double q = 0.0;     // success score Q: best fraction of satisfied goal literals
+  int satisfied = 0;  // literals of the best option that hold ...
+  int total = 0;      // ... out of its literals
   // Primitive action space only.
-  int primitive_status = -1;  // PrimitiveStatus of this step's primitive (-1: none ran)
+  int primitive_status = -1;                               // PrimitiveStatus of this step's primitive (-1: none ran)
   std::array<int, kPrimitiveStatuses> primitive_counts{};  // this episode's primitives by status
-  bool policy_failure = false;  // ended by repeated invalid actions
-  int64_t physics_steps = 0;    // physics steps this env step ran (a primitive runs many)
+  bool policy_failure = false;                             // ended by repeated invalid actions
+  int64_t physics_steps = 0;                               // physics steps this env step ran (a primitive runs many)
 };
 
 // The low-level (RL-VMC) action: 14 numbers in [-1, 1] (values outside are
@@ -45,10 +45,10 @@ constexpr int kLowLevelActionSize = 14;
 
 // Views into the vector env's buffers, valid until the next reset/step/recv.
 struct Batch {
-  const ArrayDict* obs;                // (size, ...) per field
+  const ArrayDict* obs;  // (size, ...) per field
   std::span<const float> rewards;
   std::span<const std::uint8_t> terminated, truncated;
-  std::span<const int> env_ids;        // env id of each row
+  std::span<const int> env_ids;  // env id of each row
   std::span<const Info> infos;
   // same_step only: for rows whose episode ended, its last observation and info.
   const ArrayDict* final_obs;

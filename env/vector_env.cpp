@@ -27,8 +27,7 @@ struct Block {
   int done = 0;  // rows written; guarded by the pool's mutex
 
   Block(const Space& space, int rows, bool with_final)
-      : obs(space, rows), rewards(rows), terminated(rows), truncated(rows), env_ids(rows),
-        infos(rows) {
+      : obs(space, rows), rewards(rows), terminated(rows), truncated(rows), env_ids(rows), infos(rows) {
     if (with_final) {
       final_obs = ArrayDict(space, rows);
       final_infos.resize(rows);
@@ -36,8 +35,7 @@ struct Block {
   }
 
   Batch view(bool with_final) const {
-    return Batch{&obs, rewards, terminated, truncated, env_ids, infos,
-                 with_final ? &final_obs : nullptr, final_infos};
+    return Batch{&obs, rewards, terminated, truncated, env_ids, infos, with_final ? &final_obs : nullptr, final_infos};
   }
 };
 
@@ -59,19 +57,19 @@ struct VectorEnv::Impl {
   bool same_step;
   int tile_count = 1;  // cameras per render pass
   std::vector<std::unique_ptr<Env>> envs;
-  std::vector<std::vector<float>> actions;             // per env, set by send()
-  std::vector<std::optional<uint64_t>> seeds;          // per env, set by reset()
+  std::vector<std::vector<float>> actions;     // per env, set by send()
+  std::vector<std::optional<uint64_t>> seeds;  // per env, set by reset()
   // in_flight: sent, and its result not yet returned by recv() (a finished
   // step waiting in a block is still in flight: sending it again would step
   // the env before the caller has seen the result).
   std::vector<std::uint8_t> in_flight, needs_reset;
   std::vector<std::unique_ptr<Block>> ring;
   std::unique_ptr<Block> reset_block;
-  int64_t claimed = 0;     // rows claimed in the ring so far
-  int64_t returned = 0;    // blocks returned by recv()
-  int64_t pending = 0;     // rows sent and not yet returned
+  int64_t claimed = 0;   // rows claimed in the ring so far
+  int64_t returned = 0;  // blocks returned by recv()
+  int64_t pending = 0;   // rows sent and not yet returned
   bool was_reset = false, closed = false, stopping = false;
-  Block* held = nullptr;   // the block the caller is reading
+  Block* held = nullptr;  // the block the caller is reading
 
   std::mutex mutex;
   std::condition_variable work_ready, rows_done;
@@ -93,8 +91,9 @@ struct VectorEnv::Impl {
     }
     same_step = c.autoreset == AutoReset::same_step;
     if (c.render_tiles < 0) throw Error("vector env: render_tiles must be >= 0");
-    const int wanted = c.render_tiles > 0 ? c.render_tiles
-                       : std::string(Renderer::platform()) == "device" ? kMaxTiles : 1;
+    const int wanted = c.render_tiles > 0                              ? c.render_tiles
+                       : std::string(Renderer::platform()) == "device" ? kMaxTiles
+                                                                       : 1;
     tile_count = std::max(1, std::min({wanted, num_envs, 8192 / std::max(1, c.env.width)}));
     const EnvAssets assets = load_assets(c.env);
     for (int i = 0; i < num_envs; ++i) envs.push_back(std::make_unique<Env>(c.env, assets));
@@ -183,8 +182,7 @@ struct VectorEnv::Impl {
   void render(std::vector<CameraView>& views, std::unique_ptr<Renderer>& renderer) {
     if (views.empty()) return;
     if (!renderer) {
-      renderer = std::make_unique<Renderer>(envs[0]->world().model(), config.env.width,
-                                            config.env.height, tiles());
+      renderer = std::make_unique<Renderer>(envs[0]->world().model(), config.env.width, config.env.height, tiles());
     }
     renderer->render(views);
     views.clear();
@@ -276,15 +274,23 @@ struct VectorEnv::Impl {
 VectorEnv::VectorEnv(const VectorEnvConfig& config) : impl_(std::make_unique<Impl>(config)) {}
 VectorEnv::~VectorEnv() = default;
 
-int VectorEnv::num_envs() const { return impl_->num_envs; }
-int VectorEnv::batch_size() const { return impl_->batch; }
-const Space& VectorEnv::single_observation_space() const { return impl_->envs[0]->observation_space(); }
+int VectorEnv::num_envs() const {
+  return impl_->num_envs;
+}
+int VectorEnv::batch_size() const {
+  return impl_->batch;
+}
+const Space& VectorEnv::single_observation_space() const {
+  return impl_->envs[0]->observation_space();
+}
 const EnvState& VectorEnv::state(int i) const {
   if (i < 0 || i >= impl_->num_envs) throw Error("vector env: no env " + std::to_string(i));
   return *impl_->envs[i];
 }
 
-const Space& VectorEnv::single_action_space() const { return impl_->envs[0]->action_space(); }
+const Space& VectorEnv::single_action_space() const {
+  return impl_->envs[0]->action_space();
+}
 
 Batch VectorEnv::reset(std::optional<uint64_t> seed) {
   Impl& m = *impl_;
@@ -314,14 +320,12 @@ void VectorEnv::send(std::span<const float> actions, std::span<const int> env_id
   if (!m.was_reset) throw Error("vector env: send() before reset()");
   if (actions.size() != env_ids.size() * m.action_size) {
     throw Error("vector env: got " + std::to_string(actions.size()) + " action values for " +
-                std::to_string(env_ids.size()) + " envs of action size " +
-                std::to_string(m.action_size));
+                std::to_string(env_ids.size()) + " envs of action size " + std::to_string(m.action_size));
   }
   for (size_t k = 0; k < actions.size(); ++k) {
     if (!std::isfinite(actions[k])) {
       throw Error("vector env: action value " + std::to_string(actions[k]) + " for env " +
-                  std::to_string(env_ids[k / m.action_size]) + " (index " +
-                  std::to_string(k % m.action_size) + ")");
+                  std::to_string(env_ids[k / m.action_size]) + " (index " + std::to_string(k % m.action_size) + ")");
     }
   }
   {

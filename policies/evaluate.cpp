@@ -58,8 +58,7 @@ PolicySource expert_source(const std::string& activity, ExecutionMode mode, int 
 
 PolicySource plugin_source(const std::string& library, const std::string& options, const EnvConfig& env) {
   return {library, env, [library, options](const VectorEnv& envs) {
-            const PolicySpec spec{&envs.single_observation_space(), &envs.single_action_space(),
-                                  options.c_str()};
+            const PolicySpec spec{&envs.single_observation_space(), &envs.single_action_space(), options.c_str()};
             return load_policy_plugin(library, spec);
           }};
 }
@@ -108,16 +107,16 @@ nlohmann::json evaluate(const PolicySource& source, const EvalOptions& options, 
         envs.send(std::span(actions).first(action_size), b.env_ids);
       }
     }
-    const auto of_seed = std::count_if(episodes.begin(), episodes.end(), [&](const Episode& e) {
-      return e.seed == seed && e.success;
-    });
+    const auto of_seed =
+        std::count_if(episodes.begin(), episodes.end(), [&](const Episode& e) { return e.seed == seed && e.success; });
     log << source.label << ": seed " << seed << ": " << of_seed << "/" << options.episodes << " successes\n";
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   envs.close();
 
   // Episodes finish out of order within a round: report them in seed order.
-  std::sort(episodes.begin(), episodes.end(), [](const Episode& a, const Episode& b) { return a.env_seed < b.env_seed; });
+  std::sort(episodes.begin(), episodes.end(),
+            [](const Episode& a, const Episode& b) { return a.env_seed < b.env_seed; });
   std::vector<double> success, q, length;
   nlohmann::json per_seed = nlohmann::json::array(), per_episode = nlohmann::json::array();
   std::array<int, kPrimitiveStatuses> primitives{};
@@ -134,16 +133,21 @@ nlohmann::json evaluate(const PolicySource& source, const EvalOptions& options, 
       policy_failures += e.policy_failure;
       time_limits += e.truncated;
       diverged += e.diverged;
-      per_episode.push_back({{"seed", e.seed}, {"env_seed", e.env_seed}, {"success", e.success}, {"q", e.q},
-                             {"length", e.length}, {"policy_failure", e.policy_failure},
-                             {"time_limit", e.truncated}, {"diverged", e.diverged}});
+      per_episode.push_back({{"seed", e.seed},
+                             {"env_seed", e.env_seed},
+                             {"success", e.success},
+                             {"q", e.q},
+                             {"length", e.length},
+                             {"policy_failure", e.policy_failure},
+                             {"time_limit", e.truncated},
+                             {"diverged", e.diverged}});
     }
     const double n = options.episodes;
     success.push_back(s / n);
     q.push_back(sq / n);
     length.push_back(sl / n);
-    per_seed.push_back({{"seed", episodes[first].seed}, {"success_rate", s / n}, {"q", sq / n},
-                        {"episode_length", sl / n}});
+    per_seed.push_back(
+        {{"seed", episodes[first].seed}, {"success_rate", s / n}, {"q", sq / n}, {"episode_length", sl / n}});
   }
   nlohmann::json failures = nlohmann::json::object();
   for (int k = 1; k < kPrimitiveStatuses; ++k) failures[to_string(static_cast<PrimitiveStatus>(k))] = primitives[k];
@@ -158,10 +162,11 @@ nlohmann::json evaluate(const PolicySource& source, const EvalOptions& options, 
           {"q", mean_std(q)},
           {"episode_length", mean_std(length)},
           {"failed_primitives", failures},
-          {"episodes_ended_by", {{"success", successes},
-                                 {"policy_failure", policy_failures},
-                                 {"time_limit", time_limits},
-                                 {"diverged", diverged}}},
+          {"episodes_ended_by",
+           {{"success", successes},
+            {"policy_failure", policy_failures},
+            {"time_limit", time_limits},
+            {"diverged", diverged}}},
           {"per_seed", per_seed},
           {"per_episode", per_episode},
           {"env_steps", env_steps},
@@ -172,9 +177,7 @@ nlohmann::json evaluate(const PolicySource& source, const EvalOptions& options, 
 std::string format_evaluation(const nlohmann::json& r) {
   char line[512];
   std::string out;
-  const auto ms = [&](const char* key) {
-    return std::pair{r[key]["mean"].get<double>(), r[key]["std"].get<double>()};
-  };
+  const auto ms = [&](const char* key) { return std::pair{r[key]["mean"].get<double>(), r[key]["std"].get<double>()}; };
   const std::string mode = r["mode"].get<std::string>();
   std::snprintf(line, sizeof line, "%s: %s, %s action space%s, seeds %llu-%llu x %d episodes\n",
                 r["policy"].get<std::string>().c_str(), r["activity"].get<std::string>().c_str(),
@@ -192,7 +195,8 @@ std::string format_evaluation(const nlohmann::json& r) {
                 100 * s, 100 * s_std, q, q_std, l, l_std);
   out += line;
   out += "  failed primitives:";
-  for (const auto& [name, count] : r["failed_primitives"].items()) out += " " + name + " " + std::to_string(count.get<int>());
+  for (const auto& [name, count] : r["failed_primitives"].items())
+    out += " " + name + " " + std::to_string(count.get<int>());
   const nlohmann::json& ended = r["episodes_ended_by"];
   std::snprintf(line, sizeof line,
                 "\n  episodes ended by: success %d, policy failure %d, time limit %d, divergence %d\n"

@@ -96,11 +96,9 @@ struct MaxPool2x2Function : public torch::autograd::Function<MaxPool2x2Function>
 // image, so a batch-64 update stays under 100 ms on this 2-core CPU
 // (docs/training.md has the measurements).
 nn::Sequential make_trunk() {
-  return nn::Sequential(
-      nn::Conv2d(nn::Conv2dOptions(3, 16, 8).stride(4).padding(2)), nn::ReLU(), MaxPool2x2(),
-      nn::Conv2d(nn::Conv2dOptions(16, 32, 3).padding(1)), nn::ReLU(), MaxPool2x2(),
-      nn::Conv2d(nn::Conv2dOptions(32, 32, 3).padding(1)), nn::ReLU(), MaxPool2x2(),
-      nn::Flatten());
+  return nn::Sequential(nn::Conv2d(nn::Conv2dOptions(3, 16, 8).stride(4).padding(2)), nn::ReLU(), MaxPool2x2(),
+                        nn::Conv2d(nn::Conv2dOptions(16, 32, 3).padding(1)), nn::ReLU(), MaxPool2x2(),
+                        nn::Conv2d(nn::Conv2dOptions(32, 32, 3).padding(1)), nn::ReLU(), MaxPool2x2(), nn::Flatten());
 }
 
 nn::Sequential mlp(int64_t in, int64_t hidden, int64_t out) {
@@ -108,12 +106,12 @@ nn::Sequential mlp(int64_t in, int64_t hidden, int64_t out) {
                         nn::Linear(hidden, out));
 }
 
-
 }  // namespace
 
 nlohmann::json to_json(const NetworkSpec& s) {
-  return {{"height", s.height},           {"width", s.width},     {"state_size", s.state_size},
-          {"feature_size", s.feature_size}, {"history", s.history}, {"num_actions", s.num_actions},
+  return {{"height", s.height},           {"width", s.width},
+          {"state_size", s.state_size},   {"feature_size", s.feature_size},
+          {"history", s.history},         {"num_actions", s.num_actions},
           {"action_size", s.action_size}, {"hidden", s.hidden}};
 }
 
@@ -128,8 +126,8 @@ NetworkSpec network_spec_from_json(const nlohmann::json& j) {
     s.num_actions = j.at("num_actions").get<int64_t>();
     s.action_size = j.at("action_size").get<int>();
     s.hidden = j.at("hidden").get<int>();
-    if (s.height < 0 || s.width < 0 || s.state_size < 0 || s.feature_size <= 0 || s.history < 0 ||
-        s.num_actions < 0 || s.action_size < 0 || s.hidden <= 0) {
+    if (s.height < 0 || s.width < 0 || s.state_size < 0 || s.feature_size <= 0 || s.history < 0 || s.num_actions < 0 ||
+        s.action_size < 0 || s.hidden <= 0) {
       throw Error("a size is out of range");
     }
     return s;
@@ -168,8 +166,8 @@ ObsTensors obs_tensors(const ArrayDict& obs, const NetworkSpec& spec) {
   ObsTensors t;
   if (spec.has_rgb()) {
     const Array& rgb = obs["rgb"];
-    t.rgb = torch::from_blob(const_cast<unsigned char*>(rgb.bytes.data()),
-                             {batch, spec.height, spec.width, 3}, torch::kUInt8)
+    t.rgb = torch::from_blob(const_cast<unsigned char*>(rgb.bytes.data()), {batch, spec.height, spec.width, 3},
+                             torch::kUInt8)
                 .permute({0, 3, 1, 2})
                 .contiguous();
   }
@@ -251,8 +249,7 @@ EncoderImpl::EncoderImpl(const NetworkSpec& spec) {
     width += trunk_output_size(spec.height, spec.width);
   }
   if (spec.state_size > 0) {
-    state_net_ = register_module("state_net",
-                                 nn::Sequential(nn::Linear(spec.state_size, kStateEncoding), nn::ReLU()));
+    state_net_ = register_module("state_net", nn::Sequential(nn::Linear(spec.state_size, kStateEncoding), nn::ReLU()));
     state_norm_ = register_module("state_norm", RunningNorm(spec.state_size, 5.0));
     width += kStateEncoding;
   }
@@ -276,9 +273,10 @@ ActorCriticImpl::ActorCriticImpl(const NetworkSpec& spec) {
   encoder = register_module("encoder", Encoder(spec));
   if (spec.history > 0) {
     history_net_ = register_module(
-        "history_net", nn::Sequential(nn::Linear(History::width(spec.history, spec.num_actions), spec.feature_size), nn::ReLU()));
-    combine_ = register_module(
-        "combine", nn::Sequential(nn::Linear(2 * spec.feature_size, spec.feature_size), nn::ReLU()));
+        "history_net",
+        nn::Sequential(nn::Linear(History::width(spec.history, spec.num_actions), spec.feature_size), nn::ReLU()));
+    combine_ =
+        register_module("combine", nn::Sequential(nn::Linear(2 * spec.feature_size, spec.feature_size), nn::ReLU()));
   }
   policy_head_ = register_module("policy_head", nn::Linear(spec.feature_size, spec.num_actions));
   value_head_ = register_module("value_head", nn::Linear(spec.feature_size, 1));
@@ -297,10 +295,11 @@ ActorCriticOutput ActorCriticImpl::forward(const ObsTensors& obs, const torch::T
 }
 
 History::History(int steps, int64_t num_actions)
-    : steps_(steps), num_actions_(num_actions),
-      memory_(torch::zeros({0, steps, num_actions + kPrimitiveStatuses})) {}
+    : steps_(steps), num_actions_(num_actions), memory_(torch::zeros({0, steps, num_actions + kPrimitiveStatuses})) {}
 
-int64_t History::width(int steps, int64_t num_actions) { return steps * (num_actions + kPrimitiveStatuses); }
+int64_t History::width(int steps, int64_t num_actions) {
+  return steps * (num_actions + kPrimitiveStatuses);
+}
 
 void History::ensure(int env_id) {
   if (env_id < memory_.size(0)) return;
@@ -370,8 +369,7 @@ SacCriticImpl::SacCriticImpl(const NetworkSpec& spec) {
   q2_ = register_module("q2", mlp(spec.feature_size + spec.action_size, spec.hidden, 1));
 }
 
-std::pair<torch::Tensor, torch::Tensor> SacCriticImpl::q(const torch::Tensor& feature,
-                                                         const torch::Tensor& action) {
+std::pair<torch::Tensor, torch::Tensor> SacCriticImpl::q(const torch::Tensor& feature, const torch::Tensor& action) {
   const torch::Tensor x = torch::cat({feature, action}, 1);
   return {q1_->forward(x).squeeze(1), q2_->forward(x).squeeze(1)};
 }
@@ -402,8 +400,7 @@ class RowGenerators {
 class PpoPolicy : public Policy {
  public:
   PpoPolicy(ActorCritic net, const NetworkSpec& spec, ActingMode mode)
-      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.num_actions),
-        generators_(mode) {
+      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.num_actions), generators_(mode) {
     net_->eval();
   }
 
@@ -475,7 +472,8 @@ class SacPolicy : public Policy {
     if (generators_.sample()) {
       std::vector<torch::Tensor> rows;
       for (int64_t i = 0; i < feature.size(0); ++i) {
-        rows.push_back(actor_->sample(feature.narrow(0, i, 1), generators_.of(batch.env_ids[i], batch.infos[i])).action);
+        rows.push_back(
+            actor_->sample(feature.narrow(0, i, 1), generators_.of(batch.env_ids[i], batch.infos[i])).action);
       }
       a = torch::cat(rows).contiguous();
     } else {

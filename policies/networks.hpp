@@ -120,7 +120,7 @@ class History {
  public:
   History(int steps, int64_t num_actions);
   static int64_t width(int steps, int64_t num_actions);  // K * (A + kPrimitiveStatuses)
-  torch::Tensor rows(std::span<const int> env_ids);        // (B, width)
+  torch::Tensor rows(std::span<const int> env_ids);      // (B, width)
   // Row i: env env_ids[i] took actions[i], and results[i] is the info of the
   // step it ran in (its primitive_status).
   void push(std::span<const int> env_ids, const torch::Tensor& actions, std::span<const Info> results);
@@ -176,7 +176,8 @@ struct ActingMode {
 };
 // Not thread-safe; they run without gradients.
 std::unique_ptr<Policy> make_ppo_policy(ActorCritic net, const NetworkSpec& spec, ActingMode mode = {});
-std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec, ActingMode mode = {});
+std::unique_ptr<Policy> make_sac_policy(SacCritic critic, SacActor actor, const NetworkSpec& spec,
+                                        ActingMode mode = {});
 
 // Every parameter and buffer of `module`, flattened in registration order
 // (determinism tests compare these).

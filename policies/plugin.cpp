@@ -45,8 +45,7 @@ std::unique_ptr<Policy> load_policy_plugin(const std::string& library, const Pol
   auto create = reinterpret_cast<chore_create_policy_fn>(dlsym(handle, "chore_create_policy"));
   auto destroy = reinterpret_cast<chore_destroy_policy_fn>(dlsym(handle, "chore_destroy_policy"));
   if (!create || !destroy) {
-    throw Error(where + ": it does not export " +
-                (!create ? "chore_create_policy" : "chore_destroy_policy") +
+    throw Error(where + ": it does not export " + (!create ? "chore_create_policy" : "chore_destroy_policy") +
                 " (define them with CHORE_POLICY_PLUGIN(YourPolicy), policies/policy.hpp)");
   }
   // Its types must be laid out as this process's: the same API version. Plugins

@@ -55,23 +55,25 @@ struct PolicySpec {
 // NUL-terminated) when it cannot serve `spec`; and its deleter.
 extern "C" {
 using chore_policy_api_version_fn = int (*)();
-using chore_create_policy_fn = chore::Policy* (*)(const chore::PolicySpec* spec, char* error,
-                                                  int error_size);
+using chore_create_policy_fn = chore::Policy* (*)(const chore::PolicySpec* spec, char* error, int error_size);
 using chore_destroy_policy_fn = void (*)(chore::Policy* policy);
 }
 
 // Defines the entry points for a Policy class constructible from a PolicySpec.
-#define CHORE_POLICY_PLUGIN(PolicyClass)                                                     \
-  extern "C" int chore_policy_api_version() { return CHORE_POLICY_API_VERSION; }            \
-  extern "C" chore::Policy* chore_create_policy(const chore::PolicySpec* spec, char* error, \
-                                                int error_size) {                            \
-    try {                                                                                    \
-      return new PolicyClass(*spec);                                                         \
-    } catch (const std::exception& e) {                                                      \
-      if (error && error_size > 0) {                                                         \
-        std::snprintf(error, static_cast<size_t>(error_size), "%s", e.what());               \
-      }                                                                                      \
-      return nullptr;                                                                        \
-    }                                                                                        \
-  }                                                                                          \
-  extern "C" void chore_destroy_policy(chore::Policy* policy) { delete policy; }
+#define CHORE_POLICY_PLUGIN(PolicyClass)                                                                      \
+  extern "C" int chore_policy_api_version() {                                                                 \
+    return CHORE_POLICY_API_VERSION;                                                                          \
+  }                                                                                                           \
+  extern "C" chore::Policy* chore_create_policy(const chore::PolicySpec* spec, char* error, int error_size) { \
+    try {                                                                                                     \
+      return new PolicyClass(*spec);                                                                          \
+    } catch (const std::exception& e) {                                                                       \
+      if (error && error_size > 0) {                                                                          \
+        std::snprintf(error, static_cast<size_t>(error_size), "%s", e.what());                                \
+      }                                                                                                       \
+      return nullptr;                                                                                         \
+    }                                                                                                         \
+  }                                                                                                           \
+  extern "C" void chore_destroy_policy(chore::Policy* policy) {                                               \
+    delete policy;                                                                                            \
+  }

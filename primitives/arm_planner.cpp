@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <memory>
 
-#include "world/object_geometry.hpp"
 #include "primitives/rrt_connect.hpp"
+#include "world/object_geometry.hpp"
 
 namespace chore {
 namespace {
@@ -130,8 +130,7 @@ bool arm_in_collision(const World& world, const ArmConfiguration& q) {
   return ArmCollisionChecker(world).collides(q.data());
 }
 
-ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t seed,
-                      unsigned iterations) {
+ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t seed, unsigned iterations) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
   const auto joints = world.robot()->torso_and_arm();

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "primitives/kinematics.hpp"
 #include "world/aabb.hpp"
 #include "world/world.hpp"
-#include "primitives/kinematics.hpp"
 
 namespace chore {
 
@@ -60,10 +60,10 @@ class ArmCollisionChecker {
   const World& world_;
   RobotKinematics kinematics_;
   mjData_* data_;
-  std::vector<Box> others_;           // what the robot can touch, with world boxes
-  std::vector<int> robot_and_load_;   // colliding geoms moving with the robot
+  std::vector<Box> others_;          // what the robot can touch, with world boxes
+  std::vector<int> robot_and_load_;  // colliding geoms moving with the robot
   std::vector<int> hand_and_load_;
-  std::vector<int> whole_load_;       // every geom of the load, a cloth's draped part too
+  std::vector<int> whole_load_;              // every geom of the load, a cloth's draped part too
   std::vector<unsigned char> moved_by_arm_;  // by geom id: a clearance applies to it
 };
 
@@ -72,7 +72,6 @@ bool arm_in_collision(const World& world, const ArmConfiguration& q);
 
 // A path from the world's current arm configuration to `goal`; a held object
 // moves with the hand and must not collide either. The same seed gives the same path.
-ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t seed,
-                      unsigned iterations = 2000);
+ArmPath plan_arm_path(const World& world, const ArmConfiguration& goal, uint64_t seed, unsigned iterations = 2000);
 
 }  // namespace chore

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "world/object_geometry.hpp"
 #include "primitives/rrt_connect.hpp"
+#include "world/object_geometry.hpp"
 
 namespace chore {
 namespace {
@@ -73,8 +73,8 @@ OccupancyMap::OccupancyMap(const World& world, double inflation, double above) {
     for (int i = 0; i < width_; ++i) {
       if (!at(i, j)) continue;
       occupied_[static_cast<size_t>(j) * width_ + i] = 1;
-      const bool rim = i == 0 || j == 0 || i == width_ - 1 || j == height_ - 1 || !at(i - 1, j) ||
-                       !at(i + 1, j) || !at(i, j - 1) || !at(i, j + 1);
+      const bool rim = i == 0 || j == 0 || i == width_ - 1 || j == height_ - 1 || !at(i - 1, j) || !at(i + 1, j) ||
+                       !at(i, j - 1) || !at(i, j + 1);
       if (!rim) continue;
       for (const auto& [di, dj] : disk) {
         const int x = i + di, y = j + dj;
@@ -99,8 +99,7 @@ OccupancyMap OccupancyMap::reachable_from(double x, double y) const {
   return flood(x, y, std::nullopt, std::nullopt);
 }
 
-OccupancyMap OccupancyMap::flood(double x, double y, std::optional<double> stop_x,
-                                 std::optional<double> stop_y) const {
+OccupancyMap OccupancyMap::flood(double x, double y, std::optional<double> stop_x, std::optional<double> stop_y) const {
   const auto cell = [&](double cx, double cy) {
     return std::pair{static_cast<int>(std::floor((cx - x0_) / kResolution)),
                      static_cast<int>(std::floor((cy - y0_) / kResolution))};
@@ -197,8 +196,8 @@ double body_radius_of(const World& world) {
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
     if (m->geom_type[g] == mjGEOM_CYLINDER && std::abs(d->geom_xmat[9 * g + 8]) > 0.99) {
       // Upright cylinders (the base): exact, not their box's corners.
-      radius = std::max(radius, std::hypot(d->geom_xpos[3 * g] - base.x, d->geom_xpos[3 * g + 1] - base.y) +
-                                    m->geom_size[3 * g]);
+      radius = std::max(
+          radius, std::hypot(d->geom_xpos[3 * g] - base.x, d->geom_xpos[3 * g + 1] - base.y) + m->geom_size[3 * g]);
       continue;
     }
     Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
@@ -212,8 +211,7 @@ double body_radius_of(const World& world) {
 
 }  // namespace
 
-Footprint::Footprint(const World& world)
-    : body_radius_(body_radius_of(world)), body_(world, body_radius_ + kMargin) {
+Footprint::Footprint(const World& world) : body_radius_(body_radius_of(world)), body_(world, body_radius_ + kMargin) {
   const mjModel* m = world.model();
   const Robot& r = *world.robot();
   const Pose2 base = world.base_pose();
@@ -280,8 +278,8 @@ void straighten_headings(const Footprint& footprint, std::vector<Pose2>& path) {
 
 }  // namespace
 
-BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal,
-                        uint64_t seed, unsigned iterations) {
+BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal, uint64_t seed,
+                        unsigned iterations) {
   namespace ob = ompl::base;
   namespace og = ompl::geometric;
   BasePath out;

@@ -79,7 +79,7 @@ struct BasePath {
 // A path from the world's current base pose to `goal`; the same seed gives the
 // same path. A start inside inflated obstacles (an opened drawer over the
 // base) is first left by the shortest straight move out.
-BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal,
-                        uint64_t seed, unsigned iterations = 50000);
+BasePath plan_base_path(const World& world, const Footprint& footprint, const Pose2& goal, uint64_t seed,
+                        unsigned iterations = 50000);
 
 }  // namespace chore

@@ -52,8 +52,8 @@ IkResult IkSolver::solve(const IkTarget& target, const IkOptions& options) {
     if (it == options.iterations) break;
     const Eigen::MatrixXd jac = kinematics_.site_jacobian().block(0, first, rows, n);
     // dq = J^T (J J^T + lambda^2 I)^-1 e
-    const Eigen::MatrixXd jjt = jac * jac.transpose() +
-                                options.damping * options.damping * Eigen::MatrixXd::Identity(rows, rows);
+    const Eigen::MatrixXd jjt =
+        jac * jac.transpose() + options.damping * options.damping * Eigen::MatrixXd::Identity(rows, rows);
     const Eigen::VectorXd dq = jac.transpose() * jjt.ldlt().solve(error);
     for (int k = 0; k < n; ++k) {
       const RobotJoint& joint = *joints[static_cast<size_t>(first + k)];
@@ -63,10 +63,9 @@ IkResult IkSolver::solve(const IkTarget& target, const IkOptions& options) {
   }
   result.joints = q;
   if (!result.success) {
-    result.reason = "no arm configuration reaches the target: " +
-                    std::to_string(result.position_error) + " m and " +
-                    std::to_string(result.angle_error) + " rad off after " +
-                    std::to_string(options.iterations) + " iterations";
+    result.reason = "no arm configuration reaches the target: " + std::to_string(result.position_error) + " m and " +
+                    std::to_string(result.angle_error) + " rad off after " + std::to_string(options.iterations) +
+                    " iterations";
   }
   return result;
 }

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "world/world.hpp"
 #include "primitives/kinematics.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 
@@ -23,7 +23,7 @@ struct IkTarget {
 
 struct IkOptions {
   int iterations = 200;
-  double damping = 0.05;           // lambda of damped least squares
+  double damping = 0.05;              // lambda of damped least squares
   double position_tolerance = 0.005;  // m
   double angle_tolerance = 0.05;      // rad between approach and the gripper's x axis
   bool use_torso = true;
@@ -36,7 +36,7 @@ struct IkResult {
   bool success = false;
   double position_error = 0, angle_error = 0;
   ArmConfiguration joints{};  // the solution (or the best found); torso as given without use_torso
-  std::string reason;          // why it failed
+  std::string reason;         // why it failed
 };
 
 // Solves on the robot's own kinematics (primitives/kinematics.hpp), from the

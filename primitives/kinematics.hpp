@@ -47,10 +47,10 @@ class RobotKinematics {
   void forward(int body, const double* qpos);
 
   const World& world_;
-  std::vector<double> qpos_;       // the world's positions, robot joints overwritten by set()
-  std::vector<int> bodies_;        // robot bodies, parents first
-  std::vector<int> load_bodies_;   // the carried object's bodies, root first
-  std::vector<BodyPose> pose_;     // by body id (only ours are kept up to date)
+  std::vector<double> qpos_;                    // the world's positions, robot joints overwritten by set()
+  std::vector<int> bodies_;                     // robot bodies, parents first
+  std::vector<int> load_bodies_;                // the carried object's bodies, root first
+  std::vector<BodyPose> pose_;                  // by body id (only ours are kept up to date)
   std::vector<Eigen::Vector3d> axis_, anchor_;  // world axis/anchor per joint id
   std::vector<int> robot_geoms_, load_geoms_;
   int load_root_ = -1, weld_ = -1;

@@ -16,23 +16,24 @@
 namespace chore {
 namespace {
 
-constexpr int kSubsteps = 4;                // physics steps per control step, as the env's
+constexpr int kSubsteps = 4;  // physics steps per control step, as the env's
 constexpr double kControlDt = kSubsteps / 120.0;
-constexpr double kLineSpacing = 0.01;       // m between IK waypoints of a line
-constexpr double kArmSpeed = 1.5, kArmAcceleration = 4.0;     // rad/s, rad/s^2 (torso: m/s, a tenth)
-constexpr double kBaseSpeed = 1.0, kBaseAcceleration = 1.0;   // m/s (the Tiago's top speed), m/s^2 (heading: 2x, rad)
-constexpr double kArmTolerance = 0.03;      // rad: a motion has arrived
-constexpr double kBaseTolerance = 0.04;     // m (and 2x in rad)
-constexpr double kLineTolerance = 0.01;     // rad: a line's last waypoint is reached
-constexpr int kSettleSteps = 30;            // control steps allowed to arrive after a trajectory
+constexpr double kLineSpacing = 0.01;                        // m between IK waypoints of a line
+constexpr double kArmSpeed = 1.5, kArmAcceleration = 4.0;    // rad/s, rad/s^2 (torso: m/s, a tenth)
+constexpr double kBaseSpeed = 1.0, kBaseAcceleration = 1.0;  // m/s (the Tiago's top speed), m/s^2 (heading: 2x, rad)
+constexpr double kArmTolerance = 0.03;                       // rad: a motion has arrived
+constexpr double kBaseTolerance = 0.04;                      // m (and 2x in rad)
+constexpr double kLineTolerance = 0.01;                      // rad: a line's last waypoint is reached
+constexpr int kSettleSteps = 30;                             // control steps allowed to arrive after a trajectory
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 Eigen::VectorXd to_vector(const ArmConfiguration& q) {
   return Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
 }
-
 
 // The drives feed forward the damping force at the commanded velocity
 // (World::command_position), so the speed limit is the robot's, not what a
@@ -157,9 +158,9 @@ bool Motion::track_arm(const std::vector<ArmConfiguration>& path, double speed_s
   std::vector<Eigen::VectorXd> points;
   for (const ArmConfiguration& q : path) points.push_back(to_vector(q));
   ArmCollisionChecker checker(world_);
-  const Trajectory trajectory = make_trajectory(
-      points, arm_limits(speed_scale), kControlDt, 0.05,
-      [&checker](const Eigen::VectorXd& q) { return !checker.collides(q.data()); });
+  const Trajectory trajectory =
+      make_trajectory(points, arm_limits(speed_scale), kControlDt, 0.05,
+                      [&checker](const Eigen::VectorXd& q) { return !checker.collides(q.data()); });
   result_.planning_seconds += since(start);
   for (size_t i = 0; i < trajectory.samples.size(); ++i) {
     command_arm(world_, trajectory.samples[i], trajectory.samples[i > 0 ? i - 1 : 0], kControlDt);
@@ -222,9 +223,10 @@ bool Motion::base_to(const Pose2& goal, const Footprint& footprint) {
   limits.max_velocity = Eigen::Vector3d(kBaseSpeed, kBaseSpeed, 2 * kBaseSpeed);
   limits.max_acceleration = Eigen::Vector3d(kBaseAcceleration, kBaseAcceleration, 2 * kBaseAcceleration);
   const Clock::time_point t = Clock::now();
-  const Trajectory trajectory = make_trajectory(
-      points, limits, kControlDt, OccupancyMap::kResolution,
-      [&footprint](const Eigen::VectorXd& p) { return footprint.free({p[0], p[1], p[2]}); });
+  const Trajectory trajectory =
+      make_trajectory(points, limits, kControlDt, OccupancyMap::kResolution, [&footprint](const Eigen::VectorXd& p) {
+        return footprint.free({p[0], p[1], p[2]});
+      });
   result_.planning_seconds += since(t);
   // Velocity commands towards the next sample, from where the base is now:
   // feed-forward and feedback in one.
@@ -285,9 +287,9 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
       reached = i - 1;
       if (until_contact || i > min_fraction * n) break;
       result_.planning_seconds += since(start);
-      return fail(PrimitiveStatus::motion_planning_failure,
-                  "the hand cannot follow a line beyond " + std::to_string(100 * (i - 1) / n) + "% of its " +
-                  std::to_string(delta.norm()) + " m (" + r.reason + ")");
+      return fail(PrimitiveStatus::motion_planning_failure, "the hand cannot follow a line beyond " +
+                                                                std::to_string(100 * (i - 1) / n) + "% of its " +
+                                                                std::to_string(delta.norm()) + " m (" + r.reason + ")");
     }
     path.push_back(r.joints);
     options.start = r.joints;
@@ -318,12 +320,13 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
       if (touched_) break;
     }
     world_.set_robot_configuration(world_.base_pose(), path[last].data());
-    if (!rules_along && world_.state_updates()) update_states_after_physics_step(world_, dt * static_cast<double>(last));
+    if (!rules_along && world_.state_updates())
+      update_states_after_physics_step(world_, dt * static_cast<double>(last));
     result_.execution_seconds += since(t);
     return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
-           fail(PrimitiveStatus::motion_planning_failure,
-                "the hand cannot reach the contact: IK stops after " + std::to_string(reached) + " of " +
-                    std::to_string(n) + " cm");
+           fail(PrimitiveStatus::motion_planning_failure, "the hand cannot reach the contact: IK stops after " +
+                                                              std::to_string(reached) + " of " + std::to_string(n) +
+                                                              " cm");
   }
   // Each waypoint is kLineSpacing apart: reached in kLineSpacing / speed seconds.
   const double waypoint_time = kLineSpacing / speed;
@@ -350,9 +353,9 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
     settle_arm(path.back(), kLineTolerance);
   }
   return touched_ || !cut_short || !until_contact || reached >= min_fraction * n - 1e-9 ||
-         fail(PrimitiveStatus::motion_planning_failure,
-                "the hand cannot reach the contact: IK stops after " + std::to_string(reached) + " of " +
-                    std::to_string(n) + " cm");
+         fail(PrimitiveStatus::motion_planning_failure, "the hand cannot reach the contact: IK stops after " +
+                                                            std::to_string(reached) + " of " + std::to_string(n) +
+                                                            " cm");
 }
 
 bool Motion::base_line(const Eigen::Vector3d& delta, double speed) {
@@ -382,7 +385,8 @@ bool Motion::base_line(const Eigen::Vector3d& delta, double speed) {
     const Pose2 now = world_.base_pose();
     const double vx = (from.x + f * delta.x() - now.x) / kControlDt, vy = (from.y + f * delta.y() - now.y) / kControlDt;
     const double c = std::cos(now.yaw), s = std::sin(now.yaw);
-    world_.command_base_velocity(c * vx + s * vy, -s * vx + c * vy, std::remainder(from.yaw - now.yaw, 2 * M_PI) / kControlDt);
+    world_.command_base_velocity(c * vx + s * vy, -s * vx + c * vy,
+                                 std::remainder(from.yaw - now.yaw, 2 * M_PI) / kControlDt);
     step_physics(1);
   }
   world_.command_base_velocity(0, 0, 0);

@@ -37,8 +37,7 @@ class Motion {
   // else; touched() says whether it did; then, cut short by IK before any
   // contact, it fails below `min_fraction`. In symbolic mode the state rules (soaking, cleaning) run
   // at every waypoint for the time the motion would take.
-  bool line(const Eigen::Vector3d& delta, bool until_contact, double speed = 0.2,
-            double min_fraction = 1.0);
+  bool line(const Eigen::Vector3d& delta, bool until_contact, double speed = 0.2, double min_fraction = 1.0);
   bool touched() const { return touched_; }
   // The base along a straight line by `delta` (world frame, heading kept), the
   // arm held: the hand, and what it holds, follow (pulling a drawer open).

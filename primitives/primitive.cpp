@@ -10,17 +10,19 @@
 #include <random>
 
 #include "base/error.hpp"
-#include "world/object_geometry.hpp"
-#include "world/predicates.hpp"
 #include "primitives/arm_planner.hpp"
 #include "primitives/base_planner.hpp"
 #include "primitives/motion.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
 
 namespace chore {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 const Eigen::Vector3d kDown(0, 0, -1), kUp(0, 0, 1);
 constexpr double kFingerReach = 0.04;   // m from the hand's centre to the fingertips
@@ -32,22 +34,22 @@ constexpr double kSoakDepth = 0.04;     // m under a liquid's surface that dip l
 // Wipe strokes: kRows rows kRowSpacing apart, the first kFarRow beyond the approach point.
 constexpr int kRows = 4;
 constexpr double kRowSpacing = 0.08, kFarRow = 1.5 * kRowSpacing;
-constexpr double kWipeYawSpread = 0.6;  // rad: a base pose to wipe from faces the dirt within +-0.3
-constexpr double kSlim = 0.08;          // m: objects this narrow fit between the open fingers
-constexpr double kPullFraction = 0.9;   // of a drawer's range, push opens it this far
-constexpr double kApproachSpeed = 0.15; // m/s of the hand towards a contact
-constexpr double kRetreatSpeed = 0.2;   // m/s of the hand away from one
-constexpr int kDrawsPerSample = 20;     // base-pose draws per free candidate, at most
-constexpr double kCorridorStep = 0.02;  // m between the hand poses checked along an approach
-constexpr double kFlatTolerance = 0.02; // m: a place spot's support heights may differ this much
+constexpr double kWipeYawSpread = 0.6;   // rad: a base pose to wipe from faces the dirt within +-0.3
+constexpr double kSlim = 0.08;           // m: objects this narrow fit between the open fingers
+constexpr double kPullFraction = 0.9;    // of a drawer's range, push opens it this far
+constexpr double kApproachSpeed = 0.15;  // m/s of the hand towards a contact
+constexpr double kRetreatSpeed = 0.2;    // m/s of the hand away from one
+constexpr int kDrawsPerSample = 20;      // base-pose draws per free candidate, at most
+constexpr double kCorridorStep = 0.02;   // m between the hand poses checked along an approach
+constexpr double kFlatTolerance = 0.02;  // m: a place spot's support heights may differ this much
 // No hand pose is this far (horizontally) from the base's axis: shoulder 0.09 m
 // ahead of it, arm and gripper ~1 m long. Farther targets skip the IK solve.
 constexpr double kArmReachBound = 1.5;
 
 const char* const kTypeNames[] = {"navigate", "pick", "place", "push", "dip", "wipe"};
 const char* const kModeNames[] = {"physical", "symbolic"};
-const char* const kStatusNames[] = {"success", "motion_planning_failure", "grasp_failure",
-                                    "place_failure", "precondition_failure"};
+const char* const kStatusNames[] = {"success", "motion_planning_failure", "grasp_failure", "place_failure",
+                                    "precondition_failure"};
 
 // The articulated joint a push opens, and the geometry it moves.
 struct Articulation {
@@ -87,7 +89,9 @@ std::optional<Articulation> articulation(const World& w, int object) {
   return std::nullopt;
 }
 
-double open_fraction(const Articulation& a) { return (a.value - a.low) / (a.high - a.low); }
+double open_fraction(const Articulation& a) {
+  return (a.value - a.low) / (a.high - a.low);
+}
 
 // Where a primitive acts on an object: the hand's target and approach.
 struct Approach {
@@ -138,7 +142,8 @@ Eigen::Vector3d top_centre(const World& w, int object) {
   const double half_x = (load.hi.x() - load.lo.x()) / 2, half_y = (load.hi.y() - load.lo.y()) / 2;
   const auto flat = [&](const Eigen::Vector3d& p) {
     double lowest = 1e9, highest = -1e9;
-    for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {half_x, half_y}, {half_x, -half_y}, {-half_x, half_y}, {-half_x, -half_y}}) {
+    for (const auto& [dx, dy] :
+         {std::pair{0.0, 0.0}, {half_x, half_y}, {half_x, -half_y}, {-half_x, half_y}, {-half_x, -half_y}}) {
       const double d = ray_to_object(w, object, Eigen::Vector3d(p.x() + dx, p.y() + dy, top + 0.05), -kUp, 1.0);
       if (d < 0) return false;
       lowest = std::min(lowest, d);
@@ -251,7 +256,9 @@ IkTarget pre_pose(const Approach& a, double load) {
   return {a.point - a.direction * standoff, a.direction, a.closing};
 }
 
-bool holding_free_object(const World& w) { return w.carried_object() >= 0; }
+bool holding_free_object(const World& w) {
+  return w.carried_object() >= 0;
+}
 
 // How far past the approach point the fingertips may need to go: kContactDepth,
 // or half way through a thinner object (a rag in a drawer: not into the drawer).
@@ -272,11 +279,14 @@ Eigen::Vector3d line_end(const World& w, PrimitiveType type, int object, const A
     return {a.point.x(), a.point.y(), surface - kSoakDepth + load};
   }
   const Eigen::Vector3d contact = a.point + a.direction * (contact_depth(w, object, a) - kFingerReach);
-  if (type == PrimitiveType::wipe) return contact + Eigen::Vector3d(std::cos(base.yaw), std::sin(base.yaw), 0) * kFarRow;
+  if (type == PrimitiveType::wipe)
+    return contact + Eigen::Vector3d(std::cos(base.yaw), std::sin(base.yaw), 0) * kFarRow;
   return contact;
 }
 
-bool descends(PrimitiveType type) { return type != PrimitiveType::place && type != PrimitiveType::navigate; }
+bool descends(PrimitiveType type) {
+  return type != PrimitiveType::place && type != PrimitiveType::navigate;
+}
 
 // A collision-free IK solution for the pre-pose of the first approach that
 // works with the base at `base` (from the untucked arm), from which, when the
@@ -360,9 +370,8 @@ struct BasePoseTally {
 };
 bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checker, const Footprint& footprint,
                        PrimitiveType purpose, int object, const std::vector<Approach>& around,
-                       const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t seed,
-                       double load, int samples, BasePoseTally& tally,
-                       const std::function<bool(const Pose2&)>& use) {
+                       const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t seed, double load,
+                       int samples, BasePoseTally& tally, const std::function<bool(const Pose2&)>& use) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Aabb box = object_aabb(w, object);
@@ -375,16 +384,16 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
     if (articulated) {
       // In front of the drawer, facing it, far enough to pull it open.
       const Eigen::Vector3d side = kUp.cross(articulated->axis);
-      const Eigen::Vector3d at = a.point + articulated->axis * (0.5 + 0.4 * unit(rng)) +
-                                 side * (0.7 * unit(rng) - 0.35);
+      const Eigen::Vector3d at =
+          a.point + articulated->axis * (0.5 + 0.4 * unit(rng)) + side * (0.7 * unit(rng) - 0.35);
       p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.8 * unit(rng) - 0.4};
     } else {
       // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
       const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
       // Leave the object's box along (c, s) from the target point, then stand off.
       double exit = 1e9;
-      for (const auto& [d, from, lo, hi] : {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()},
-                                            std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
+      for (const auto& [d, from, lo, hi] :
+           {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()}, std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
         if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
       }
       // Within the arm's reach of the point (0.6 m at the floor, 1 m at
@@ -443,12 +452,18 @@ class Executor {
  private:
   bool act() {
     switch (type_) {
-      case PrimitiveType::navigate: return navigate();
-      case PrimitiveType::pick: return pick();
-      case PrimitiveType::place: return place();
-      case PrimitiveType::push: return push();
-      case PrimitiveType::dip: return dip();
-      case PrimitiveType::wipe: return wipe();
+      case PrimitiveType::navigate:
+        return navigate();
+      case PrimitiveType::pick:
+        return pick();
+      case PrimitiveType::place:
+        return place();
+      case PrimitiveType::push:
+        return push();
+      case PrimitiveType::dip:
+        return dip();
+      case PrimitiveType::wipe:
+        return wipe();
     }
     return false;
   }
@@ -546,9 +561,8 @@ class Executor {
                 "no collision-free base pose within reach of '" + name() + "' in its room (" +
                     std::to_string(tally.blocked) + " samples in collision, then of " +
                     std::to_string(tally.elsewhere + tally.unreachable + path_failures) + " free ones: " +
-                    std::to_string(tally.elsewhere) + " in another room, " +
-                    std::to_string(tally.unreachable) + " out of the arm's reach, " +
-                    std::to_string(path_failures) + " without a path)");
+                    std::to_string(tally.elsewhere) + " in another room, " + std::to_string(tally.unreachable) +
+                    " out of the arm's reach, " + std::to_string(path_failures) + " without a path)");
   }
 
   bool pick() {
@@ -572,9 +586,8 @@ class Executor {
     if (w_.grasped_object() != object_) {
       motion_.gripper(true);
       motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
-      return fail(PrimitiveStatus::grasp_failure, result_.grasp_refused
-                                                      ? "'" + name() + "' is too heavy to hold"
-                                                      : "the hand closed on nothing");
+      return fail(PrimitiveStatus::grasp_failure,
+                  result_.grasp_refused ? "'" + name() + "' is too heavy to hold" : "the hand closed on nothing");
     }
     motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);  // lift as far as the arm goes; tuck plans the rest
     if (!tuck_where_possible()) return false;
@@ -650,7 +663,8 @@ class Executor {
     motion_.gripper(true);
     motion_.line(a->axis * 0.08, false, kRetreatSpeed, 0.0);  // back off as far as the arm goes
     if (!tuck_where_possible()) return false;
-    if (!is_open(w_, object_)) return fail(PrimitiveStatus::grasp_failure, "the handle slipped: '" + name() + "' stays closed");
+    if (!is_open(w_, object_))
+      return fail(PrimitiveStatus::grasp_failure, "the handle slipped: '" + name() + "' stays closed");
     return true;
   }
 
@@ -719,9 +733,15 @@ int parse_name(const char* const (&names)[N], const std::string& name, const cha
 
 }  // namespace
 
-const char* to_string(PrimitiveType type) { return kTypeNames[static_cast<int>(type)]; }
-const char* to_string(ExecutionMode mode) { return kModeNames[static_cast<int>(mode)]; }
-const char* to_string(PrimitiveStatus status) { return kStatusNames[static_cast<int>(status)]; }
+const char* to_string(PrimitiveType type) {
+  return kTypeNames[static_cast<int>(type)];
+}
+const char* to_string(ExecutionMode mode) {
+  return kModeNames[static_cast<int>(mode)];
+}
+const char* to_string(PrimitiveStatus status) {
+  return kStatusNames[static_cast<int>(status)];
+}
 
 PrimitiveType parse_primitive_type(const std::string& name) {
   return static_cast<PrimitiveType>(parse_name(kTypeNames, name, "primitive"));
@@ -769,9 +789,11 @@ std::string out_of_reach(const World& w, PrimitiveType type, int object, uint64_
   for (const Eigen::Vector3d& particle : dirt_particles(w, object)) {
     const std::vector<Approach> at = {{particle, kDown, std::nullopt}};
     const bool reached =
-        std::any_of(kept.begin(), kept.end(), [&](const Pose2& p) { return reach(ik, checker, w, object, at, p, type, load).has_value(); }) ||
-        sample_base_poses(w, ik, checker, footprint, type, object, at, [&](const Pose2&) { return at; }, seed++,
-                          load, options.base_pose_samples, tally, use);
+        std::any_of(kept.begin(), kept.end(),
+                    [&](const Pose2& p) { return reach(ik, checker, w, object, at, p, type, load).has_value(); }) ||
+        sample_base_poses(
+            w, ik, checker, footprint, type, object, at, [&](const Pose2&) { return at; }, seed++, load,
+            options.base_pose_samples, tally, use);
     if (!reached && ++missed == ObjectStates::kCoveredParticles) {
       return std::to_string(missed) + " dirt particles on " + name +
              " lie out of reach of every base pose the robot can drive to";
@@ -844,11 +866,15 @@ bool primitive_applies(const World& w, PrimitiveType type, int object) {
   switch (type) {
     case PrimitiveType::pick:
       return !o.fixed && o.grasp_weld >= 0 && w.model()->body_subtreemass[o.body] <= World::kGraspMassLimit;
-    case PrimitiveType::push: return articulation(w, object).has_value();
-    case PrimitiveType::dip: return ab && ab->holds_liquid;
-    case PrimitiveType::wipe: return ab && ab->covered;
+    case PrimitiveType::push:
+      return articulation(w, object).has_value();
+    case PrimitiveType::dip:
+      return ab && ab->holds_liquid;
+    case PrimitiveType::wipe:
+      return ab && ab->covered;
     case PrimitiveType::navigate:
-    case PrimitiveType::place: return true;
+    case PrimitiveType::place:
+      return true;
   }
   return false;
 }

@@ -75,8 +75,8 @@ struct ReachProblem {
   int index = -1;
   std::string reason;
 };
-ReachProblem first_out_of_reach(World& world, const std::vector<PrimitiveType>& types,
-                                const std::vector<int>& objects, uint64_t seed);
+ReachProblem first_out_of_reach(World& world, const std::vector<PrimitiveType>& types, const std::vector<int>& objects,
+                                uint64_t seed);
 
 // Why executing `type` on `object` now would fail its precondition, or empty
 // when it holds: the state checks each primitive starts with (pick and push

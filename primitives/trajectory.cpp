@@ -12,7 +12,9 @@
 
 namespace chore {
 
-double Trajectory::duration() const { return samples.empty() ? 0.0 : double(samples.size() - 1) * dt; }
+double Trajectory::duration() const {
+  return samples.empty() ? 0.0 : double(samples.size() - 1) * dt;
+}
 
 namespace {
 
@@ -22,8 +24,8 @@ using Validity = std::function<bool(const Eigen::VectorXd&)>;
 constexpr int kSmoothingAttempts = 4;  // weight, weight/2, weight/4, weight/8; then the unsmoothed path
 constexpr double kTurnShare = 0.5;     // of max_acceleration that turning may use; the rest changes the speed
 
-void check_input(const std::vector<Eigen::VectorXd>& path, const TrajectoryLimits& limits, double dt,
-                 double resolution, double smoothing) {
+void check_input(const std::vector<Eigen::VectorXd>& path, const TrajectoryLimits& limits, double dt, double resolution,
+                 double smoothing) {
   const auto fail = [](const std::string& what) { throw Error("make_trajectory: " + what); };
   const auto require = [&](bool ok, const std::string& name, double value, const std::string& rule) {
     if (!ok || !std::isfinite(value)) fail(name + " = " + (std::ostringstream() << value).str() + ", must be " + rule);

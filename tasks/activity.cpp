@@ -19,23 +19,25 @@ namespace {
 
 // The binary predicates between two objects, by BDDL name.
 const std::map<std::string, bool (*)(const World&, int, int), std::less<>> kObjectRelations = {
-    {"ontop", ontop}, {"inside", inside}, {"under", under},
+    {"ontop", ontop},   {"inside", inside},     {"under", under},
     {"nextto", nextto}, {"touching", touching}, {"insameroom", insameroom}};
 
 constexpr int kInstantiationAttempts = 10;
 
 // Predicates chore can check, by their BDDL names (both dialects).
 const std::set<std::string> kKinematic = {"ontop", "inside", "under", "onfloor", "nextto", "touching"};
-const std::set<std::string> kUnaryStates = {"cooked", "burnt", "frozen", "hot", "on_fire", "soaked",
-                                            "toggled_on", "sliced", "broken"};
-const std::set<std::string> kOther = {"inroom", "open", "saturated", "covered", "filled", "dusty",
-                                      "stained", "grasped", "inhand", "infov", "inreach",
-                                      "insameroom", "folded", "unfolded", "attached"};
+const std::set<std::string> kUnaryStates = {"cooked", "burnt",      "frozen", "hot",   "on_fire",
+                                            "soaked", "toggled_on", "sliced", "broken"};
+const std::set<std::string> kOther = {"inroom",  "open",       "saturated", "covered",  "filled",
+                                      "dusty",   "stained",    "grasped",   "inhand",   "infov",
+                                      "inreach", "insameroom", "folded",    "unfolded", "attached"};
 // Second arguments that name a substance rather than an object.
 const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated"};
 
 // "stain.n.01" -> "stain": the name dirt and liquids are kept under.
-std::string lemma(const std::string& synset) { return synset.substr(0, synset.find('.')); }
+std::string lemma(const std::string& synset) {
+  return synset.substr(0, synset.find('.'));
+}
 
 bool room_matches(const Room& room, const std::string& bddl_room) {
   return room.type == bddl_room || room.name == bddl_room;
@@ -57,8 +59,8 @@ std::string resolve_activity_path(const std::string& name) {
       if (e.path().extension() == ".bddl") known += (known.empty() ? "" : ", ") + e.path().stem().string();
     }
   }
-  throw Error("unknown activity '" + name + "' (no " + path.string() + "); known activities: " +
-              (known.empty() ? "none" : known));
+  throw Error("unknown activity '" + name + "' (no " + path.string() +
+              "); known activities: " + (known.empty() ? "none" : known));
 }
 
 namespace {
@@ -181,7 +183,8 @@ const Binding& Activity::binding(const std::string& instance) const {
 
 int Activity::object(const std::string& instance) const {
   const Binding& b = binding(instance);
-  if (b.kind != Binding::Kind::object) throw Error("activity '" + name_ + "': '" + instance + "' is not a scene object");
+  if (b.kind != Binding::Kind::object)
+    throw Error("activity '" + name_ + "': '" + instance + "' is not a scene object");
   return b.index;
 }
 
@@ -209,8 +212,8 @@ void Activity::configure(World& world) const {
     ab.cleaning_tool = kb.is_cleaning_tool(s);
     ab.slicer = kb.is_slicer(s);
     ab.holds_liquid = kb.has_property(s, "waterSource") || liquid_holders.count(b.index);
-    for (const auto& [property, source] : {std::pair{"heatSource", &ab.heat_source},
-                                           std::pair{"coldSource", &ab.cold_source}}) {
+    for (const auto& [property, source] :
+         {std::pair{"heatSource", &ab.heat_source}, std::pair{"coldSource", &ab.cold_source}}) {
       if (!kb.has_property(s, property)) continue;
       ThermalSource t;
       if (std::string(property) == "coldSource") t.temperature = -18;
@@ -244,8 +247,7 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   if (kKinematic.count(l.predicate)) {
     // Negated placements are not sampled (as BEHAVIOR's sampler); fixed
     // objects stay where the scene has them. Both must simply hold.
-    if (l.negated || w.scene().objects()[first.index].fixed || l.predicate == "nextto" ||
-        l.predicate == "touching") {
+    if (l.negated || w.scene().objects()[first.index].fixed || l.predicate == "nextto" || l.predicate == "touching") {
       return holds(w, l);
     }
     const Binding& second = binding(l.args.at(1));
@@ -330,10 +332,9 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     value = dirty(w, object_arg(0), p == "dusty" ? "dust" : "stain");
   } else {
     static const std::map<std::string, bool (*)(const World&, int)> unary = {
-        {"open", is_open},     {"cooked", cooked},   {"burnt", burnt},       {"frozen", frozen},
-        {"hot", hot},          {"on_fire", on_fire},
-        {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken},
-        {"infov", infov},      {"inreach", inreach}, {"folded", folded}, {"unfolded", unfolded}};
+        {"open", is_open},    {"cooked", cooked},         {"burnt", burnt},      {"frozen", frozen}, {"hot", hot},
+        {"on_fire", on_fire}, {"toggled_on", toggled_on}, {"sliced", sliced},    {"broken", broken}, {"infov", infov},
+        {"inreach", inreach}, {"folded", folded},         {"unfolded", unfolded}};
     value = unary.at(p)(w, object_arg(0));
   }
   return value != l.negated;

@@ -20,10 +20,10 @@
 #include <vector>
 
 #include "base/random.hpp"
-#include "world/world.hpp"
 #include "tasks/bddl.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/knowledge_base.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 
@@ -84,7 +84,7 @@ class Activity {
   GroundGoal goal_;
   std::shared_ptr<const KnowledgeBase> kb_;
   std::vector<std::pair<std::string, Binding>> bindings_;  // in :objects order
-  std::vector<Literal> init_order_;  // :init without inroom, in sampling order
+  std::vector<Literal> init_order_;                        // :init without inroom, in sampling order
 };
 
 }  // namespace chore

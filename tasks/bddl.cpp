@@ -16,10 +16,8 @@ namespace {
 // The operator keywords, in Op order; for_n_pairs is the BEHAVIOR-1K paper's
 // spelling of fornpairs.
 constexpr std::pair<const char*, Op> kOperators[] = {
-    {"not", Op::negation},        {"and", Op::conjunction},
-    {"or", Op::disjunction},      {"imply", Op::implication},
-    {"forall", Op::forall},       {"exists", Op::exists},
-    {"forn", Op::forn},           {"forpairs", Op::forpairs},
+    {"not", Op::negation},        {"and", Op::conjunction},       {"or", Op::disjunction}, {"imply", Op::implication},
+    {"forall", Op::forall},       {"exists", Op::exists},         {"forn", Op::forn},      {"forpairs", Op::forpairs},
     {"fornpairs", Op::fornpairs}, {"for_n_pairs", Op::fornpairs},
 };
 
@@ -34,14 +32,20 @@ std::optional<Op> operator_named(std::string_view name) {
 constexpr size_t kMaxNesting = 100;
 constexpr int kMaxCount = 1000000;
 
-bool is_pair_quantifier(Op op) { return op == Op::forpairs || op == Op::fornpairs; }
-bool has_count(Op op) { return op == Op::forn || op == Op::fornpairs; }
+bool is_pair_quantifier(Op op) {
+  return op == Op::forpairs || op == Op::fornpairs;
+}
+bool has_count(Op op) {
+  return op == Op::forn || op == Op::fornpairs;
+}
 
 struct Pos {
   int line = 1, column = 1;
 };
 
-std::string to_string(Pos p) { return std::to_string(p.line) + ":" + std::to_string(p.column); }
+std::string to_string(Pos p) {
+  return std::to_string(p.line) + ":" + std::to_string(p.column);
+}
 
 // A name or a list, with where it starts; a list also keeps where its ')' is:
 // a missing element is reported there.
@@ -52,7 +56,9 @@ struct Sexp {
   Pos pos, end;
 };
 
-std::string quote(std::string_view s) { return "'" + std::string(s) + "'"; }
+std::string quote(std::string_view s) {
+  return "'" + std::string(s) + "'";
+}
 
 // How an expression shows up after "got": 'name', '(name' or '('.
 std::string describe(const Sexp& e) {
@@ -112,9 +118,7 @@ class Reader {
   }
 
  private:
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-  }
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
   static bool ends_name(char c) { return is_space(c) || c == '(' || c == ')' || c == ';'; }
 
   void advance() {
@@ -337,8 +341,7 @@ class Parser {
   Variable variable(const Sexp& e) const {
     list(e, "a variable declaration (?x - TYPE)");
     const Sexp& var = item(e, 0, "a variable such as ?x");
-    if (var.is_list || !var.atom.starts_with('?') || var.atom.size() == 1)
-      fail_at(var, "a variable such as ?x");
+    if (var.is_list || !var.atom.starts_with('?') || var.atom.size() == 1) fail_at(var, "a variable such as ?x");
     if (std::find(scope_.begin(), scope_.end(), var.atom) != scope_.end())
       fail_at(var, "a variable not bound by an enclosing quantifier");
     const Sexp& dash = item(e, 1, "'-'");
@@ -353,11 +356,9 @@ class Parser {
     constexpr std::string_view expected = "a count such as (2)";
     list(e, expected);
     const Sexp& n = item(e, 0, expected);
-    const bool digits =
-        !n.is_list && !n.atom.empty() && n.atom.size() <= 7 &&
-        std::all_of(n.atom.begin(), n.atom.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (!digits || std::stoi(n.atom) < 1 || std::stoi(n.atom) > kMaxCount)
-      fail_at(n, "a count from 1 to 1000000");
+    const bool digits = !n.is_list && !n.atom.empty() && n.atom.size() <= 7 &&
+                        std::all_of(n.atom.begin(), n.atom.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!digits || std::stoi(n.atom) < 1 || std::stoi(n.atom) > kMaxCount) fail_at(n, "a count from 1 to 1000000");
     expect_size(e, 1);
     return std::stoi(n.atom);
   }
@@ -421,7 +422,9 @@ Formula nnf(const Formula& f, bool negate) {
 
 }  // namespace
 
-const char* to_string(Domain domain) { return domain == Domain::igibson ? "igibson" : "omnigibson"; }
+const char* to_string(Domain domain) {
+  return domain == Domain::igibson ? "igibson" : "omnigibson";
+}
 
 const char* keyword(Op op) {
   for (const auto& [word, o] : kOperators)
@@ -462,8 +465,7 @@ std::string to_bddl(const Problem& problem) {
   for (size_t i = 0; i < problem.objects.size();) {
     const std::string& type = problem.objects[i].type;
     out += "        ";
-    for (; i < problem.objects.size() && problem.objects[i].type == type; ++i)
-      out += problem.objects[i].name + " ";
+    for (; i < problem.objects.size() && problem.objects[i].type == type; ++i) out += problem.objects[i].name + " ";
     out += "- " + type + "\n";
   }
   out += "    )\n\n    (:init\n";
@@ -474,6 +476,8 @@ std::string to_bddl(const Problem& problem) {
   return out;
 }
 
-Formula to_nnf(const Formula& formula) { return nnf(formula, false); }
+Formula to_nnf(const Formula& formula) {
+  return nnf(formula, false);
+}
 
 }  // namespace chore

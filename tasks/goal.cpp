@@ -98,7 +98,9 @@ void combinations(size_t k, size_t n, const Visit& visit) {
   }
 }
 
-void append(GroundOption& to, const GroundOption& from) { to.insert(to.end(), from.begin(), from.end()); }
+void append(GroundOption& to, const GroundOption& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
 
 using Product = void (*)(const std::vector<size_t>& sizes, size_t cap, const Visit& visit);
 
@@ -187,8 +189,8 @@ class Grounder {
         GroundLiteral l = f.literal;
         for (std::string& arg : l.args) {
           if (!arg.starts_with('?')) continue;
-          const auto it = std::find_if(bindings_.rbegin(), bindings_.rend(),
-                                       [&](const auto& b) { return b.first == arg; });
+          const auto it =
+              std::find_if(bindings_.rbegin(), bindings_.rend(), [&](const auto& b) { return b.first == arg; });
           if (it == bindings_.rend()) throw Error("activity " + problem_.name + ": unbound variable " + arg);
           arg = it->second;
         }
@@ -209,9 +211,8 @@ class Grounder {
         no_pair.op = Op::disjunction;
         for (const std::string& x : instances(f.variables[0]))
           for (const std::string& y : columns)
-            g.children.push_back(
-                x == y ? no_pair
-                       : bound(f.children[0], {{f.variables[0].name, x}, {f.variables[1].name, y}}));
+            g.children.push_back(x == y ? no_pair
+                                        : bound(f.children[0], {{f.variables[0].name, x}, {f.variables[1].name, y}}));
         return g;
       }
       default:  // negation, conjunction, disjunction, implication
@@ -348,8 +349,7 @@ class Evaluator {
       case Op::exists:
         return std::any_of(g.children.begin(), g.children.end(), child_holds);
       case Op::forn:
-        return static_cast<size_t>(std::count_if(g.children.begin(), g.children.end(), child_holds)) ==
-               g.count;
+        return static_cast<size_t>(std::count_if(g.children.begin(), g.children.end(), child_holds)) == g.count;
       case Op::forpairs:
       case Op::fornpairs:
         return pairs_hold(g);
@@ -360,8 +360,7 @@ class Evaluator {
   }
 
   size_t satisfied(const GroundOption& option) {
-    return static_cast<size_t>(
-        std::count_if(option.begin(), option.end(), [&](LiteralId id) { return holds(id); }));
+    return static_cast<size_t>(std::count_if(option.begin(), option.end(), [&](LiteralId id) { return holds(id); }));
   }
 
  private:
@@ -408,9 +407,8 @@ GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
     GroundOption option;
     for (size_t j = 0; j < index.size(); ++j) append(option, goal.conditions[j].options[index[j]]);
     for (LiteralId id : option) in_option[id] = true;
-    const bool consistent = std::none_of(option.begin(), option.end(), [&](LiteralId id) {
-      return complement[id] && in_option[*complement[id]];
-    });
+    const bool consistent = std::none_of(option.begin(), option.end(),
+                                         [&](LiteralId id) { return complement[id] && in_option[*complement[id]]; });
     for (LiteralId id : option) in_option[id] = false;
     if (consistent) options.push_back(std::move(option));
     return consistent;

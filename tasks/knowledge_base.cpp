@@ -40,7 +40,9 @@ constexpr const char* kHierarchyFile = "hierarchy_owned.json";
 constexpr const char* kPropertiesFile = "synsets_to_filtered_properties.json";
 constexpr int kStateCount = static_cast<int>(ExtendedState::broken_state) + 1;
 
-constexpr unsigned bit(ExtendedState state) { return 1u << static_cast<unsigned>(state); }
+constexpr unsigned bit(ExtendedState state) {
+  return 1u << static_cast<unsigned>(state);
+}
 constexpr unsigned kTemperatures = bit(ExtendedState::temperature) | bit(ExtendedState::max_temperature);
 
 // Table A.5 under both the table's property names (BEHAVIOR-1K) and the
@@ -224,7 +226,9 @@ const KnowledgeBase::Synset& KnowledgeBase::find(const std::string& synset) cons
   throw Error(message);
 }
 
-bool KnowledgeBase::contains(const std::string& synset) const { return synsets_.contains(synset); }
+bool KnowledgeBase::contains(const std::string& synset) const {
+  return synsets_.contains(synset);
+}
 
 std::vector<std::string> KnowledgeBase::synsets() const {
   std::vector<std::string> names;
@@ -244,7 +248,9 @@ const std::vector<std::string>& KnowledgeBase::ancestors(const std::string& syns
   return find(synset).ancestors;
 }
 
-bool KnowledgeBase::is_leaf(const std::string& synset) const { return find(synset).children.empty(); }
+bool KnowledgeBase::is_leaf(const std::string& synset) const {
+  return find(synset).children.empty();
+}
 
 bool KnowledgeBase::is_a(const std::string& synset, const std::string& ancestor) const {
   const std::vector<std::string>& above = find(synset).ancestors;
@@ -289,13 +295,17 @@ bool KnowledgeBase::has_any(const std::string& synset, std::initializer_list<con
 bool KnowledgeBase::is_substance(const std::string& synset) const {
   return has_any(synset, {"substance", "liquid", "physicalSubstance", "visualSubstance"});
 }
-bool KnowledgeBase::is_liquid(const std::string& synset) const { return has_any(synset, {"liquid"}); }
+bool KnowledgeBase::is_liquid(const std::string& synset) const {
+  return has_any(synset, {"liquid"});
+}
 bool KnowledgeBase::is_cleaning_tool(const std::string& synset) const {
   return has_any(synset, {"cleaningTool"});
 }
 bool KnowledgeBase::is_slicer(const std::string& synset) const {
   return has_any(synset, {"slicer", "slicingTool"});
 }
-bool KnowledgeBase::is_openable(const std::string& synset) const { return has_any(synset, {"openable"}); }
+bool KnowledgeBase::is_openable(const std::string& synset) const {
+  return has_any(synset, {"openable"});
+}
 
 }  // namespace chore

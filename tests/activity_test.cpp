@@ -4,11 +4,11 @@
 #include <functional>
 
 #include "base/error.hpp"
+#include "tasks/activity.hpp"
+#include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/sampling.hpp"
-#include "tasks/activity.hpp"
-#include "test_util.hpp"
 
 namespace chore {
 namespace {
@@ -22,9 +22,8 @@ struct Case {
   const char* activity;
   const char* scene;
 };
-const Case kBaselines[] = {{"store_decoration", "apartment"},
-                           {"collect_trash", "studio"},
-                           {"clean_table", "restaurant"}};
+const Case kBaselines[] = {
+    {"store_decoration", "apartment"}, {"collect_trash", "studio"}, {"clean_table", "restaurant"}};
 
 TEST(Activity, BaselinesBindToTheirScenesObjects) {
   auto apartment = Scene::load("apartment");
@@ -133,14 +132,16 @@ TEST(Activity, BadActivitiesGiveClearErrors) {
                    head + "teapot.n.99_1 - teapot.n.99) (:init) (:goal (and (open ?teapot.n.99_1))))");
   e = test::error_of([&] { Activity::load((dir / "unknown_synset.bddl").string(), *box_room, kb()); });
   EXPECT_NE(e.find("unknown synset 'teapot.n.99'"), std::string::npos) << e;
-  test::write_file(dir / "unknown_predicate.bddl",
-                   head + "block.n.01_1 - block.n.01) (:init (levitating block.n.01_1)) (:goal (and (open ?block.n.01_1))))");
+  test::write_file(
+      dir / "unknown_predicate.bddl",
+      head + "block.n.01_1 - block.n.01) (:init (levitating block.n.01_1)) (:goal (and (open ?block.n.01_1))))");
   e = test::error_of([&] { Activity::load((dir / "unknown_predicate.bddl").string(), *box_room, kb()); });
   EXPECT_NE(e.find("unsupported predicate 'levitating'"), std::string::npos) << e;
   // The heavy block cannot go inside the small one: instantiation names the literal.
   test::write_file(dir / "unsatisfiable.bddl",
-                   head + "block.n.01_1 block.n.01_2 - block.n.01) (:init (inside block.n.01_1 block.n.01_2)) "
-                          "(:goal (and (open ?block.n.01_1))))");
+                   head +
+                       "block.n.01_1 block.n.01_2 - block.n.01) (:init (inside block.n.01_1 block.n.01_2)) "
+                       "(:goal (and (open ?block.n.01_1))))");
   auto activity = Activity::load((dir / "unsatisfiable.bddl").string(), *box_room, kb());
   World world(box_room);
   activity->configure(world);

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include "world/world.hpp"
 #include "primitives/arm_planner.hpp"
 #include "test_util.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 namespace {

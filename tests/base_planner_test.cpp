@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "env/env.hpp"
-#include "world/world.hpp"
 #include "primitives/base_planner.hpp"
 #include "test_util.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 namespace {
@@ -38,8 +38,8 @@ TEST(BasePlanner, WallsAndFurnitureAreOccupiedAndGoalsInThemAreRefused) {
   World world(Scene::load("apartment"));
   const Footprint footprint(world);
   const OccupancyMap& map = footprint.body_map();
-  EXPECT_FALSE(map.free(4.8, 0.5));   // the living room / kitchen wall
-  EXPECT_FALSE(map.free(100, 100));   // outside the apartment
+  EXPECT_FALSE(map.free(4.8, 0.5));  // the living room / kitchen wall
+  EXPECT_FALSE(map.free(100, 100));  // outside the apartment
   EXPECT_TRUE(map.free(world.base_pose().x, world.base_pose().y));
   const BasePath path = plan_base_path(world, footprint, {4.8, 0.5, 0}, 7);
   EXPECT_FALSE(path.success);
@@ -90,7 +90,8 @@ TEST(BasePlanner, TheSameSeedGivesTheSamePathWhateverRanBefore) {
     EXPECT_EQ(first.waypoints[k].yaw, again.waypoints[k].yaw);
   }
   bool differs = other.waypoints.size() != first.waypoints.size();
-  for (size_t k = 0; !differs && k < first.waypoints.size(); ++k) differs = other.waypoints[k].x != first.waypoints[k].x;
+  for (size_t k = 0; !differs && k < first.waypoints.size(); ++k)
+    differs = other.waypoints[k].x != first.waypoints[k].x;
   EXPECT_TRUE(differs) << "another seed should sample another path";
 }
 

@@ -14,17 +14,29 @@
 namespace chore {
 
 // Readable gtest failure output (found by argument-dependent lookup).
-static void PrintTo(const Literal& l, std::ostream* os) { *os << to_bddl(l); }
-static void PrintTo(const Formula& f, std::ostream* os) { *os << "\n" << to_bddl(f); }
-static void PrintTo(const ObjectDecl& o, std::ostream* os) { *os << o.name << " - " << o.type; }
-static void PrintTo(const Variable& v, std::ostream* os) { *os << "(" << v.name << " - " << v.type << ")"; }
-static void PrintTo(const Problem& p, std::ostream* os) { *os << "\n" << to_bddl(p); }
+static void PrintTo(const Literal& l, std::ostream* os) {
+  *os << to_bddl(l);
+}
+static void PrintTo(const Formula& f, std::ostream* os) {
+  *os << "\n" << to_bddl(f);
+}
+static void PrintTo(const ObjectDecl& o, std::ostream* os) {
+  *os << o.name << " - " << o.type;
+}
+static void PrintTo(const Variable& v, std::ostream* os) {
+  *os << "(" << v.name << " - " << v.type << ")";
+}
+static void PrintTo(const Problem& p, std::ostream* os) {
+  *os << "\n" << to_bddl(p);
+}
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string behavior100_dir() { return std::string(CHORE_TEST_DATA) + "/bddl/behavior-100"; }
+std::string behavior100_dir() {
+  return std::string(CHORE_TEST_DATA) + "/bddl/behavior-100";
+}
 std::string seed_listing(int n) {
   return test::data_path("bddl/seed_listing_" + std::to_string(n) + ".bddl");
 }
@@ -235,14 +247,13 @@ TEST(BddlParser, GoalOperatorsBuildTheirNodes) {
                            "(not (and (cooked apple.n.01_1))) "
                            "(fornpairs (1) (?a - apple.n.01) (?t - table.n.02) (mixed ?a ?t apple.n.01_2)))"),
                  "inline");
-  const Formula expected =
-      node(Op::conjunction,
-           {node(Op::disjunction, {atom("cooked", {"apple.n.01_1"}), atom("cooked", {"apple.n.01_2"})}),
-            node(Op::implication,
-                 {atom("cooked", {"apple.n.01_1"}), atom("ontop", {"apple.n.01_1", "table.n.02_1"}, true)}),
-            node(Op::negation, {node(Op::conjunction, {atom("cooked", {"apple.n.01_1"})})}),
-            node(Op::fornpairs, {atom("mixed", {"?a", "?t", "apple.n.01_2"})},
-                 {{"?a", "apple.n.01"}, {"?t", "table.n.02"}}, 1)});
+  const Formula expected = node(
+      Op::conjunction,
+      {node(Op::disjunction, {atom("cooked", {"apple.n.01_1"}), atom("cooked", {"apple.n.01_2"})}),
+       node(Op::implication, {atom("cooked", {"apple.n.01_1"}), atom("ontop", {"apple.n.01_1", "table.n.02_1"}, true)}),
+       node(Op::negation, {node(Op::conjunction, {atom("cooked", {"apple.n.01_1"})})}),
+       node(Op::fornpairs, {atom("mixed", {"?a", "?t", "apple.n.01_2"})}, {{"?a", "apple.n.01"}, {"?t", "table.n.02"}},
+            1)});
   EXPECT_EQ(p.goal, expected);
   expect_round_trip(p);
 }
@@ -292,8 +303,7 @@ TEST(BddlParser, MalformedStructureNamesWhatAndWhere) {
        "1:72: expected end of file got ')'"},
       {"(define (problem p) (:domain bullet) (:objects) (:init) (:goal (and)))",
        "1:30: expected igibson or omnigibson got 'bullet'"},
-      {"(define (problem p) (:domain igibson) (:init) (:goal (and)))",
-       "1:39: expected (:objects ...) got '(:init'"},
+      {"(define (problem p) (:domain igibson) (:init) (:goal (and)))", "1:39: expected (:objects ...) got '(:init'"},
       {"(define (problem p) (:domain igibson) (:objects a b) (:init) (:goal (and)))",
        "1:52: expected '- TYPE' after 'b' got ')'"},
       {"(define (problem p) (:domain igibson) (:objects a - t a - t) (:init) (:goal (and)))",

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <random>
 
-#include "env/env.hpp"
 #include "base/error.hpp"
-#include "world/sampling.hpp"
+#include "env/env.hpp"
 #include "test_util.hpp"
+#include "world/sampling.hpp"
 
 namespace chore {
 namespace {

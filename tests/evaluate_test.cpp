@@ -45,8 +45,8 @@ TEST(Evaluate, LowLevelEpisodesRunToTheTimeLimit) {
   env.observations = {"proprio"};
   env.max_episode_steps = 5;
   std::ostringstream log;
-  const nlohmann::json r = evaluate({"idle", env, [](const VectorEnv&) { return std::make_unique<Idle>(); }},
-                                    seeds(0, 1, 3, 2), log);
+  const nlohmann::json r =
+      evaluate({"idle", env, [](const VectorEnv&) { return std::make_unique<Idle>(); }}, seeds(0, 1, 3, 2), log);
   EXPECT_EQ(r["env_steps"].get<int>(), 2 * 3 * 5);
   EXPECT_EQ(r["episodes_ended_by"]["time_limit"].get<int>(), 6);
   EXPECT_EQ(r["success_rate"]["mean"].get<double>(), 0.0);
@@ -91,11 +91,12 @@ TEST(PolicyPlugin, BadPluginsAreClearErrors) {
             "policy plugin '/no/such/plugin.so': no such file");
   const std::string text = (test::scratch_dir("plugins") / "not_a_library.so").string();
   test::write_file(text, "just text\n");
-  EXPECT_NE(test::error_of([&] { load_policy_plugin(text, spec); })
-                .find("policy plugin '" + text + "': cannot load it: "),
-            std::string::npos);
-  EXPECT_NE(test::error_of([&] { load_policy_plugin(CHORE_NO_ENTRY_POINTS_PLUGIN, spec); })
-                .find("it does not export chore_create_policy"),
+  EXPECT_NE(
+      test::error_of([&] { load_policy_plugin(text, spec); }).find("policy plugin '" + text + "': cannot load it: "),
+      std::string::npos);
+  EXPECT_NE(test::error_of([&] {
+              load_policy_plugin(CHORE_NO_ENTRY_POINTS_PLUGIN, spec);
+            }).find("it does not export chore_create_policy"),
             std::string::npos);
   // Built against another API version (or before versions existed): refused, saying so.
   EXPECT_EQ(test::error_of([&] { load_policy_plugin(CHORE_NEXT_API_VERSION_PLUGIN, spec); }),
@@ -103,8 +104,9 @@ TEST(PolicyPlugin, BadPluginsAreClearErrors) {
                 "': built against chore's policy API version " + std::to_string(CHORE_POLICY_API_VERSION + 1) +
                 ", this chore has version " + std::to_string(CHORE_POLICY_API_VERSION) +
                 ": rebuild it against this chore's headers");
-  EXPECT_NE(test::error_of([&] { load_policy_plugin(CHORE_UNVERSIONED_API_PLUGIN, spec); })
-                .find("built against chore's policy API version 1, this chore has version"),
+  EXPECT_NE(test::error_of([&] {
+              load_policy_plugin(CHORE_UNVERSIONED_API_PLUGIN, spec);
+            }).find("built against chore's policy API version 1, this chore has version"),
             std::string::npos);
   const PolicySpec bad_options{spec.observation_space, spec.action_space, "seed=x"};
   EXPECT_EQ(test::error_of([&] { load_policy_plugin(CHORE_MASKED_RANDOM_PLUGIN, bad_options); }),
@@ -113,8 +115,9 @@ TEST(PolicyPlugin, BadPluginsAreClearErrors) {
   vc.env = plugin_env("low_level");
   const VectorEnv low_level(vc);
   const PolicySpec continuous{&low_level.single_observation_space(), &low_level.single_action_space(), ""};
-  EXPECT_NE(test::error_of([&] { load_policy_plugin(CHORE_MASKED_RANDOM_PLUGIN, continuous); })
-                .find("the factory refused: masked_random needs a Discrete action space"),
+  EXPECT_NE(test::error_of([&] {
+              load_policy_plugin(CHORE_MASKED_RANDOM_PLUGIN, continuous);
+            }).find("the factory refused: masked_random needs a Discrete action space"),
             std::string::npos);
 }
 

@@ -20,9 +20,8 @@ using Texts = std::vector<std::vector<std::string>>;
 
 // A problem over `objects` ("a1 a2 - apple b - basket") with this goal.
 Problem problem(const std::string& objects, const std::string& goal) {
-  return parse_bddl(
-      "(define (problem g) (:domain omnigibson) (:objects " + objects + ") (:init) (:goal " + goal + "))",
-      "goal_test");
+  return parse_bddl("(define (problem g) (:domain omnigibson) (:objects " + objects + ") (:init) (:goal " + goal + "))",
+                    "goal_test");
 }
 
 // A world given by the positive literals that hold, e.g. {"(p a)"}; a negated
@@ -68,15 +67,13 @@ TEST(GoalConnectives, OptionsAreTheProductWithoutContradictions) {
   EXPECT_EQ(texts(g, g.conditions[0].options), (Texts{{"(p x)"}, {"(q x)"}}));
   EXPECT_EQ(texts(g, g.conditions[1].options), (Texts{{"(not (p x))"}, {"(not (p z))"}}));
   // (p x) with (not (p x)) is dropped.
-  EXPECT_EQ(texts(g, g.options),
-            (Texts{{"(p x)", "(not (p z))"}, {"(q x)", "(not (p x))"}, {"(q x)", "(not (p z))"}}));
+  EXPECT_EQ(texts(g, g.options), (Texts{{"(p x)", "(not (p z))"}, {"(q x)", "(not (p x))"}, {"(q x)", "(not (p z))"}}));
 }
 
 TEST(GoalConnectives, FullProductsKeepItertoolsOrder) {
   // Under the cap a product is complete and lexicographic (BEHAVIOR's
   // itertools.product), so the first of equally long options is BEHAVIOR's too.
-  const GroundGoal g =
-      ground_goal(problem("a b - t", "(and (or (p a) (p b)) (or (q a) (q b)) (or (r a) (r b)))"));
+  const GroundGoal g = ground_goal(problem("a b - t", "(and (or (p a) (p b)) (or (q a) (q b)) (or (r a) (r b)))"));
   const Texts t = texts(g, g.options);
   ASSERT_EQ(t.size(), 8u);
   EXPECT_EQ(t[0], (std::vector<std::string>{"(p a)", "(q a)", "(r a)"}));
@@ -117,8 +114,7 @@ TEST(GoalConnectives, NegatedForNTakesOneComplementFromEachOption) {
 }
 
 TEST(GoalQuantifiers, ForallOverThreeObjects) {
-  const GroundGoal g =
-      ground_goal(problem("a1 a2 a3 - apple b - basket", "(forall (?a - apple) (inside ?a b))"));
+  const GroundGoal g = ground_goal(problem("a1 a2 a3 - apple b - basket", "(forall (?a - apple) (inside ?a b))"));
   EXPECT_EQ(texts(g, g.options), (Texts{{"(inside a1 b)", "(inside a2 b)", "(inside a3 b)"}}));
   const Score two = score(g, world({"(inside a1 b)", "(inside a3 b)"}));
   EXPECT_FALSE(two.success);
@@ -129,8 +125,7 @@ TEST(GoalQuantifiers, ForallOverThreeObjects) {
 }
 
 TEST(GoalQuantifiers, ExistsIsTheUnionOfItsBindings) {
-  const GroundGoal g =
-      ground_goal(problem("a1 a2 a3 - apple b - basket", "(exists (?a - apple) (inside ?a b))"));
+  const GroundGoal g = ground_goal(problem("a1 a2 a3 - apple b - basket", "(exists (?a - apple) (inside ?a b))"));
   EXPECT_EQ(texts(g, g.options), (Texts{{"(inside a1 b)"}, {"(inside a2 b)"}, {"(inside a3 b)"}}));
   const Score none = score(g, world({}));
   EXPECT_FALSE(none.success);
@@ -150,8 +145,7 @@ TEST(GoalQuantifiers, NestedQuantifiersBindTheirOwnVariables) {
 }
 
 TEST(GoalQuantifiers, ForNMeansExactlyNWhileQCountsTheChosenN) {
-  const GroundGoal g =
-      ground_goal(problem("a1 a2 a3 - apple b - basket", "(forn (2) (?a - apple) (inside ?a b))"));
+  const GroundGoal g = ground_goal(problem("a1 a2 a3 - apple b - basket", "(forn (2) (?a - apple) (inside ?a b))"));
   EXPECT_EQ(texts(g, g.options), (Texts{{"(inside a1 b)", "(inside a2 b)"},
                                         {"(inside a1 b)", "(inside a3 b)"},
                                         {"(inside a2 b)", "(inside a3 b)"}}));
@@ -169,10 +163,9 @@ TEST(GoalQuantifiers, ForNMeansExactlyNWhileQCountsTheChosenN) {
 }
 
 TEST(GoalQuantifiers, ForPairsTwoByTwoNeedsBothRowsAndBothColumns) {
-  const GroundGoal g = ground_goal(
-      problem("a1 a2 - apple b1 b2 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
-  EXPECT_EQ(texts(g, g.options),
-            (Texts{{"(inside a1 b1)", "(inside a2 b2)"}, {"(inside a2 b1)", "(inside a1 b2)"}}));
+  const GroundGoal g =
+      ground_goal(problem("a1 a2 - apple b1 b2 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
+  EXPECT_EQ(texts(g, g.options), (Texts{{"(inside a1 b1)", "(inside a2 b2)"}, {"(inside a2 b1)", "(inside a1 b2)"}}));
   const Score one_column = score(g, world({"(inside a1 b1)", "(inside a2 b1)"}));
   EXPECT_FALSE(one_column.success);
   EXPECT_EQ(one_column.q, 0.5);
@@ -182,8 +175,8 @@ TEST(GoalQuantifiers, ForPairsTwoByTwoNeedsBothRowsAndBothColumns) {
 }
 
 TEST(GoalQuantifiers, ForPairsTwoByThreeNeedsTwoRowsAndTwoColumns) {
-  const GroundGoal g = ground_goal(
-      problem("a1 a2 - apple b1 b2 b3 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
+  const GroundGoal g =
+      ground_goal(problem("a1 a2 - apple b1 b2 b3 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
   // L = min(2, 3) = 2: every injection of the two apples into the three baskets.
   EXPECT_EQ(texts(g, g.options), (Texts{{"(inside a1 b1)", "(inside a2 b2)"},
                                         {"(inside a1 b1)", "(inside a2 b3)"},
@@ -196,8 +189,8 @@ TEST(GoalQuantifiers, ForPairsTwoByThreeNeedsTwoRowsAndTwoColumns) {
   EXPECT_FALSE(score(g, world({"(inside a1 b1)", "(inside a1 b3)"})).success);  // one row
 
   // Three by two: the longer side is now the rows.
-  const GroundGoal t = ground_goal(
-      problem("a1 a2 a3 - apple b1 b2 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
+  const GroundGoal t =
+      ground_goal(problem("a1 a2 a3 - apple b1 b2 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
   ASSERT_EQ(t.options.size(), 6u);
   EXPECT_EQ(texts(t, t.options)[1], (std::vector<std::string>{"(inside a1 b1)", "(inside a3 b2)"}));
   EXPECT_EQ(texts(t, t.options)[2], (std::vector<std::string>{"(inside a2 b1)", "(inside a1 b2)"}));
@@ -214,8 +207,8 @@ TEST(GoalQuantifiers, ForPairsSucceedsWithoutAPerfectMatchingSoQCanStayBelowOne)
 }
 
 TEST(GoalQuantifiers, ForNPairsCountsNRowsAndNColumns) {
-  const GroundGoal one = ground_goal(problem("a1 a2 - apple b1 b2 b3 - basket",
-                                             "(fornpairs (1) (?a - apple) (?b - basket) (inside ?a ?b))"));
+  const GroundGoal one = ground_goal(
+      problem("a1 a2 - apple b1 b2 b3 - basket", "(fornpairs (1) (?a - apple) (?b - basket) (inside ?a ?b))"));
   EXPECT_EQ(texts(one, one.options), (Texts{{"(inside a1 b1)"},
                                             {"(inside a1 b2)"},
                                             {"(inside a1 b3)"},
@@ -225,15 +218,14 @@ TEST(GoalQuantifiers, ForNPairsCountsNRowsAndNColumns) {
   EXPECT_FALSE(score(one, world({})).success);
   EXPECT_TRUE(score(one, world({"(inside a2 b3)"})).success);
 
-  const GroundGoal two = ground_goal(problem("a1 a2 - apple b1 b2 b3 - basket",
-                                             "(fornpairs (2) (?a - apple) (?b - basket) (inside ?a ?b))"));
+  const GroundGoal two = ground_goal(
+      problem("a1 a2 - apple b1 b2 b3 - basket", "(fornpairs (2) (?a - apple) (?b - basket) (inside ?a ?b))"));
   EXPECT_FALSE(score(two, world({"(inside a1 b1)", "(inside a2 b1)"})).success);
   EXPECT_TRUE(score(two, world({"(inside a1 b1)", "(inside a2 b2)"})).success);
 }
 
 TEST(GoalQuantifiers, APairNeverBindsOneInstanceToBothVariables) {
-  const GroundGoal g =
-      ground_goal(problem("a1 a2 - apple", "(forpairs (?x - apple) (?y - apple) (nextto ?x ?y))"));
+  const GroundGoal g = ground_goal(problem("a1 a2 - apple", "(forpairs (?x - apple) (?y - apple) (nextto ?x ?y))"));
   EXPECT_EQ(texts(g, g.options), (Texts{{"(nextto a2 a1)", "(nextto a1 a2)"}}));
   EXPECT_TRUE(score(g, world({"(nextto a1 a2)", "(nextto a2 a1)"})).success);
   EXPECT_FALSE(score(g, world({"(nextto a1 a2)"})).success);  // one row
@@ -257,8 +249,8 @@ TEST(GoalCaps, ForallKeepsTheFirstTwentyOptionsInIndexSumOrder) {
 
 TEST(GoalCaps, ForPairsPermutationsAreCappedAtTen) {
   // 4 x 4: 10 row permutations x 10 column permutations reach 20 of the 24 matchings.
-  const GroundGoal g = ground_goal(problem("a1 a2 a3 a4 - apple b1 b2 b3 b4 - basket",
-                                           "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
+  const GroundGoal g = ground_goal(
+      problem("a1 a2 a3 a4 - apple b1 b2 b3 b4 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
   EXPECT_EQ(g.options.size(), 20u);
   for (const GroundOption& o : g.options) EXPECT_EQ(o.size(), 4u);
 }
@@ -289,8 +281,7 @@ TEST(GoalScore, TruthIsAskedOncePerDistinctLiteral) {
 }
 
 TEST(GoalScore, PotentialOfOptionZeroRisesAndFalls) {
-  const GroundGoal g =
-      ground_goal(problem("a1 a2 a3 - apple b - basket", "(forall (?a - apple) (inside ?a b))"));
+  const GroundGoal g = ground_goal(problem("a1 a2 a3 - apple b - basket", "(forall (?a - apple) (inside ?a b))"));
   const double none = potential(g, 0, world({}));
   const double one = potential(g, 0, world({"(inside a2 b)"}));
   const double two = potential(g, 0, world({"(inside a2 b)", "(inside a3 b)"}));
@@ -303,8 +294,8 @@ TEST(GoalScore, PotentialOfOptionZeroRisesAndFalls) {
 }
 
 TEST(GoalTypes, QuantifiersRangeOverTheTypeTest) {
-  const Problem p = problem("apple1 - apple.n.01 pear1 - pear.n.01 table1 - table.n.02",
-                            "(forall (?f - fruit.n.01) (cooked ?f))");
+  const Problem p =
+      problem("apple1 - apple.n.01 pear1 - pear.n.01 table1 - table.n.02", "(forall (?f - fruit.n.01) (cooked ?f))");
   try {
     ground_goal(p);
     ADD_FAILURE() << "no error";
@@ -320,8 +311,7 @@ TEST(GoalTypes, QuantifiersRangeOverTheTypeTest) {
 // Behaviour-100 activity definitions, plus the seed listings that ground.
 std::vector<Problem> corpus() {
   std::vector<Problem> out;
-  for (const auto& e :
-       std::filesystem::directory_iterator(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100"))
+  for (const auto& e : std::filesystem::directory_iterator(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100"))
     if (e.is_directory()) out.push_back(load_bddl((e.path() / "problem0.bddl").string()));
   ParseOptions lenient;
   lenient.allow_undeclared_objects = true;
@@ -352,8 +342,8 @@ TEST(GoalCorpus, EveryActivityGroundsAndItsFirstOptionSucceeds) {
 }
 
 TEST(GoalCorpus, AssemblingGiftBasketsProductIsCapped) {
-  const GroundGoal g = ground_goal(
-      load_bddl(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100/assembling_gift_baskets/problem0.bddl"));
+  const GroundGoal g =
+      ground_goal(load_bddl(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100/assembling_gift_baskets/problem0.bddl"));
   ASSERT_EQ(g.conditions.size(), 4u);
   for (const GroundCondition& c : g.conditions) EXPECT_EQ(c.options.size(), 20u);
   EXPECT_EQ(g.options.size(), kMaxGoalOptions);  // of 20^4

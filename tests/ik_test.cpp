@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include "world/world.hpp"
 #include "primitives/ik.hpp"
 #include "test_util.hpp"
+#include "world/world.hpp"
 
 namespace chore {
 namespace {
@@ -64,8 +64,8 @@ TEST(Ik, AClosingAxisTargetTurnsTheFingersLine) {
   ASSERT_TRUE(r.success) << r.reason;
   set_arm(world, r.joints);
   const double* m = world.data()->site_xmat + 9 * world.robot()->gripper_site;
-  EXPECT_GT(m[0], 0.99);                // x axis (approach) along world x
-  EXPECT_GT(std::abs(m[7]), 0.99);      // y axis (closing) along world z
+  EXPECT_GT(m[0], 0.99);            // x axis (approach) along world x
+  EXPECT_GT(std::abs(m[7]), 0.99);  // y axis (closing) along world z
 }
 
 TEST(Ik, ASolverSolvesFromAnotherBasePoseWithoutMovingTheWorld) {

@@ -56,7 +56,8 @@ TEST(RobotKinematics, PlacesTheRobotAndItsLoadAsMujocoDoes) {
     w.set_robot_configuration(base, q.data());  // mj_kinematics, the load carried, mj_forward
     const double* site = w.data()->site_xpos + 3 * r.gripper_site;
     EXPECT_LT((kinematics.site_position() - Eigen::Vector3d(site[0], site[1], site[2])).norm(), 1e-9);
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rotation(w.data()->site_xmat + 9 * r.gripper_site);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rotation(w.data()->site_xmat +
+                                                                                  9 * r.gripper_site);
     EXPECT_LT((kinematics.site_rotation() - rotation).norm(), 1e-9);
     for (const std::vector<int>* geoms : {&kinematics.robot_geoms(), &kinematics.load_geoms()}) {
       for (int g : *geoms) {

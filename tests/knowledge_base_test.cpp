@@ -21,9 +21,13 @@ const KnowledgeBase& real_kb() {
   return *kb;
 }
 
-std::shared_ptr<const KnowledgeBase> small_kb() { return KnowledgeBase::load(test::data_path("kb_small")); }
+std::shared_ptr<const KnowledgeBase> small_kb() {
+  return KnowledgeBase::load(test::data_path("kb_small"));
+}
 
-Names names(const std::vector<std::string>& list) { return Names(list.begin(), list.end()); }
+Names names(const std::vector<std::string>& list) {
+  return Names(list.begin(), list.end());
+}
 
 Names property_names(const KnowledgeBase& kb, const std::string& synset) {
   Names out;
@@ -44,34 +48,29 @@ TEST(KnowledgeBase, CountsSynsetsOfBothFiles) {
   // properties file.
   const std::vector<std::string> all = real_kb().synsets();
   EXPECT_EQ(all.size(), 1580u);
-  const auto leaves =
-      std::count_if(all.begin(), all.end(), [](const std::string& s) { return real_kb().is_leaf(s); });
+  const auto leaves = std::count_if(all.begin(), all.end(), [](const std::string& s) { return real_kb().is_leaf(s); });
   EXPECT_EQ(leaves, 1187);
   EXPECT_TRUE(real_kb().parents("entity.n.01").empty());
-  EXPECT_EQ(real_kb().children("entity.n.01"),
-            (std::vector<std::string>{"abstraction.n.06", "physical_entity.n.01"}));
+  EXPECT_EQ(real_kb().children("entity.n.01"), (std::vector<std::string>{"abstraction.n.06", "physical_entity.n.01"}));
 }
 
 TEST(KnowledgeBase, LeafPropertiesComeFromThePropertiesFile) {
-  EXPECT_EQ(property_names(real_kb(), "apple.n.01"),
-            (Names{"breakable", "burnable", "cookable", "dustyable", "freezable", "perishable", "sliceable",
-                   "stainable"}));
+  EXPECT_EQ(property_names(real_kb(), "apple.n.01"), (Names{"breakable", "burnable", "cookable", "dustyable",
+                                                            "freezable", "perishable", "sliceable", "stainable"}));
   // A synset outside the hierarchy is a root and a leaf.
   EXPECT_TRUE(real_kb().is_leaf("wardrobe.n.01"));
   EXPECT_TRUE(real_kb().parents("wardrobe.n.01").empty());
-  EXPECT_EQ(property_names(real_kb(), "wardrobe.n.01"),
-            (Names{"burnable", "dustyable", "openable", "stainable"}));
+  EXPECT_EQ(property_names(real_kb(), "wardrobe.n.01"), (Names{"burnable", "dustyable", "openable", "stainable"}));
 }
 
 TEST(KnowledgeBase, NonLeafPropertiesAreTheIntersectionOfItsLeaves) {
   auto kb = small_kb();
   // berry = cherry & grape; fruit = apple & pear & berry; the file's own
   // "toggleable" for fruit.n.01 is ignored.
-  EXPECT_EQ(kb->properties("berry.n.01"), (Properties{{"burnable", {{"burn_temperature", 200.0}}},
-                                                      {"cookable", {{"cook_temperature", 70.0}}}}));
+  EXPECT_EQ(kb->properties("berry.n.01"),
+            (Properties{{"burnable", {{"burn_temperature", 200.0}}}, {"cookable", {{"cook_temperature", 70.0}}}}));
   // Burn temperatures differ (apple 200, pear 250), so only the property survives.
-  EXPECT_EQ(kb->properties("fruit.n.01"),
-            (Properties{{"burnable", {}}, {"cookable", {{"cook_temperature", 70.0}}}}));
+  EXPECT_EQ(kb->properties("fruit.n.01"), (Properties{{"burnable", {}}, {"cookable", {{"cook_temperature", 70.0}}}}));
   EXPECT_EQ(property_names(*kb, "container.n.01"), (Names{"breakable"}));
   EXPECT_EQ(property_names(*kb, "crockery.n.01"), (Names{"breakable", "stainable"}));
   EXPECT_TRUE(kb->properties("root.n.01").empty());
@@ -84,8 +83,7 @@ TEST(KnowledgeBase, RepeatedSynsetsMergeTheirParents) {
   auto kb = small_kb();
   EXPECT_EQ(kb->synsets().size(), 12u);
   EXPECT_EQ(kb->parents("bowl.n.01"), (std::vector<std::string>{"container.n.01", "crockery.n.01"}));
-  EXPECT_EQ(kb->ancestors("bowl.n.01"),
-            (std::vector<std::string>{"container.n.01", "crockery.n.01", "root.n.01"}));
+  EXPECT_EQ(kb->ancestors("bowl.n.01"), (std::vector<std::string>{"container.n.01", "crockery.n.01", "root.n.01"}));
   EXPECT_EQ(kb->children("crockery.n.01"), (std::vector<std::string>{"bowl.n.01"}));
   EXPECT_TRUE(kb->is_leaf("jar.n.01"));
   EXPECT_TRUE(kb->ancestors("jar.n.01").empty());
@@ -94,9 +92,8 @@ TEST(KnowledgeBase, RepeatedSynsetsMergeTheirParents) {
 
 TEST(KnowledgeBase, IsAFollowsTheRealHierarchy) {
   const KnowledgeBase& kb = real_kb();
-  EXPECT_EQ(names(kb.ancestors("pumpkin.n.02")),
-            (Names{"vegetable.n.01", "produce.n.01", "food.n.02", "solid.n.01", "matter.n.03",
-                   "physical_entity.n.01", "entity.n.01"}));
+  EXPECT_EQ(names(kb.ancestors("pumpkin.n.02")), (Names{"vegetable.n.01", "produce.n.01", "food.n.02", "solid.n.01",
+                                                        "matter.n.03", "physical_entity.n.01", "entity.n.01"}));
   EXPECT_TRUE(kb.is_a("pumpkin.n.02", "pumpkin.n.02"));
   EXPECT_TRUE(kb.is_a("pumpkin.n.02", "vegetable.n.01"));
   EXPECT_TRUE(kb.is_a("pumpkin.n.02", "entity.n.01"));
@@ -126,8 +123,7 @@ TEST(KnowledgeBase, ExtendedStatesFollowTableA5) {
 
 TEST(KnowledgeBase, ParametersAreRealNumbers) {
   const KnowledgeBase& kb = real_kb();
-  EXPECT_DOUBLE_EQ(kb.parameter("newspaper.n.03", "burnable", "burn_temperature").value(),
-                   232.77777777777777);
+  EXPECT_DOUBLE_EQ(kb.parameter("newspaper.n.03", "burnable", "burn_temperature").value(), 232.77777777777777);
   EXPECT_DOUBLE_EQ(kb.parameter("pumpkin.n.02", "cookable", "cook_temperature").value(), 204.44444444444446);
   EXPECT_DOUBLE_EQ(kb.parameter("stove.n.01", "heatSource", "temperature").value(), 500.0);
   EXPECT_EQ(kb.parameter("stove.n.01", "heatSource", "requires_toggled_on"), 1.0);
@@ -164,8 +160,7 @@ TEST(KnowledgeBase, UnknownSynsetNamesOtherSenses) {
 }
 
 TEST(KnowledgeBase, MalformedFileGivesFileLineAndColumn) {
-  const std::string dir =
-      write_kb("kb_malformed", R"({"name": "a.n.01"})", "{\n  \"a.n.01\": {\n    oops\n}\n");
+  const std::string dir = write_kb("kb_malformed", R"({"name": "a.n.01"})", "{\n  \"a.n.01\": {\n    oops\n}\n");
   const std::string e = test::error_of([&] { KnowledgeBase::load(dir); });
   EXPECT_NE(e.find("synsets_to_filtered_properties.json:3:"), std::string::npos) << e;
 }
@@ -173,12 +168,10 @@ TEST(KnowledgeBase, MalformedFileGivesFileLineAndColumn) {
 TEST(KnowledgeBase, BadFieldsAreNamed) {
   const std::string one_leaf = R"({"name": "a.n.01"})";
   std::string e = test::error_of([&] {
-    KnowledgeBase::load(
-        write_kb("kb_bad_param", one_leaf, R"({"a.n.01": {"cookable": {"cook_temperature": "hot"}}})"));
+    KnowledgeBase::load(write_kb("kb_bad_param", one_leaf, R"({"a.n.01": {"cookable": {"cook_temperature": "hot"}}})"));
   });
-  EXPECT_NE(
-      e.find("synsets_to_filtered_properties.json: a.n.01.cookable.cook_temperature: expected a number"),
-      std::string::npos)
+  EXPECT_NE(e.find("synsets_to_filtered_properties.json: a.n.01.cookable.cook_temperature: expected a number"),
+            std::string::npos)
       << e;
   e = test::error_of(
       [&] { KnowledgeBase::load(write_kb("kb_no_name", R"({"name": "a.n.01", "children": [{}]})", "{}")); });

@@ -101,9 +101,18 @@ void reset_activity(benchmark::State& state, const std::string& activity) {
   uint64_t seed = 0;
   for (auto _ : state) env.reset(seed++ % 20);
 }
-BENCHMARK_CAPTURE(reset_activity, store_decoration, std::string("store_decoration"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(reset_activity, collect_trash, std::string("collect_trash"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(reset_activity, store_decoration, std::string("store_decoration"))
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(reset_activity, collect_trash, std::string("collect_trash"))
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(reset_activity, clean_table, std::string("clean_table"))
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond);
 
 // MuJoCo's timer clock (mjcb_time).
 mjtNum microseconds() {
@@ -150,15 +159,24 @@ void physics_step_activity(benchmark::State& state, const std::string& activity,
   w.set_sleeping(sleeping);
   time_physics_steps(state, w);
 }
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"), false, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping, std::string("store_decoration"), true, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, collect_trash_sleeping, std::string("collect_trash"), true, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping, std::string("clean_table"), true, mjSOL_NEWTON)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration_cg, std::string("store_decoration"), false, mjSOL_CG)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping_cg, std::string("store_decoration"), true, mjSOL_CG)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping_cg, std::string("clean_table"), true, mjSOL_CG)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration, std::string("store_decoration"), false, mjSOL_NEWTON)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash, std::string("collect_trash"), false, mjSOL_NEWTON)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table, std::string("clean_table"), false, mjSOL_NEWTON)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping, std::string("store_decoration"), true, mjSOL_NEWTON)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, collect_trash_sleeping, std::string("collect_trash"), true, mjSOL_NEWTON)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping, std::string("clean_table"), true, mjSOL_NEWTON)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_cg, std::string("store_decoration"), false, mjSOL_CG)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, store_decoration_sleeping_cg, std::string("store_decoration"), true, mjSOL_CG)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(physics_step_activity, clean_table_sleeping_cg, std::string("clean_table"), true, mjSOL_CG)
+    ->Unit(benchmark::kMillisecond);
 
 // The floor under a physical primitive's step: the robot alone in the
 // studio's rooms (walls and floors, no object), one physics step.

@@ -6,24 +6,21 @@
 #include <opencv2/imgproc.hpp>
 
 #include "base/error.hpp"
+#include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/renderer.hpp"
 #include "world/sampling.hpp"
 #include "world/state_rules.hpp"
-#include "test_util.hpp"
 
 namespace chore {
 namespace {
 
 class ObjectStatesTest : public ::testing::Test {
  protected:
-  ObjectStatesTest()
-      : scene_(Scene::load(test::data_path("scenes/predicate_room.json"))), world_(scene_) {}
+  ObjectStatesTest() : scene_(Scene::load(test::data_path("scenes/predicate_room.json"))), world_(scene_) {}
 
-  int object(const char* name) const {
-    return static_cast<int>(scene_->find_object(name) - scene_->objects().data());
-  }
+  int object(const char* name) const { return static_cast<int>(scene_->find_object(name) - scene_->objects().data()); }
   // Teleports a free object's origin (bottom centre) and lets it settle.
   void put(int o, double x, double y, double z, int steps = 8) {
     const mjModel* m = world_.model();
@@ -198,8 +195,8 @@ TEST_F(ObjectStatesTest, SoakedCookedBurntAndFrozenObjectsChangeColourAsInOmniGi
   std::vector<std::uint8_t> rgb(size * size * 3);
   std::vector<std::int32_t> segment(size * size);
   auto rag_colour = [&](const char* png) {
-    const CameraView view{m, world_.data(), scene_->overview_camera(), rgb.data(), nullptr, 0, false, &world_,
-                          segment.data()};
+    const CameraView view{m,       world_.data(), scene_->overview_camera(), rgb.data(), nullptr, 0, false,
+                          &world_, segment.data()};
     renderer.render({&view, 1});
     cv::Mat bgr;
     cv::cvtColor(cv::Mat(size, size, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
@@ -301,10 +298,16 @@ TEST_F(ObjectStatesTest, StateSamplersAgreeWithTheCheckers) {
   world_.states().configure(apple, all);
   world_.states().configure(bin, bucket);
   const std::vector<std::pair<std::string, bool (*)(const World&, int)>> checks = {
-      {"cooked", cooked}, {"burnt", burnt}, {"frozen", frozen}, {"hot", hot},
-      {"on_fire", on_fire}, {"soaked", [](const World& w, int a) { return soaked(w, a); }},
+      {"cooked", cooked},
+      {"burnt", burnt},
+      {"frozen", frozen},
+      {"hot", hot},
+      {"on_fire", on_fire},
+      {"soaked", [](const World& w, int a) { return soaked(w, a); }},
       {"saturated", [](const World& w, int a) { return saturated(w, a); }},
-      {"toggled_on", toggled_on}, {"sliced", sliced}, {"broken", broken}};
+      {"toggled_on", toggled_on},
+      {"sliced", sliced},
+      {"broken", broken}};
   // 1,000 seeded samples per predicate, each of a random truth value.
   for (const auto& [name, check] : checks) {
     int agree = 0;
@@ -352,7 +355,8 @@ TEST(Cloth, ARagIsOneObjectOfManyBodiesThatDrapesOverAnEdge) {
   ASSERT_NE(rag, nullptr);
   const mjModel* m = scene->model();
   int bodies = 0;
-  for (int b = 0; b < m->nbody; ++b) bodies += scene->object_of_body(b) == static_cast<int>(rag - scene->objects().data());
+  for (int b = 0; b < m->nbody; ++b)
+    bodies += scene->object_of_body(b) == static_cast<int>(rag - scene->objects().data());
   EXPECT_EQ(bodies, 9);  // a 3 x 3 composite, rooted at its centre
   // One column of tiles past the table's edge (the top is 0.75 m high, its +x
   // edge at x = 2.1; tiles are 7 cm apart).

@@ -4,8 +4,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "test_util.hpp"
 #include "app/plot.hpp"
+#include "test_util.hpp"
 
 namespace chore {
 namespace {
@@ -60,7 +60,8 @@ TEST(Plot, GroupsRunsByLabelWithMeanAndSpread) {
   const cv::Vec3b band = at(image, r, 20000, 0.75);
   EXPECT_FALSE(near(band, white, 30)) << band;
   EXPECT_TRUE(band[0] > band[2] && band[0] > 200) << band;  // bluish, light
-  EXPECT_TRUE(near(at(image, r, 20000, 0.85), white, 30) || near(at(image, r, 20000, 0.85), cv::Vec3b(228, 228, 228), 30));
+  EXPECT_TRUE(near(at(image, r, 20000, 0.85), white, 30) ||
+              near(at(image, r, 20000, 0.85), cv::Vec3b(228, 228, 228), 30));
   // sac's line passes 0.2 at 20000 steps.
   EXPECT_TRUE(near(at(image, r, 20000, 0.2), orange, 60)) << at(image, r, 20000, 0.2);
   EXPECT_TRUE(near(at(image, r, 10000, 0.1), orange, 60)) << at(image, r, 10000, 0.1);
@@ -73,7 +74,8 @@ TEST(Plot, TheBandStaysWithinTheRunsValues) {
     test::write_file(dir / name / "metrics.csv", run([q = q](double) { return q; }));
   }
   PlotOptions options;
-  for (const char* name : {"a_seed0", "a_seed1", "a_seed2"}) options.runs.push_back((dir / name / "metrics.csv").string());
+  for (const char* name : {"a_seed0", "a_seed1", "a_seed2"})
+    options.runs.push_back((dir / name / "metrics.csv").string());
   options.y = "mean_q";
   options.out = (test::output_dir() / "plot_band.png").string();
   const nlohmann::json r = plot_curves(options);

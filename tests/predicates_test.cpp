@@ -5,10 +5,10 @@
 #include <functional>
 
 #include "base/error.hpp"
+#include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/sampling.hpp"
-#include "test_util.hpp"
 
 namespace chore {
 namespace {
@@ -69,7 +69,7 @@ TEST_F(Predicates, KnownStatesOfTheStartingScene) {
   EXPECT_FALSE(ontop(world_, apple, table));
   EXPECT_FALSE(inside(world_, apple, table));
   EXPECT_FALSE(is_open(world_, cabinet));
-  EXPECT_FALSE(nextto(world_, apple, object("cup_1")));  // 30 cm apart: far for their size
+  EXPECT_FALSE(nextto(world_, apple, object("cup_1")));        // 30 cm apart: far for their size
   put(object("cup_1"), 1.0 + 0.04 + 0.035 + 0.01, -0.2, 0.0);  // 1 cm gap
   EXPECT_TRUE(nextto(world_, apple, object("cup_1")));
 }
@@ -107,37 +107,59 @@ constexpr int kAgreement = 990;
 
 TEST_F(Predicates, OnTopSamplesAreOnTop) {
   const int apple = object("apple_1"), table = object("table_1"), cabinet = object("cabinet_1");
-  EXPECT_GE(agreement(kSamples, [&](Rng& r) { return sample_ontop(world_, apple, table, r); },
-                      [&] { return ontop(world_, apple, table); }), kAgreement);
-  EXPECT_GE(agreement(kSamples, [&](Rng& r) { return sample_ontop(world_, apple, cabinet, r); },
-                      [&] { return ontop(world_, apple, cabinet); }), kAgreement);
+  EXPECT_GE(agreement(
+                kSamples, [&](Rng& r) { return sample_ontop(world_, apple, table, r); },
+                [&] { return ontop(world_, apple, table); }),
+            kAgreement);
+  EXPECT_GE(agreement(
+                kSamples, [&](Rng& r) { return sample_ontop(world_, apple, cabinet, r); },
+                [&] { return ontop(world_, apple, cabinet); }),
+            kAgreement);
 }
 
 TEST_F(Predicates, InsideSamplesAreInside) {
   const int apple = object("apple_1");
   for (const char* container : {"cabinet_1", "trash_bin_1", "shelf_1"}) {
     const int c = object(container);
-    EXPECT_GE(agreement(kSamples, [&](Rng& r) { return sample_inside(world_, apple, c, r); },
-                        [&] { return inside(world_, apple, c); }), kAgreement) << container;
+    EXPECT_GE(agreement(
+                  kSamples, [&](Rng& r) { return sample_inside(world_, apple, c, r); },
+                  [&] { return inside(world_, apple, c); }),
+              kAgreement)
+        << container;
   }
 }
 
 TEST_F(Predicates, UnderAndOnFloorSamplesHold) {
   const int cup = object("cup_1"), table = object("table_1");
-  EXPECT_GE(agreement(kSamples, [&](Rng& r) { return sample_under(world_, cup, table, r); },
-                      [&] { return under(world_, cup, table); }), kAgreement);
+  EXPECT_GE(agreement(
+                kSamples, [&](Rng& r) { return sample_under(world_, cup, table, r); },
+                [&] { return under(world_, cup, table); }),
+            kAgreement);
   const int kitchen = room("kitchen_0");
-  EXPECT_GE(agreement(kSamples, [&](Rng& r) { return sample_onfloor(world_, cup, kitchen, r); },
-                      [&] { return onfloor(world_, cup, kitchen) && inroom(world_, cup, kitchen); }),
+  EXPECT_GE(agreement(
+                kSamples, [&](Rng& r) { return sample_onfloor(world_, cup, kitchen, r); },
+                [&] { return onfloor(world_, cup, kitchen) && inroom(world_, cup, kitchen); }),
             kAgreement);
 }
 
 TEST_F(Predicates, OpenAndClosedSamplesHold) {
   const int cabinet = object("cabinet_1");
-  EXPECT_EQ(agreement(kSamples, [&](Rng& r) { sample_open(world_, cabinet, true, r); return true; },
-                      [&] { return is_open(world_, cabinet); }), kSamples);
-  EXPECT_EQ(agreement(kSamples, [&](Rng& r) { sample_open(world_, cabinet, false, r); return true; },
-                      [&] { return !is_open(world_, cabinet); }), kSamples);
+  EXPECT_EQ(agreement(
+                kSamples,
+                [&](Rng& r) {
+                  sample_open(world_, cabinet, true, r);
+                  return true;
+                },
+                [&] { return is_open(world_, cabinet); }),
+            kSamples);
+  EXPECT_EQ(agreement(
+                kSamples,
+                [&](Rng& r) {
+                  sample_open(world_, cabinet, false, r);
+                  return true;
+                },
+                [&] { return !is_open(world_, cabinet); }),
+            kSamples);
 }
 
 }  // namespace

@@ -8,13 +8,13 @@
 
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "world/object_geometry.hpp"
-#include "world/predicates.hpp"
 #include "policies/expert.hpp"
 #include "primitives/arm_planner.hpp"
 #include "primitives/ik.hpp"
 #include "primitives/motion.hpp"
 #include "test_util.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
 
 namespace chore {
 namespace {
@@ -190,11 +190,11 @@ TEST(Primitives, TheExpertStoresBothPumpkinsInTheRightOrder) {
   bool success = false;
   const std::vector<std::string> taken = run_expert(env, 1, success);
   EXPECT_TRUE(success);
-  EXPECT_EQ(taken, (std::vector<std::string>{
-                       "navigate(cabinet.n.01_1)", "push(cabinet.n.01_1)", "navigate(pumpkin.n.02_1)",
-                       "pick(pumpkin.n.02_1)", "navigate(cabinet.n.01_1)", "place(cabinet.n.01_1)",
-                       "navigate(pumpkin.n.02_2)", "pick(pumpkin.n.02_2)", "navigate(cabinet.n.01_1)",
-                       "place(cabinet.n.01_1)"}));
+  EXPECT_EQ(taken,
+            (std::vector<std::string>{"navigate(cabinet.n.01_1)", "push(cabinet.n.01_1)", "navigate(pumpkin.n.02_1)",
+                                      "pick(pumpkin.n.02_1)", "navigate(cabinet.n.01_1)", "place(cabinet.n.01_1)",
+                                      "navigate(pumpkin.n.02_2)", "pick(pumpkin.n.02_2)", "navigate(cabinet.n.01_1)",
+                                      "place(cabinet.n.01_1)"}));
   const World& w = env.world();
   const int cabinet = w.scene().find_object("cabinet_drawer_1") - &w.scene().objects()[0];
   EXPECT_TRUE(is_open(w, cabinet));
@@ -207,8 +207,7 @@ TEST(Primitives, PhysicalModeTracksThePlansInPhysics) {
   Env env(primitive_config("store_decoration", ExecutionMode::physical));
   bool success = false;
   const std::vector<std::string> taken = run_expert(env, 1, success);
-  EXPECT_TRUE(success) << taken.size() << " actions, last " << taken.back() << ": "
-                       << env.last_primitive().reason;
+  EXPECT_TRUE(success) << taken.size() << " actions, last " << taken.back() << ": " << env.last_primitive().reason;
   EXPECT_EQ(env.last_primitive().mode, ExecutionMode::physical);
   EXPECT_GT(env.last_primitive().physics_steps, 100);  // simulated, not teleported
 }

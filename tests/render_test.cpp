@@ -3,13 +3,13 @@
 
 #include <cmath>
 #include <cstring>
-#include <set>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "env/env.hpp"
-#include "world/renderer.hpp"
 #include "test_util.hpp"
+#include "world/renderer.hpp"
 
 namespace chore {
 namespace {
@@ -22,8 +22,7 @@ void save_png(const Array& rgb, int index, int h, int w, const std::string& name
 }
 
 // Projects a world point into the egocentric camera: (column, row) in pixels.
-std::array<double, 2> project(const mjModel* m, const mjData* d, int cam, const double p[3],
-                              int width, int height) {
+std::array<double, 2> project(const mjModel* m, const mjData* d, int cam, const double p[3], int width, int height) {
   double rel[3], local[3];
   mju_sub3(rel, p, d->cam_xpos + 3 * cam);
   mju_rotVecMatT(local, rel, d->cam_xmat + 9 * cam);  // camera frame: x right, y up, -z forward
@@ -153,10 +152,8 @@ TEST(Render, ApartmentPictures) {
   // The whole apartment from above, ceilings left out (docs/images/).
   Renderer top(env.world().model(), 512, 512, 1);
   ArrayDict overview(Space::dict({{"rgb", Space::box({512, 512, 3}, DType::uint8, 0, 255)}}), 1);
-  std::vector<CameraView> view = {{env.world().model(), env.world().data(),
-                                   env.world().scene().overview_camera(),
-                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0,
-                                   false}};
+  std::vector<CameraView> view = {{env.world().model(), env.world().data(), env.world().scene().overview_camera(),
+                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false}};
   top.render(view);
   save_png(overview["rgb"], 0, 512, 512, "apartment_overview.png");
   // From above, the floors of the rooms show, not the ceiling's single colour.

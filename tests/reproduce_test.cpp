@@ -27,7 +27,9 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
+nlohmann::json read_json(const fs::path& path) {
+  return nlohmann::json::parse(read_text(path));
+}
 
 // Runs `chore reproduce` on the small table; returns its exit status, its log in `log`.
 int reproduce_small_table(const fs::path& out, std::string& log, bool videos = false, const std::string& extra = "") {
@@ -126,11 +128,16 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   fs::create_directories(out / "videos");
   std::ofstream(out / "videos" / "store_decoration.mp4") << "an earlier video";
   nlohmann::json with_other = partial;
-  with_other["videos"] = {
-      {"store_decoration", {{"file", (out / "videos" / "store_decoration.mp4").string()}, {"method", "rl-prim-hist"},
-                            {"run", other_run.string()}, {"seed", 2}}},
-      {"clean_table", {{"file", (out / "videos" / "store_decoration.mp4").string()}, {"method", "rl-prim"},
-                       {"run", (out / "moved_away").string()}, {"seed", 1}}}};
+  with_other["videos"] = {{"store_decoration",
+                           {{"file", (out / "videos" / "store_decoration.mp4").string()},
+                            {"method", "rl-prim-hist"},
+                            {"run", other_run.string()},
+                            {"seed", 2}}},
+                          {"clean_table",
+                           {{"file", (out / "videos" / "store_decoration.mp4").string()},
+                            {"method", "rl-prim"},
+                            {"run", (out / "moved_away").string()},
+                            {"seed", 1}}}};
   std::ofstream(out / "baselines.json", std::ios::trunc) << with_other.dump();
   EXPECT_EQ(reproduce_small_table(out, log, true), 1) << log;
   nlohmann::json videos = read_json(out / "baselines.json")["videos"];

@@ -7,8 +7,8 @@
 #include <set>
 
 #include "base/error.hpp"
-#include "world/scene.hpp"
 #include "test_util.hpp"
+#include "world/scene.hpp"
 
 namespace chore {
 namespace {
@@ -17,8 +17,7 @@ TEST(Scene, ApartmentHasFiveNamedRoomsAndAboutSixtyObjects) {
   auto scene = Scene::load("apartment");
   std::set<std::string> rooms;
   for (const Room& r : scene->rooms()) rooms.insert(r.name);
-  EXPECT_EQ(rooms, (std::set<std::string>{"bathroom_0", "bedroom_0", "entryway_0", "kitchen_0",
-                                          "living_room_0"}));
+  EXPECT_EQ(rooms, (std::set<std::string>{"bathroom_0", "bedroom_0", "entryway_0", "kitchen_0", "living_room_0"}));
   EXPECT_GE(scene->objects().size(), 50u);
   EXPECT_LE(scene->objects().size(), 70u);
   // Every object stands in some room, and the robot starts inside the apartment.
@@ -52,9 +51,9 @@ TEST(Scene, StaticGeometryIsDrawnAsMergedChunksAndMovingPartsKeepTheirGeoms) {
       EXPECT_LT(m->geom_rbound[g], 4.5) << g;
     }
   }
-  EXPECT_GE(merged, 4);        // the merged static meshes, chunked, in a group of their own
-  EXPECT_EQ(materials.size(), 1u);  // one palette texture for them all
-  EXPECT_EQ(drawn_static, 0);  // nothing static is drawn apart from it
+  EXPECT_GE(merged, 4);                 // the merged static meshes, chunked, in a group of their own
+  EXPECT_EQ(materials.size(), 1u);      // one palette texture for them all
+  EXPECT_EQ(drawn_static, 0);           // nothing static is drawn apart from it
   EXPECT_GE(hidden_static, 1 + 4 + 2);  // floor, 4 walls, 2 fixed objects for collision
   const SceneObject* block = scene->find_object("small_block_1");
   ASSERT_NE(block, nullptr);
@@ -87,7 +86,8 @@ TEST(Scene, FurnitureWithoutMovingPartsSharesStaticBodiesAndKeepsItsIdentity) {
   ASSERT_FALSE(table.geoms.empty());
   for (int g = 0; g < m->ngeom; ++g) {
     const bool mine = std::find(table.geoms.begin(), table.geoms.end(), g) != table.geoms.end();
-    EXPECT_EQ(scene->object_of_geom(g) == index("table_1"), mine && (m->geom_contype[g] || m->geom_conaffinity[g])) << g;
+    EXPECT_EQ(scene->object_of_geom(g) == index("table_1"), mine && (m->geom_contype[g] || m->geom_conaffinity[g]))
+        << g;
   }
   for (int g : table.geoms) {
     EXPECT_EQ(m->geom_bodyid[g], table.static_body);

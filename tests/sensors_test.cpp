@@ -9,9 +9,9 @@
 #include <cstring>
 #include <set>
 
+#include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "base/error.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -56,10 +56,9 @@ TEST(Segmentation, KnownObjectsFloorWallsAndCeilingAtKnownPixels) {
     const char* instance;
     const char* category;
   } expected[] = {
-      {{2.45, 0.0, 1.1}, "red_panel_1", "panel"},        // fixed: drawn in the merged static mesh
-      {{1.9, 0.9, 1.5}, "blue_pillar_1", "pillar"},
-      {{2.2, -0.8, 0.0}, "floor_living_room_0", "floors"},
-      {{2.95, -1.5, 1.5}, "wall_1", "walls"},             // the wall at x = 3
+      {{2.45, 0.0, 1.1}, "red_panel_1", "panel"},  // fixed: drawn in the merged static mesh
+      {{1.9, 0.9, 1.5}, "blue_pillar_1", "pillar"}, {{2.2, -0.8, 0.0}, "floor_living_room_0", "floors"},
+      {{2.95, -1.5, 1.5}, "wall_1", "walls"},  // the wall at x = 3
       {{2.9, -1.2, 2.6}, "ceilings", "ceilings"},
   };
   for (const auto& e : expected) {
@@ -309,7 +308,6 @@ TEST(Lidar, RangesMatchTheRoomsGeometry) {
   EXPECT_GT(capped, 20);  // the corners are out of range
 }
 
-
 // One env without noise and one with, reset with the same seed: the same
 // scene, so the difference is the noise.
 struct CleanAndNoisy {
@@ -436,17 +434,25 @@ TEST(SensorNoise, BadSettingsAreErrorsNamingThem) {
     change(c);
     return test::error_of([&] { Env env(c); });
   };
-  EXPECT_NE(error([](EnvConfig& c) { c.noise.depth_noise = -0.1; }).find("env config: noise.depth_noise = -0.1"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.noise.depth_noise = -0.1; }).find("env config: noise.depth_noise = -0.1"),
+            std::string::npos);
   EXPECT_NE(error([](EnvConfig& c) { c.noise.lidar_dropout = 1; }).find("noise.lidar_dropout"), std::string::npos);
   EXPECT_NE(error([](EnvConfig& c) { c.noise.rgb_exposure = 0; }).find("noise.rgb_exposure"), std::string::npos);
   EXPECT_NE(error([](EnvConfig& c) { c.lidar.beams = 0; }).find("env config: lidar.beams = 0"), std::string::npos);
   EXPECT_NE(error([](EnvConfig& c) { c.lidar.fov = 7; }).find("lidar.fov"), std::string::npos);
-  EXPECT_NE(error([](EnvConfig& c) { c.randomization.surface_color = 1.5; }).find("randomization.surface_color"), std::string::npos);
-  EXPECT_NE(error([](EnvConfig& c) { c.robot = false; }).find("observation 'lidar' needs the robot"), std::string::npos);
-  EXPECT_NE(error([](EnvConfig& c) { c.observations = {"normals"}; }).find("unknown observation 'normals' (known: rgb, depth, seg_semantic, seg_instance, normal, flow, lidar,"), std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.randomization.surface_color = 1.5; }).find("randomization.surface_color"),
+            std::string::npos);
+  EXPECT_NE(error([](EnvConfig& c) { c.robot = false; }).find("observation 'lidar' needs the robot"),
+            std::string::npos);
+  EXPECT_NE(
+      error([](EnvConfig& c) {
+        c.observations = {"normals"};
+      }).find("unknown observation 'normals' (known: rgb, depth, seg_semantic, seg_instance, normal, flow, lidar,"),
+      std::string::npos);
 }
 
-const std::vector<std::string> kAllModalities = {"rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow", "lidar", "proprio"};
+const std::vector<std::string> kAllModalities = {"rgb",    "depth", "seg_semantic", "seg_instance",
+                                                 "normal", "flow",  "lidar",        "proprio"};
 
 EnvConfig everything_on() {
   EnvConfig c = observing(kAllModalities);

@@ -2,12 +2,12 @@
 #pragma once
 
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <string>
 
-#include "env/env.hpp"
 #include "base/error.hpp"
+#include "env/env.hpp"
 
 namespace chore::test {
 
@@ -15,7 +15,9 @@ inline std::string data_path(const std::string& relative) {
   return std::string(CHORE_TEST_DATA) + "/" + relative;
 }
 
-inline std::string box_room() { return data_path("scenes/box_room.json"); }
+inline std::string box_room() {
+  return data_path("scenes/box_room.json");
+}
 
 // The box room with the robot exactly at its start pose (no seeded jitter).
 inline EnvConfig box_room_config() {

@@ -16,10 +16,10 @@
 #include <sstream>
 #include <thread>
 
+#include "policies/evaluate.hpp"
 #include "policies/networks.hpp"
 #include "test_util.hpp"
 #include "training/checkpoint.hpp"
-#include "policies/evaluate.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -122,8 +122,8 @@ TEST(Training, PpoLearnsToPutABottleInTheBin) {
 std::vector<double> comparable(const std::vector<MetricsRow>& rows, const std::vector<std::string>& extras) {
   std::vector<double> out;
   for (const MetricsRow& r : rows) {
-    out.insert(out.end(), {static_cast<double>(r.env_steps), static_cast<double>(r.episodes),
-                           r.success_rate, r.mean_q, r.mean_return, r.mean_length});
+    out.insert(out.end(), {static_cast<double>(r.env_steps), static_cast<double>(r.episodes), r.success_rate, r.mean_q,
+                           r.mean_return, r.mean_length});
     for (size_t i = 0; i < extras.size(); ++i) {
       if (extras[i].find("_s") == std::string::npos && extras[i] != "update_ms") out.push_back(r.extras[i]);
     }
@@ -173,14 +173,14 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   expected["ppo"]["target_kl"] = 0.01;
   expected["env"]["max_episode_steps"] = 30;
   EXPECT_EQ(to_json(c), expected);
-  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
-           {"ppo.epochs", "expected KEY=VALUE"},
-           {"ppo.nope=1", "ppo.nope: no such setting"},
-           {"ppo.lr.x=1", "ppo.lr.x: no such setting"},
-           {"ppo=1", "a group of settings"},
-           {"ppo.epochs=1.5", "'1.5' is not a number like 10"},
-           {"ppo.normalize_advantage=1", "is not a boolean"},
-           {"seed=-1", "is not a number"}}) {
+  for (const auto& [bad, message] :
+       std::vector<std::pair<std::string, std::string>>{{"ppo.epochs", "expected KEY=VALUE"},
+                                                        {"ppo.nope=1", "ppo.nope: no such setting"},
+                                                        {"ppo.lr.x=1", "ppo.lr.x: no such setting"},
+                                                        {"ppo=1", "a group of settings"},
+                                                        {"ppo.epochs=1.5", "'1.5' is not a number like 10"},
+                                                        {"ppo.normalize_advantage=1", "is not a boolean"},
+                                                        {"seed=-1", "is not a number"}}) {
     EXPECT_NE(test::error_of([&] { with_setting(base, bad); }).find(message), std::string::npos) << bad;
   }
   // A run saved before the fields existed normalised its advantages and never stopped early.
@@ -224,7 +224,8 @@ TEST(Training, PpoTargetKlStopsTheUpdateEarly) {
   }
   EXPECT_NE(unbounded->parameters(), bounded->parameters());
   config.ppo.target_kl = -1;
-  EXPECT_NE(test::error_of([&] { make_trainer(config); }).find("target_kl must be 0 (off) or positive"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { make_trainer(config); }).find("target_kl must be 0 (off) or positive"),
+            std::string::npos);
 }
 
 // With 32x32 RGB: the conv trunk and the image normaliser.
@@ -257,7 +258,9 @@ TEST(Training, HistoryKeepsTheLastKPrimitivesAndResultsNewestFirst) {
 }
 
 // The bits of a float tensor (NaN and -0 included), for exact comparisons.
-torch::Tensor bits(const torch::Tensor& t) { return t.contiguous().view(torch::kInt32); }
+torch::Tensor bits(const torch::Tensor& t) {
+  return t.contiguous().view(torch::kInt32);
+}
 
 // The trunk's own pooling computes what nn::MaxPool2d(2) does, bit for bit:
 // ties (a flat region, all-zero windows after a ReLU) go to the first
@@ -510,10 +513,26 @@ std::vector<std::vector<std::string>> csv_rows(const fs::path& path) {
 TEST(Checkpoint, TrainKilledMidRunResumesAndFinishes) {
   const fs::path dir = test::scratch_dir("train_kill");
   const std::string chore = CHORE_BINARY;
-  const std::vector<std::string> args = {chore, "train", "--activity", "collect_trash", "--baseline",
-                                         "rl-prim-hist", "--mode", "symbolic", "--observations",
-                                         "proprio", "is_grasping", "--episode-steps", "16", "--steps",
-                                         "1500", "--checkpoint-every", "300", "--seed", "3", "--out",
+  const std::vector<std::string> args = {chore,
+                                         "train",
+                                         "--activity",
+                                         "collect_trash",
+                                         "--baseline",
+                                         "rl-prim-hist",
+                                         "--mode",
+                                         "symbolic",
+                                         "--observations",
+                                         "proprio",
+                                         "is_grasping",
+                                         "--episode-steps",
+                                         "16",
+                                         "--steps",
+                                         "1500",
+                                         "--checkpoint-every",
+                                         "300",
+                                         "--seed",
+                                         "3",
+                                         "--out",
                                          dir.string()};
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);

@@ -98,10 +98,10 @@ TEST(Trajectory, VelocityAndAccelerationStayWithinPerDimensionLimits) {
   const TrajectoryLimits limits{vec({1.0, 0.5, 2.0, 0.3, 1.5, 0.8, 1.2, 0.6}),
                                 vec({2.0, 1.0, 3.0, 0.5, 2.5, 1.5, 0.8, 1.0})};
   // A zigzag through 8-D joint space, with a sharp reversal in the middle.
-  const std::vector<VectorXd> path = {
-      vec({0, 0, 0, 0, 0, 0, 0, 0}),           vec({0.8, -0.4, 1.2, 0.3, -0.6, 0.5, 0.2, -0.1}),
-      vec({0.2, 0.6, 0.4, -0.3, 0.7, 0.9, -0.5, 0.4}), vec({0.8, -0.4, 1.2, 0.3, -0.6, 0.5, 0.2, -0.1}),
-      vec({1.5, 0.1, -0.2, 0.1, 0.3, -0.4, 0.9, 0.7})};
+  const std::vector<VectorXd> path = {vec({0, 0, 0, 0, 0, 0, 0, 0}), vec({0.8, -0.4, 1.2, 0.3, -0.6, 0.5, 0.2, -0.1}),
+                                      vec({0.2, 0.6, 0.4, -0.3, 0.7, 0.9, -0.5, 0.4}),
+                                      vec({0.8, -0.4, 1.2, 0.3, -0.6, 0.5, 0.2, -0.1}),
+                                      vec({1.5, 0.1, -0.2, 0.1, 0.3, -0.4, 0.9, 0.7})};
   for (double smoothing : {20.0, 2.0, 0.0}) {
     SCOPED_TRACE(smoothing);
     const Trajectory t = make_trajectory(path, limits, kDt, 0.05, {}, smoothing);

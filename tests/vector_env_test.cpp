@@ -5,9 +5,9 @@
 #include <random>
 #include <set>
 
+#include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
-#include "base/error.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -77,8 +77,7 @@ TEST(VectorEnv, EnvIIsTheSingleEnvSeededWithSeedPlusI) {
     // Env 2 draws in tile 2: the state is identical (images may differ by a
     // rounding level on a few edge pixels, see CameraView::tile).
     auto s2 = env2.step(std::span<const float>(actions).subspan(2 * kLowLevelActionSize, kLowLevelActionSize));
-    EXPECT_EQ(std::memcmp((*b.obs)["proprio"].item(2), s2.obs["proprio"].item(0),
-                          s2.obs["proprio"].item_bytes()), 0);
+    EXPECT_EQ(std::memcmp((*b.obs)["proprio"].item(2), s2.obs["proprio"].item(0), s2.obs["proprio"].item_bytes()), 0);
   }
 }
 
@@ -155,11 +154,11 @@ TEST(VectorEnv, SameStepAutoresetKeepsTheFinalObservation) {
   EXPECT_EQ(b.final_infos[1].elapsed_steps, 3);  // the one that ended
   ASSERT_NE(b.final_obs, nullptr);
   EXPECT_EQ(std::memcmp(b.final_obs->operator[]("proprio").item(1), last.obs["proprio"].item(0),
-                        last.obs["proprio"].item_bytes()), 0);
+                        last.obs["proprio"].item_bytes()),
+            0);
   // The new episode continues env 1's random stream, as a single env's reset().
   auto next = single.reset();
-  EXPECT_EQ(std::memcmp((*b.obs)["proprio"].item(1), next.obs["proprio"].item(0),
-                        next.obs["proprio"].item_bytes()), 0);
+  EXPECT_EQ(std::memcmp((*b.obs)["proprio"].item(1), next.obs["proprio"].item(0), next.obs["proprio"].item_bytes()), 0);
 }
 
 TEST(VectorEnv, BadConfigurationsAndActionsAreClearErrors) {

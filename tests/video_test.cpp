@@ -9,8 +9,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "test_util.hpp"
 #include "app/video.hpp"
+#include "test_util.hpp"
 
 namespace chore {
 namespace {
@@ -47,7 +47,7 @@ TEST(Video, AnExpertEpisodeReadsBackFrameByFrame) {
     }
     cv::Mat caption;
     cv::cvtColor(f(cv::Rect(0, 160, 320, 44)), caption, cv::COLOR_BGR2GRAY);
-    EXPECT_GT(cv::countNonZero(caption < 100), 50);   // text
+    EXPECT_GT(cv::countNonZero(caption < 100), 50);    // text
     EXPECT_GT(cv::countNonZero(caption > 200), 5000);  // background
   }
   // The robot moved: the head camera sees something else at the end.

@@ -1,11 +1,11 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
-#include "env/env.hpp"
 #include "base/error.hpp"
+#include "env/env.hpp"
+#include "test_util.hpp"
 #include "world/mujoco_errors.hpp"
 #include "world/predicates.hpp"
-#include "test_util.hpp"
 
 namespace chore {
 namespace {
@@ -141,7 +141,9 @@ int contacts_of(const World& w, const char* name, bool kept) {
   }
   return n;
 }
-bool in_contact_list(const World& w, const char* name) { return contacts_of(w, name, false) > 0; }
+bool in_contact_list(const World& w, const char* name) {
+  return contacts_of(w, name, false) > 0;
+}
 
 TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndKeepTheirContacts) {
   Env env(box_room_config());
@@ -162,7 +164,7 @@ TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndKeepTheirContacts) {
   const std::vector<double> far_rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
   w.step(60);
   EXPECT_TRUE(w.asleep(object_index(w, "small_block_1")));
-  EXPECT_TRUE(w.asleep(object_index(w, "red_panel_1")));  // furniture nothing moves near
+  EXPECT_TRUE(w.asleep(object_index(w, "red_panel_1")));     // furniture nothing moves near
   EXPECT_FALSE(w.asleep(object_index(w, "heavy_block_1")));  // within the robot's region
   EXPECT_EQ(w.sleepers(), 3);
   for (int k = 0; k < 7; ++k) EXPECT_EQ(object_qpos(w, "small_block_1")[k], far_rest[k]) << k;  // held exactly

@@ -106,8 +106,8 @@ CheckpointFile read_checkpoint(const std::string& path) {
   size_t offset = sizeof kMagic;
   const uint32_t version = take<uint32_t>(bytes, offset, path);
   if (version != kCheckpointVersion) {
-    throw Error("checkpoint " + path + ": format version " + std::to_string(version) +
-                ", this chore reads version " + std::to_string(kCheckpointVersion));
+    throw Error("checkpoint " + path + ": format version " + std::to_string(version) + ", this chore reads version " +
+                std::to_string(kCheckpointVersion));
   }
   CheckpointFile checkpoint;
   checkpoint.path = path;
@@ -178,8 +178,8 @@ void load_module(torch::nn::Module& module, torch::serialize::InputArchive& arch
   for (const torch::Tensor& b : module.buffers()) loaded.push_back(b);
   for (size_t i = 0; i < expected.size(); ++i) {
     if (loaded[i].sizes().vec() != expected[i].second) {
-      throw Error(what + ": tensor '" + key + "." + expected[i].first + "' has shape " +
-                  c10::str(loaded[i].sizes()) + ", the network expects " + c10::str(c10::IntArrayRef(expected[i].second)));
+      throw Error(what + ": tensor '" + key + "." + expected[i].first + "' has shape " + c10::str(loaded[i].sizes()) +
+                  ", the network expects " + c10::str(c10::IntArrayRef(expected[i].second)));
     }
   }
 }

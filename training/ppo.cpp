@@ -47,11 +47,11 @@ class PpoTrainer : public Trainer {
         stats_(config.num_envs) {
     const PpoConfig& p = config_.ppo;
     if (env_.single_action_space().kind != Space::Kind::discrete) {
-      throw Error("ppo: needs the primitive (Discrete) action space, got " +
-                  env_.single_action_space().to_string());
+      throw Error("ppo: needs the primitive (Discrete) action space, got " + env_.single_action_space().to_string());
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
-    if (!(p.target_kl >= 0)) throw Error("ppo: target_kl must be 0 (off) or positive, got " + std::to_string(p.target_kl));
+    if (!(p.target_kl >= 0))
+      throw Error("ppo: target_kl must be 0 (off) or positive, got " + std::to_string(p.target_kl));
     generator_ = seed_torch(config_.seed, config_.threads);
     net_ = ActorCritic(spec_);
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
@@ -73,15 +73,15 @@ class PpoTrainer : public Trainer {
       wall_s_ += period_s;
       MetricsRow row = stats_.row(steps_, wall_s_);
       const double steps = static_cast<double>(steps_per_rollout_ * config_.num_envs);
-      row.extras = {steps / period_s, steps / collect_s, u.update_ms, u.policy_loss, u.value_loss,
-                    u.entropy, u.approx_kl, u.clip_fraction};
+      row.extras = {steps / period_s, steps / collect_s, u.update_ms, u.policy_loss,
+                    u.value_loss,     u.entropy,         u.approx_kl, u.clip_fraction};
       report(row);
     }
   }
 
   std::vector<std::string> extra_metric_names() const override {
-    return {"steps_per_s", "env_steps_per_s", "update_ms", "policy_loss", "value_loss",
-            "entropy", "approx_kl", "clip_fraction"};
+    return {"steps_per_s", "env_steps_per_s", "update_ms", "policy_loss",
+            "value_loss",  "entropy",         "approx_kl", "clip_fraction"};
   }
 
   int64_t env_steps() const override { return steps_; }
@@ -95,7 +95,8 @@ class PpoTrainer : public Trainer {
     archive.write("net", net);
     archive.write("optimizer", optimizer);
     save_rng(archive, generator_);
-    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
+    write_checkpoint(path,
+                     {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
   }
 
  private:
@@ -216,8 +217,7 @@ class PpoTrainer : public Trainer {
       const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
       for (int64_t begin = 0; begin < rows; begin += p.batch) {
         const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
-        const ActorCriticOutput out =
-            net_->forward(obs.index(idx), history_ ? history.index_select(0, idx) : history);
+        const ActorCriticOutput out = net_->forward(obs.index(idx), history_ ? history.index_select(0, idx) : history);
         const torch::Tensor log_probs_all = torch::log_softmax(out.logits, 1);
         const torch::Tensor log_probs = log_probs_all.gather(1, actions.index_select(0, idx).unsqueeze(1)).squeeze(1);
         const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
@@ -293,7 +293,8 @@ std::unique_ptr<Policy> load_ppo_policy(const CheckpointFile& file, bool sample)
 }  // namespace
 
 Algorithm ppo_algorithm() {
-  return {"ppo", [](const TrainConfig& config, const CheckpointFile* resume) -> std::unique_ptr<Trainer> {
+  return {"ppo",
+          [](const TrainConfig& config, const CheckpointFile* resume) -> std::unique_ptr<Trainer> {
             return std::make_unique<PpoTrainer>(config, resume);
           },
           load_ppo_policy};

@@ -33,9 +33,9 @@ struct ReplayBuffer {
 
   ReplayBuffer(const NetworkSpec& spec, int64_t capacity) : capacity(capacity) {
     auto make_obs = [&] {
-      return ObsTensors{spec.has_rgb() ? torch::zeros({capacity, 3, spec.height, spec.width}, torch::kUInt8)
-                                       : torch::Tensor(),
-                        torch::zeros({capacity, spec.state_size})};
+      return ObsTensors{
+          spec.has_rgb() ? torch::zeros({capacity, 3, spec.height, spec.width}, torch::kUInt8) : torch::Tensor(),
+          torch::zeros({capacity, spec.state_size})};
     };
     obs = make_obs();
     next_obs = make_obs();
@@ -63,7 +63,8 @@ struct ReplayBuffer {
 
   void save(torch::serialize::OutputArchive& archive) const {
     torch::serialize::OutputArchive replay;
-    for (const auto& [name, t] : named()) if (t.defined()) replay.write(name, t, true);
+    for (const auto& [name, t] : named())
+      if (t.defined()) replay.write(name, t, true);
     replay.write("cursor", torch::tensor({size, next}), true);
     archive.write("replay", replay);
   }
@@ -86,9 +87,8 @@ struct ReplayBuffer {
 
  private:
   std::vector<std::pair<std::string, torch::Tensor>> named() const {
-    return {{"obs_rgb", obs.rgb},       {"obs_state", obs.state}, {"next_rgb", next_obs.rgb},
-            {"next_state", next_obs.state}, {"actions", actions},  {"rewards", rewards},
-            {"terminated", terminated}};
+    return {{"obs_rgb", obs.rgb}, {"obs_state", obs.state}, {"next_rgb", next_obs.rgb}, {"next_state", next_obs.state},
+            {"actions", actions}, {"rewards", rewards},     {"terminated", terminated}};
   }
 };
 
@@ -141,8 +141,8 @@ class SacTrainer : public Trainer {
         wall_s_ += period_s;
         MetricsRow row = stats_.row(steps_, wall_s_);
         const double n = std::max(u.updates, 1);
-        row.extras = {period_steps / period_s, u.update_ms / n, u.q_loss / n, u.policy_loss / n,
-                      u.alpha / n, u.entropy / n, u.mean_q / n};
+        row.extras = {period_steps / period_s, u.update_ms / n, u.q_loss / n, u.policy_loss / n, u.alpha / n,
+                      u.entropy / n,           u.mean_q / n};
         report(row);
         u = UpdateStats();
         period_start = Clock::now();
@@ -160,8 +160,8 @@ class SacTrainer : public Trainer {
 
   std::vector<float> parameters() const override {
     std::vector<float> all = flat_parameters(*critic_);
-    for (const auto* m : {static_cast<const torch::nn::Module*>(target_.get()),
-                          static_cast<const torch::nn::Module*>(actor_.get())}) {
+    for (const auto* m :
+         {static_cast<const torch::nn::Module*>(target_.get()), static_cast<const torch::nn::Module*>(actor_.get())}) {
       const std::vector<float> p = flat_parameters(*m);
       all.insert(all.end(), p.begin(), p.end());
     }
@@ -185,7 +185,8 @@ class SacTrainer : public Trainer {
     archive.write("log_alpha", log_alpha_.detach(), true);
     replay_.save(archive);
     save_rng(archive, generator_);
-    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
+    write_checkpoint(path,
+                     {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
   }
 
  private:
@@ -269,8 +270,8 @@ class SacTrainer : public Trainer {
       const SacSample next = actor_->sample(critic_->encoder->forward(next_obs), generator_);
       const auto [q1, q2] = target_->q(target_->encoder->forward(next_obs), next.action);
       const torch::Tensor soft_value = torch::min(q1, q2) - alpha * next.log_prob;
-      target = replay_.rewards.index_select(0, idx) +
-               s.gamma * (1 - replay_.terminated.index_select(0, idx)) * soft_value;
+      target =
+          replay_.rewards.index_select(0, idx) + s.gamma * (1 - replay_.terminated.index_select(0, idx)) * soft_value;
     }
     const torch::Tensor feature = critic_->encoder->forward(obs);
     const auto [q1, q2] = critic_->q(feature, actions);
@@ -346,7 +347,8 @@ std::unique_ptr<Policy> load_sac_policy(const CheckpointFile& file, bool sample)
 }  // namespace
 
 Algorithm sac_algorithm() {
-  return {"sac", [](const TrainConfig& config, const CheckpointFile* resume) -> std::unique_ptr<Trainer> {
+  return {"sac",
+          [](const TrainConfig& config, const CheckpointFile* resume) -> std::unique_ptr<Trainer> {
             return std::make_unique<SacTrainer>(config, resume);
           },
           load_sac_policy};

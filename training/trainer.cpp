@@ -79,11 +79,16 @@ void sensor_fields(Config& c, Visit visit) {
   visit("lidar", "fov", c.lidar.fov);
   visit("lidar", "range", c.lidar.range);
   auto& n = c.noise;
-  for (auto [name, value] : {std::pair{"rgb_exposure", &n.rgb_exposure}, {"rgb_black_level", &n.rgb_black_level},
-                             {"rgb_shot_noise", &n.rgb_shot_noise}, {"rgb_read_noise", &n.rgb_read_noise},
-                             {"depth_noise", &n.depth_noise}, {"depth_noise_quadratic", &n.depth_noise_quadratic},
-                             {"depth_edge", &n.depth_edge}, {"depth_max", &n.depth_max},
-                             {"lidar_noise", &n.lidar_noise}, {"lidar_dropout", &n.lidar_dropout}}) {
+  for (auto [name, value] : {std::pair{"rgb_exposure", &n.rgb_exposure},
+                             {"rgb_black_level", &n.rgb_black_level},
+                             {"rgb_shot_noise", &n.rgb_shot_noise},
+                             {"rgb_read_noise", &n.rgb_read_noise},
+                             {"depth_noise", &n.depth_noise},
+                             {"depth_noise_quadratic", &n.depth_noise_quadratic},
+                             {"depth_edge", &n.depth_edge},
+                             {"depth_max", &n.depth_max},
+                             {"lidar_noise", &n.lidar_noise},
+                             {"lidar_dropout", &n.lidar_dropout}}) {
     visit("noise", name, *value);
   }
   auto& r = c.randomization;
@@ -96,25 +101,23 @@ void sensor_fields(Config& c, Visit visit) {
 
 nlohmann::json to_json(const EnvConfig& c) {
   nlohmann::json sensors;
-  sensor_fields(c, [&](const char* group, const char* name, const auto& value) {
-    sensors[group][name] = value;
-  });
+  sensor_fields(c, [&](const char* group, const char* name, const auto& value) { sensors[group][name] = value; });
   nlohmann::json j = {{"activity", c.activity},
-          {"scene", c.scene},
-          {"width", c.width},
-          {"height", c.height},
-          {"observations", c.observations},
-          {"lighting", c.lighting == Lighting::full ? "full" : "lamps_only"},
-          {"max_episode_steps", c.max_episode_steps},
-          {"robot", c.robot},
-          {"object_states", c.object_states},
-          {"cloth", c.cloth},
-          {"start_jitter", c.start_jitter},
-          {"action_space", c.action_space},
-          {"primitive_mode", to_string(c.primitive_mode)},
-          {"policy_failure_repeats", c.policy_failure_repeats},
-          {"reward", c.reward},
-          {"reach_target", c.reach_target}};
+                      {"scene", c.scene},
+                      {"width", c.width},
+                      {"height", c.height},
+                      {"observations", c.observations},
+                      {"lighting", c.lighting == Lighting::full ? "full" : "lamps_only"},
+                      {"max_episode_steps", c.max_episode_steps},
+                      {"robot", c.robot},
+                      {"object_states", c.object_states},
+                      {"cloth", c.cloth},
+                      {"start_jitter", c.start_jitter},
+                      {"action_space", c.action_space},
+                      {"primitive_mode", to_string(c.primitive_mode)},
+                      {"policy_failure_repeats", c.policy_failure_repeats},
+                      {"reward", c.reward},
+                      {"reach_target", c.reach_target}};
   j.update(sensors);
   return j;
 }
@@ -158,15 +161,30 @@ nlohmann::json to_json(const TrainConfig& c) {
           {"threads", c.threads},
           {"seed", c.seed},
           {"total_steps", c.total_steps},
-          {"ppo", {{"lr", p.lr}, {"buffer", p.buffer}, {"batch", p.batch}, {"epochs", p.epochs},
-                   {"gamma", p.gamma}, {"gae_lambda", p.gae_lambda}, {"clip", p.clip},
-                   {"entropy_coef", p.entropy_coef}, {"value_coef", p.value_coef},
-                   {"max_grad_norm", p.max_grad_norm}, {"history", p.history},
-                   {"normalize_advantage", p.normalize_advantage}, {"target_kl", p.target_kl}}},
-          {"sac", {{"lr", s.lr}, {"buffer", s.buffer}, {"batch", s.batch}, {"gamma", s.gamma},
-                   {"tau", s.tau}, {"learning_starts", s.learning_starts},
-                   {"initial_alpha", s.initial_alpha}, {"hidden", s.hidden},
-                   {"report_every", s.report_every}}}};
+          {"ppo",
+           {{"lr", p.lr},
+            {"buffer", p.buffer},
+            {"batch", p.batch},
+            {"epochs", p.epochs},
+            {"gamma", p.gamma},
+            {"gae_lambda", p.gae_lambda},
+            {"clip", p.clip},
+            {"entropy_coef", p.entropy_coef},
+            {"value_coef", p.value_coef},
+            {"max_grad_norm", p.max_grad_norm},
+            {"history", p.history},
+            {"normalize_advantage", p.normalize_advantage},
+            {"target_kl", p.target_kl}}},
+          {"sac",
+           {{"lr", s.lr},
+            {"buffer", s.buffer},
+            {"batch", s.batch},
+            {"gamma", s.gamma},
+            {"tau", s.tau},
+            {"learning_starts", s.learning_starts},
+            {"initial_alpha", s.initial_alpha},
+            {"hidden", s.hidden},
+            {"report_every", s.report_every}}}};
 }
 
 TrainConfig train_config_from_json(const nlohmann::json& j) {
@@ -179,18 +197,22 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
     c.seed = j.at("seed").get<uint64_t>();
     c.total_steps = j.at("total_steps").get<int64_t>();
     const nlohmann::json& p = j.at("ppo");
-    c.ppo = {p.at("lr").get<double>(), p.at("buffer").get<int>(), p.at("batch").get<int>(),
-             p.at("epochs").get<int>(), p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(),
-             p.at("clip").get<double>(), p.at("entropy_coef").get<double>(),
-             p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
+    c.ppo = {p.at("lr").get<double>(), p.at("buffer").get<int>(), p.at("batch").get<int>(), p.at("epochs").get<int>(),
+             p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(), p.at("clip").get<double>(),
+             p.at("entropy_coef").get<double>(), p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
              p.at("history").get<int>(),
              // Runs saved before these fields existed normalised and never stopped early.
              p.value("normalize_advantage", true), p.value("target_kl", 0.0)};
     const nlohmann::json& s = j.at("sac");
-    c.sac = {s.at("lr").get<double>(), s.at("buffer").get<int>(), s.at("batch").get<int>(),
-             s.at("gamma").get<double>(), s.at("tau").get<double>(),
-             s.at("learning_starts").get<int>(), s.at("initial_alpha").get<double>(),
-             s.at("hidden").get<int>(), s.at("report_every").get<int>()};
+    c.sac = {s.at("lr").get<double>(),
+             s.at("buffer").get<int>(),
+             s.at("batch").get<int>(),
+             s.at("gamma").get<double>(),
+             s.at("tau").get<double>(),
+             s.at("learning_starts").get<int>(),
+             s.at("initial_alpha").get<double>(),
+             s.at("hidden").get<int>(),
+             s.at("report_every").get<int>()};
     return c;
   } catch (const nlohmann::json::exception& e) {
     throw Error(std::string("train config: ") + e.what());
@@ -214,8 +236,7 @@ TrainConfig with_setting(const TrainConfig& config, const std::string& key_equal
   if (field->is_object()) throw Error("--set " + key + ": a group of settings; name one inside it");
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded() && field->is_string()) value = text;  // a bare word for a string
-  const bool same_type = value.type() == field->type() ||
-                         (field->is_number_float() && value.is_number()) ||
+  const bool same_type = value.type() == field->type() || (field->is_number_float() && value.is_number()) ||
                          (field->is_number_unsigned() && value.is_number_integer() && value.get<int64_t>() >= 0) ||
                          (field->is_number_integer() && value.is_number_unsigned());
   if (!same_type) {
@@ -266,8 +287,7 @@ void EpisodeStats::load(const nlohmann::json& j) {
   episodes_ = j.at("episodes").get<int64_t>();
   recent_.clear();
   for (const nlohmann::json& e : j.at("recent")) {
-    recent_.push_back({e.at(0).get<double>(), e.at(1).get<double>(), e.at(2).get<int64_t>(),
-                       e.at(3).get<bool>()});
+    recent_.push_back({e.at(0).get<double>(), e.at(1).get<double>(), e.at(2).get<int64_t>(), e.at(3).get<bool>()});
   }
 }
 

@@ -52,8 +52,8 @@ struct SacConfig {
   double gamma = 0.99, tau = 0.005;
   int learning_starts = 100;  // env steps of uniform random actions before learning
   double initial_alpha = 1.0;
-  int hidden = 256;           // actor/critic MLP width
-  int report_every = 300;     // env steps between metrics rows
+  int hidden = 256;        // actor/critic MLP width
+  int report_every = 300;  // env steps between metrics rows
 };
 
 struct TrainConfig {
@@ -157,8 +157,8 @@ struct Algorithm {
 };
 // A baseline: the algorithm that trains it and the setup it trains with.
 struct Baseline {
-  std::string name;       // "rl-prim-hist"
-  std::string algorithm;  // "ppo"
+  std::string name;                    // "rl-prim-hist"
+  std::string algorithm;               // "ppo"
   void (*setup)(TrainConfig& config);  // observations, action space, primitive mode, history
 };
 const std::vector<Algorithm>& algorithms();

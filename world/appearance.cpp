@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "base/error.hpp"
 #include "world/scene.hpp"
@@ -14,9 +14,8 @@
 namespace chore {
 
 void validate(const AppearanceRandomization& r) {
-  const std::pair<const char*, double> spreads[] = {{"light_intensity", r.light_intensity},
-                                                    {"light_color", r.light_color},
-                                                    {"surface_color", r.surface_color}};
+  const std::pair<const char*, double> spreads[] = {
+      {"light_intensity", r.light_intensity}, {"light_color", r.light_color}, {"surface_color", r.surface_color}};
   for (const auto& [name, value] : spreads) {
     if (!(value >= 0 && value <= 1)) {
       throw Error(std::string("randomization.") + name + " = " + std::to_string(value) +
@@ -25,8 +24,7 @@ void validate(const AppearanceRandomization& r) {
   }
 }
 
-bool randomize_appearance(const Scene& scene, mjModel* model, const AppearanceRandomization& r,
-                          Rng& rng) {
+bool randomize_appearance(const Scene& scene, mjModel* model, const AppearanceRandomization& r, Rng& rng) {
   const mjModel* original = scene.model();
   auto factor = [&](double spread) { return spread > 0 ? uniform(rng, 1 - spread, 1 + spread) : 1.0; };
   // Lights (which are on is set_lighting's business, not this).

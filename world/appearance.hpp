@@ -30,7 +30,6 @@ void validate(const AppearanceRandomization& r);
 // Sets `model` (a copy of scene.model()) back to the scene's lights and colours,
 // then draws `r`'s perturbations from `rng`. Returns whether textures changed
 // (a renderer must upload them again).
-bool randomize_appearance(const Scene& scene, mjModel_* model, const AppearanceRandomization& r,
-                          Rng& rng);
+bool randomize_appearance(const Scene& scene, mjModel_* model, const AppearanceRandomization& r, Rng& rng);
 
 }  // namespace chore

@@ -19,7 +19,9 @@ void validate(const LidarConfig& c);
 
 // Beam i points at angle -fov/2 + (i + 0.5) fov/beams from the base's forward
 // direction (counter-clockwise, i.e. right to left, as ROS's LaserScan).
-inline double beam_angle(const LidarConfig& c, int i) { return -c.fov / 2 + (i + 0.5) * c.fov / c.beams; }
+inline double beam_angle(const LidarConfig& c, int i) {
+  return -c.fov / 2 + (i + 0.5) * c.fov / c.beams;
+}
 
 // Writes `beams` ranges (m): the distance to the first drawn object or
 // collision geometry along each beam, capped at `range`. The base does not see

@@ -11,9 +11,13 @@ namespace {
 
 thread_local std::string last_warning;
 
-void on_error(const char* message) { throw Error(std::string("MuJoCo error: ") + message); }
+void on_error(const char* message) {
+  throw Error(std::string("MuJoCo error: ") + message);
+}
 
-void on_warning(const char* message) { last_warning = message; }
+void on_warning(const char* message) {
+  last_warning = message;
+}
 
 }  // namespace
 
@@ -25,6 +29,8 @@ void install_mujoco_handlers() {
   });
 }
 
-const std::string& last_mujoco_warning() { return last_warning; }
+const std::string& last_mujoco_warning() {
+  return last_warning;
+}
 
 }  // namespace chore

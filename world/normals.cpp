@@ -36,8 +36,7 @@ void surface_normals(const Pinhole& camera, const float* depth, double far, floa
         n[0] = n[1] = n[2] = 0;
         continue;
       }
-      double c[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2],
-                     du[0] * dv[1] - du[1] * dv[0]};
+      double c[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
       const double length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
       double p[3];
       camera.unproject(col, row, depth[row * w + col], p);

@@ -57,15 +57,15 @@ double ray_to_geoms(const World& world, const std::vector<int>& geoms, const Eig
   const mjData* d = world.data();
   double best = -1;
   for (int g : geoms) {
-    const double t = mju_rayGeom(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g, m->geom_size + 3 * g,
-                                 p.data(), dir.data(), m->geom_type[g]);
+    const double t = mju_rayGeom(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g, m->geom_size + 3 * g, p.data(), dir.data(),
+                                 m->geom_type[g]);
     if (t >= 0 && t <= max_distance && (best < 0 || t < best)) best = t;
   }
   return best;
 }
 
-double ray_to_object(const World& world, int object, const Eigen::Vector3d& p,
-                     const Eigen::Vector3d& dir, double max_distance) {
+double ray_to_object(const World& world, int object, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                     double max_distance) {
   return ray_to_geoms(world, world.scene().objects()[object].geoms, p, dir, max_distance);
 }
 
@@ -92,9 +92,7 @@ bool in_contact(const World& world, int a, int b) {
 }
 
 bool in_contact_with_geoms(const World& world, int a, const std::vector<int>& geoms) {
-  return any_contact(world, a, [&](int g) {
-    return std::find(geoms.begin(), geoms.end(), g) != geoms.end();
-  });
+  return any_contact(world, a, [&](int g) { return std::find(geoms.begin(), geoms.end(), g) != geoms.end(); });
 }
 
 }  // namespace chore

@@ -34,8 +34,8 @@ Aabb object_aabb(const World& world, int object);
 double ray_to_geoms(const World& world, const std::vector<int>& geoms, const Eigen::Vector3d& p,
                     const Eigen::Vector3d& dir, double max_distance);
 // The same against one object's geoms.
-double ray_to_object(const World& world, int object, const Eigen::Vector3d& p,
-                     const Eigen::Vector3d& dir, double max_distance);
+double ray_to_object(const World& world, int object, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                     double max_distance);
 
 // Whether any geom of object `a` is in contact with any geom of object `b`
 // (b = -1: with any geom of `geoms_b` instead).

@@ -20,8 +20,8 @@ constexpr double kRoomTemperature = 23.0;  // degrees C
 // objects near it (or inside it) towards its own, at `rate` per second.
 struct ThermalSource {
   double temperature = 200;
-  double rate = 0.04;          // fraction of the difference closed per second
-  double distance = 0.2;       // m from the source's box; 0 with requires_inside
+  double rate = 0.04;     // fraction of the difference closed per second
+  double distance = 0.2;  // m from the source's box; 0 with requires_inside
   bool requires_toggled_on = false;
   bool requires_closed = false;
   bool requires_inside = false;
@@ -34,12 +34,12 @@ struct ObjectAbilities {
   double hot_temperature = 40, ignition_temperature = std::numeric_limits<double>::infinity();
   bool soakable = false;
   bool cleaning_tool = false;
-  bool covered = false;       // dirt (dustyable, stainable) can lie on it
+  bool covered = false;  // dirt (dustyable, stainable) can lie on it
   bool toggleable = false;
   bool sliceable = false, slicer = false;
   bool breakable = false;
-  double break_force = 100;   // N of contact force
-  double slice_force = 10;    // N (seed: F_sliced)
+  double break_force = 100;  // N of contact force
+  double slice_force = 10;   // N (seed: F_sliced)
   std::optional<ThermalSource> heat_source, cold_source;
   bool holds_liquid = false;  // a container or source of water (sink, bucket)
 };
@@ -52,13 +52,13 @@ struct Substance {
 
 struct ObjectState {
   double temperature = kRoomTemperature, max_temperature = kRoomTemperature;
-  std::map<std::string, double> soaked;  // per liquid, 0 .. 1 absorbed (1 = saturated)
-  std::string liquid;       // what a container holds (holds_liquid) ...
-  double liquid_level = 0;  // ... up to this fraction of its inner height
+  std::map<std::string, double> soaked;                      // per liquid, 0 .. 1 absorbed (1 = saturated)
+  std::string liquid;                                        // what a container holds (holds_liquid) ...
+  double liquid_level = 0;                                   // ... up to this fraction of its inner height
   std::map<std::string, std::vector<Eigen::Vector3d>> dirt;  // particles in the object's frame
-  std::map<std::string, int> dirt_sampled;  // how many particles each substance was sampled with
+  std::map<std::string, int> dirt_sampled;                   // how many particles each substance was sampled with
   bool toggled = false;
-  int toggle_steps = 0;     // consecutive env steps the hand is at the toggle point
+  int toggle_steps = 0;  // consecutive env steps the hand is at the toggle point
   bool sliced = false, broken = false;
 };
 
@@ -66,11 +66,12 @@ class ObjectStates {
  public:
   // Thresholds of the predicates on these states.
   static constexpr int kCoveredParticles = 5;  // covered (OmniGibson) while at least this many remain
-  static constexpr double kDirtyFraction = 0.5;  // stained/dusty (iGibson) while more than this share of the sampled remain
+  static constexpr double kDirtyFraction =
+      0.5;  // stained/dusty (iGibson) while more than this share of the sampled remain
   static constexpr double kSoakedLevel = 0.5;
   static constexpr double kToggleDistance = 0.1;  // m from the toggle point
   static constexpr int kToggleSteps = 5;
-  static constexpr double kCleaningRadius = 0.06; // m around a tool's contact
+  static constexpr double kCleaningRadius = 0.06;  // m around a tool's contact
 
   void configure(int object, const ObjectAbilities& abilities);
   void add_substance(const Substance& substance);

@@ -10,8 +10,8 @@ void FramePoses::capture(const mjModel* model, const mjData* data, int cam) {
   xmat.assign(data->xmat, data->xmat + 9 * model->nbody);
 }
 
-void optical_flow(const mjModel* model, const Pinhole& pinhole, const FramePoses& before,
-                  const FramePoses& now, const std::int32_t* geom, const float* depth, float* flow) {
+void optical_flow(const mjModel* model, const Pinhole& pinhole, const FramePoses& before, const FramePoses& now,
+                  const std::int32_t* geom, const float* depth, float* flow) {
   const int w = pinhole.width;
   for (int row = 0, i = 0; row < pinhole.height; ++row) {
     for (int col = 0; col < w; ++col, ++i) {

@@ -27,7 +27,7 @@ struct FramePoses {
 
 // `geom` per pixel (the renderer's segmentation pass; -1: nothing), metric
 // `depth`; `flow` is height x width x 2.
-void optical_flow(const mjModel_* model, const Pinhole& pinhole, const FramePoses& before,
-                  const FramePoses& now, const std::int32_t* geom, const float* depth, float* flow);
+void optical_flow(const mjModel_* model, const Pinhole& pinhole, const FramePoses& before, const FramePoses& now,
+                  const std::int32_t* geom, const float* depth, float* flow);
 
 }  // namespace chore

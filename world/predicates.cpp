@@ -17,19 +17,19 @@ constexpr double kOpenFraction = 0.05;
 
 const Eigen::Vector3d kUp(0, 0, 1), kDown(0, 0, -1);
 
-bool hits(const World& w, int object, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
-          double range) {
+bool hits(const World& w, int object, const Eigen::Vector3d& p, const Eigen::Vector3d& dir, double range) {
   return ray_to_object(w, object, p, dir, range) >= 0;
 }
 
 }  // namespace
 
-bool touching(const World& w, int a, int b) { return in_contact(w, a, b); }
+bool touching(const World& w, int a, int b) {
+  return in_contact(w, a, b);
+}
 
 bool ontop(const World& w, int a, int b) {
   const Eigen::Vector3d c = object_aabb(w, a).center();
-  return touching(w, a, b) && hits(w, b, c, kDown, kVerticalRange) &&
-         !hits(w, b, c, kUp, kVerticalRange);
+  return touching(w, a, b) && hits(w, b, c, kDown, kVerticalRange) && !hits(w, b, c, kUp, kVerticalRange);
 }
 
 bool inside(const World& w, int a, int b) {
@@ -85,7 +85,9 @@ bool is_open(const World& w, int a) {
   return false;
 }
 
-bool grasped(const World& w, int a) { return w.grasped_object() == a; }
+bool grasped(const World& w, int a) {
+  return w.grasped_object() == a;
+}
 
 bool infov(const World& w, int a) {
   const Robot* r = w.robot();
@@ -153,7 +155,9 @@ bool folded(const World& w, int a) {
   return s >= 0 && s < 0.75;
 }
 
-bool unfolded(const World& w, int a) { return spread(w, a) > 0.9; }
+bool unfolded(const World& w, int a) {
+  return spread(w, a) > 0.9;
+}
 
 bool attached(const World& w, int a, int b) {
   const mjModel* m = w.model();
@@ -194,29 +198,24 @@ bool dirt_test(const World& w, int a, const std::string& substance, Test test) {
 }  // namespace
 
 bool cooked(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) {
-    return ab.temperature && s.max_temperature >= ab.cook_temperature;
-  });
+  return state_test(
+      w, a, [](const auto& ab, const auto& s) { return ab.temperature && s.max_temperature >= ab.cook_temperature; });
 }
 bool burnt(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) {
-    return ab.temperature && s.max_temperature >= ab.burn_temperature;
-  });
+  return state_test(
+      w, a, [](const auto& ab, const auto& s) { return ab.temperature && s.max_temperature >= ab.burn_temperature; });
 }
 bool frozen(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) {
-    return ab.temperature && s.temperature <= ab.freeze_temperature;
-  });
+  return state_test(
+      w, a, [](const auto& ab, const auto& s) { return ab.temperature && s.temperature <= ab.freeze_temperature; });
 }
 bool hot(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) {
-    return ab.temperature && s.temperature >= ab.hot_temperature;
-  });
+  return state_test(
+      w, a, [](const auto& ab, const auto& s) { return ab.temperature && s.temperature >= ab.hot_temperature; });
 }
 bool on_fire(const World& w, int a) {
-  return state_test(w, a, [](const auto& ab, const auto& s) {
-    return ab.temperature && s.temperature >= ab.ignition_temperature;
-  });
+  return state_test(
+      w, a, [](const auto& ab, const auto& s) { return ab.temperature && s.temperature >= ab.ignition_temperature; });
 }
 // How much of `liquid` a soakable object has absorbed (0 if none or not soakable).
 double absorbed(const World& w, int a, const std::string& liquid) {
@@ -231,7 +230,9 @@ double absorbed(const World& w, int a, const std::string& liquid) {
 bool soaked(const World& w, int a, const std::string& liquid) {
   return absorbed(w, a, liquid) >= ObjectStates::kSoakedLevel;
 }
-bool saturated(const World& w, int a, const std::string& liquid) { return absorbed(w, a, liquid) >= 1.0; }
+bool saturated(const World& w, int a, const std::string& liquid) {
+  return absorbed(w, a, liquid) >= 1.0;
+}
 bool covered(const World& w, int a, const std::string& substance) {
   return dirt_test(w, a, substance, [](int left, int) { return left >= ObjectStates::kCoveredParticles; });
 }
@@ -240,9 +241,8 @@ bool dirty(const World& w, int a, const std::string& substance) {
                    [](int left, int sampled) { return left > ObjectStates::kDirtyFraction * sampled; });
 }
 bool filled(const World& w, int a, const std::string& liquid) {
-  return state_test(w, a, [&](const auto& ab, const auto& s) {
-    return ab.holds_liquid && s.liquid == liquid && s.liquid_level > 0;
-  });
+  return state_test(
+      w, a, [&](const auto& ab, const auto& s) { return ab.holds_liquid && s.liquid == liquid && s.liquid_level > 0; });
 }
 bool toggled_on(const World& w, int a) {
   return state_test(w, a, [](const auto& ab, const auto& s) { return ab.toggleable && s.toggled; });

@@ -40,15 +40,14 @@ Display open_display() {
   if (choice != "auto" && choice != "device" && choice != "surfaceless") {
     throw Error("CHORE_EGL='" + choice + "': expected auto, device or surfaceless");
   }
-  auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-      eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  auto get_platform_display =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!get_platform_display) throw Error("EGL: eglGetPlatformDisplayEXT is not available");
   Display d;
   if (choice != "surfaceless") {
-    auto query_devices =
-        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    auto query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
-        eglGetProcAddress("eglQueryDeviceStringEXT"));
+    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto query_device_string =
+        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
     EGLDeviceEXT devices[16];
     EGLint count = 0;
     if (query_devices && query_device_string && query_devices(16, devices, &count)) {
@@ -68,8 +67,7 @@ Display open_display() {
     }
   }
   if (d.display == EGL_NO_DISPLAY) {
-    EGLDisplay candidate =
-        get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay candidate = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     EGLint major, minor;
     if (candidate == EGL_NO_DISPLAY || !eglInitialize(candidate, &major, &minor)) {
       throw Error("EGL: cannot open a display: surfaceless Mesa platform failed (error 0x" +
@@ -113,12 +111,10 @@ struct Renderer::State {
   }
 };
 
-Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles)
-    : state_(std::make_unique<State>()) {
+Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles) : state_(std::make_unique<State>()) {
   install_mujoco_handlers();
   if (width <= 0 || height <= 0 || width > 4096 || height > 4096) {
-    throw Error("renderer: image size " + std::to_string(width) + "x" + std::to_string(height) +
-                " is outside 1..4096");
+    throw Error("renderer: image size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1..4096");
   }
   if (max_tiles <= 0) throw Error("renderer: max_tiles must be positive");
   State& s = *state_;
@@ -126,15 +122,26 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles)
   s.height = height;
   s.tiles = max_tiles;
   if (max_tiles * width > 8192) {
-    throw Error("renderer: " + std::to_string(max_tiles) + " tiles of width " +
-                std::to_string(width) + " exceed the 8192-pixel offscreen buffer");
+    throw Error("renderer: " + std::to_string(max_tiles) + " tiles of width " + std::to_string(width) +
+                " exceed the 8192-pixel offscreen buffer");
   }
   {
     std::lock_guard<std::mutex> lock(egl_mutex);
     const EGLDisplay dpy = display().display;
-    const EGLint attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RED_SIZE, 8,
-                                 EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
-                                 EGL_DEPTH_SIZE, 24, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+    const EGLint attributes[] = {EGL_SURFACE_TYPE,
+                                 EGL_PBUFFER_BIT,
+                                 EGL_RED_SIZE,
+                                 8,
+                                 EGL_GREEN_SIZE,
+                                 8,
+                                 EGL_BLUE_SIZE,
+                                 8,
+                                 EGL_ALPHA_SIZE,
+                                 8,
+                                 EGL_DEPTH_SIZE,
+                                 24,
+                                 EGL_RENDERABLE_TYPE,
+                                 EGL_OPENGL_BIT,
                                  EGL_NONE};
     EGLConfig config;
     EGLint configs = 0;
@@ -190,10 +197,18 @@ Renderer::~Renderer() {
   eglDestroyContext(display().display, s.context);
 }
 
-int Renderer::width() const { return state_->width; }
-int Renderer::height() const { return state_->height; }
-int Renderer::max_tiles() const { return state_->tiles; }
-const char* Renderer::platform() { return display().platform; }
+int Renderer::width() const {
+  return state_->width;
+}
+int Renderer::height() const {
+  return state_->height;
+}
+int Renderer::max_tiles() const {
+  return state_->tiles;
+}
+const char* Renderer::platform() {
+  return display().platform;
+}
 
 namespace {
 
@@ -203,8 +218,7 @@ void cull_to_frustum(mjvScene& scene, double aspect) {
   const mjvGLCamera& cam = scene.camera[0];
   const float* f = cam.forward;
   const float* u = cam.up;
-  const float right[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2],
-                          f[0] * u[1] - f[1] * u[0]};
+  const float right[3] = {f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2], f[0] * u[1] - f[1] * u[0]};
   const double half_height = (cam.frustum_top - cam.frustum_bottom) / 2;
   const double tan_v = half_height / cam.frustum_near;
   const double tan_h = tan_v * aspect;
@@ -220,8 +234,8 @@ void cull_to_frustum(mjvScene& scene, double aspect) {
       const double z = p[0] * f[0] + p[1] * f[1] + p[2] * f[2];
       const double y = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
       const double x = p[0] * right[0] + p[1] * right[1] + p[2] * right[2];
-      visible = z > cam.frustum_near - r && z < cam.frustum_far + r &&
-                std::abs(y) <= tan_v * z + r * slack_v && std::abs(x) <= tan_h * z + r * slack_h;
+      visible = z > cam.frustum_near - r && z < cam.frustum_far + r && std::abs(y) <= tan_v * z + r * slack_v &&
+                std::abs(x) <= tan_h * z + r * slack_h;
     }
     if (visible) scene.geoms[kept++] = g;
   }
@@ -269,9 +283,9 @@ void Renderer::render(std::span<const CameraView> views) {
 void Renderer::use_textures(const CameraView& v) {
   State& s = *state_;
   // Worlds with the scene's own textures share them; a randomised world has its own.
-  const std::pair<const World*, int> key =
-      v.world && v.world->texture_version() ? std::pair{v.world, v.world->texture_version()}
-                                            : std::pair<const World*, int>{nullptr, 0};
+  const std::pair<const World*, int> key = v.world && v.world->texture_version()
+                                               ? std::pair{v.world, v.world->texture_version()}
+                                               : std::pair<const World*, int>{nullptr, 0};
   if (s.textures_uploaded && key == s.textures) return;
   for (int t = 0; t < v.model->ntex; ++t) mjr_uploadTexture(v.model, &s.render_context, t);
   s.textures = key;
@@ -312,8 +326,7 @@ void Renderer::render_pass(const std::vector<Draw*>& pass) {
   // One readback for the pass, of the span of tiles drawn.
   const int read_width = (last - first + 1) * s.width;
   const mjrRect read = {first * s.width, 0, read_width, s.height};
-  mjr_readPixels(want_rgb ? s.rgb.data() : nullptr, want_depth ? s.depth.data() : nullptr, read,
-                 &s.render_context);
+  mjr_readPixels(want_rgb ? s.rgb.data() : nullptr, want_depth ? s.depth.data() : nullptr, read, &s.render_context);
   for (const Draw* d : pass) {
     const CameraView* v = d->view;
     const int x0 = (v->tile - first) * s.width;

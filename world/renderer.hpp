@@ -19,9 +19,9 @@ namespace chore {
 
 struct CameraView {
   const mjModel_* model;
-  mjData_* data;          // mjv_updateScene needs it non-const; it is not changed
-  int camera;             // camera id in `model`
-  std::uint8_t* rgb;      // height x width x 3, top row first; nullptr to skip
+  mjData_* data;      // mjv_updateScene needs it non-const; it is not changed
+  int camera;         // camera id in `model`
+  std::uint8_t* rgb;  // height x width x 3, top row first; nullptr to skip
   // height x width metres along the optical axis; nullptr to skip. From the
   // colour pass when there is one, else from the segmentation pass.
   float* depth;

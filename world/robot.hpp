@@ -9,10 +9,10 @@ struct mjModel_;
 namespace chore {
 
 struct RobotJoint {
-  int joint = -1;     // joint id
-  int qpos = -1;      // address in qpos
-  int dof = -1;       // address in qvel
-  int actuator = -1;  // actuator driving it
+  int joint = -1;            // joint id
+  int qpos = -1;             // address in qpos
+  int dof = -1;              // address in qvel
+  int actuator = -1;         // actuator driving it
   double low = 0, high = 0;  // joint range
 };
 

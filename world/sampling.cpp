@@ -70,8 +70,7 @@ bool touches_anything(const World& w, int a) {
   const mjData* d = w.data();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
-    if (w.scene().object_of_geom(con.geom1) == a ||
-        w.scene().object_of_geom(con.geom2) == a) {
+    if (w.scene().object_of_geom(con.geom1) == a || w.scene().object_of_geom(con.geom2) == a) {
       return true;
     }
   }
@@ -201,8 +200,7 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
   const ObjectAbilities* ab = w.states().abilities(a);
   auto require = [&](bool has, const char* state) {
     if (!ab || !has) {
-      throw Error("sampling: object '" + name + "' does not keep " + state + " (needed by '" +
-                  predicate + "')");
+      throw Error("sampling: object '" + name + "' does not keep " + state + " (needed by '" + predicate + "')");
     }
   };
   ObjectState* s = ab ? &w.states().state(a) : nullptr;
@@ -211,8 +209,8 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
   if (predicate == "cooked" || predicate == "burnt") {
     require(ab && ab->temperature, "Temperature");
     const double threshold = predicate == "cooked" ? ab->cook_temperature : ab->burn_temperature;
-    s->max_temperature = value ? std::max(s->max_temperature, threshold + kMargin)
-                               : std::min(s->max_temperature, threshold - kMargin);
+    s->max_temperature =
+        value ? std::max(s->max_temperature, threshold + kMargin) : std::min(s->max_temperature, threshold - kMargin);
     s->temperature = std::min(s->temperature, s->max_temperature);
   } else if (predicate == "frozen" || predicate == "hot" || predicate == "on_fire") {
     require(ab && ab->temperature, "Temperature");
@@ -248,8 +246,7 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
   }
 }
 
-bool sample_covered(World& w, int a, const std::string& substance, bool value, Rng& rng,
-                    int particles) {
+bool sample_covered(World& w, int a, const std::string& substance, bool value, Rng& rng, int particles) {
   const ObjectAbilities* ab = w.states().abilities(a);
   if (!ab || !ab->covered) {
     throw Error("sampling: object '" + w.scene().objects()[a].name + "' does not keep CoveredLevel");

@@ -13,8 +13,8 @@
 namespace chore {
 
 struct SampleOptions {
-  int attempts = 100;           // candidate poses before giving up
-  double settle_seconds = 0.25; // physics after placing (objects drop from 5 mm)
+  int attempts = 100;            // candidate poses before giving up
+  double settle_seconds = 0.25;  // physics after placing (objects drop from 5 mm)
 };
 
 // Each returns false when no valid pose was found in options.attempts tries;
@@ -35,11 +35,9 @@ void sample_open(World& world, int a, bool open, Rng& rng);
 // temperature reached is past the cook temperature). chore::Error for an
 // unknown predicate or an object that does not keep that state.
 // soaked, saturated and filled name their liquid.
-void sample_state(World& world, const std::string& predicate, int a, bool value,
-                  const std::string& liquid = "water");
+void sample_state(World& world, const std::string& predicate, int a, bool value, const std::string& liquid = "water");
 // Dirt particles of `substance` on a's upward-facing surfaces (value true:
 // `particles` of them, found by rays from above that hit a first), or none.
-bool sample_covered(World& world, int a, const std::string& substance, bool value, Rng& rng,
-                    int particles = 20);
+bool sample_covered(World& world, int a, const std::string& substance, bool value, Rng& rng, int particles = 20);
 
 }  // namespace chore

@@ -36,9 +36,9 @@ namespace {
 
 // Physics and rendering settings shared by every scene (seed: physics 1/120 s).
 constexpr double kTimestep = 1.0 / 120.0;
-constexpr double kExtent = 10.0;  // metres; sets the depth range with znear/zfar below
-constexpr double kZNear = 0.005;  // near plane = 0.05 m
-constexpr double kZFar = 5.0;     // far plane = 50 m
+constexpr double kExtent = 10.0;       // metres; sets the depth range with znear/zfar below
+constexpr double kZNear = 0.005;       // near plane = 0.05 m
+constexpr double kZFar = 5.0;          // far plane = 50 m
 constexpr double kCameraHeight = 1.1;  // the robot-less stand-in camera, like Tiago's head
 const Rgb kWallColor = {0.86, 0.84, 0.80};
 const Rgb kCeilingColor = {0.95, 0.95, 0.93};
@@ -92,13 +92,14 @@ Eigen::Matrix3d rotation_xyz_degrees(const std::vector<double>& euler) {
       .toRotationMatrix();
 }
 
-Rgb to_rgb(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+Rgb to_rgb(const std::vector<double>& v) {
+  return {v[0], v[1], v[2]};
+}
 
 Geom read_geom(const JsonReader& j) {
   Geom g;
   g.type = j.string("type");
-  const std::map<std::string, size_t> sizes = {
-      {"box", 3}, {"cylinder", 2}, {"sphere", 1}, {"capsule", 2}};
+  const std::map<std::string, size_t> sizes = {{"box", 3}, {"cylinder", 2}, {"sphere", 1}, {"capsule", 2}};
   const auto it = sizes.find(g.type);
   if (it == sizes.end()) j.fail("type '" + g.type + "' is not one of box, cylinder, sphere, capsule");
   g.size = j.numbers("size", it->second);
@@ -169,8 +170,7 @@ ObjectModel read_object_model(const std::string& path) {
   if (j.has("light")) {
     const JsonReader light = j.at("light");
     const auto pos = light.numbers("pos", 3);
-    m.light = Light{Eigen::Vector3d(pos[0], pos[1], pos[2]),
-                    to_rgb(light.numbers("rgb", 3, {1, 0.9, 0.75}))};
+    m.light = Light{Eigen::Vector3d(pos[0], pos[1], pos[2]), to_rgb(light.numbers("rgb", 3, {1, 0.9, 0.75}))};
   }
   return m;
 }
@@ -189,7 +189,9 @@ std::string fmt(double v) {
   return buf;
 }
 
-std::string fmt(const Eigen::Vector3d& v) { return fmt(v[0]) + " " + fmt(v[1]) + " " + fmt(v[2]); }
+std::string fmt(const Eigen::Vector3d& v) {
+  return fmt(v[0]) + " " + fmt(v[1]) + " " + fmt(v[2]);
+}
 
 std::string fmt_quat(const Eigen::Matrix3d& r) {
   const Eigen::Quaterniond q(r);
@@ -197,16 +199,19 @@ std::string fmt_quat(const Eigen::Matrix3d& r) {
 }
 
 std::string pose_attributes(const Eigen::Isometry3d& pose) {
-  return "pos=\"" + fmt(Eigen::Vector3d(pose.translation())) + "\" quat=\"" +
-         fmt_quat(pose.linear()) + "\"";
+  return "pos=\"" + fmt(Eigen::Vector3d(pose.translation())) + "\" quat=\"" + fmt_quat(pose.linear()) + "\"";
 }
 
 void add_to_static_mesh(StaticMesh& mesh, const Eigen::Isometry3d& world, const Geom& g) {
   const Eigen::Isometry3d pose = world * g.pose;
-  if (g.type == "box") mesh.add_box(pose, {g.size[0], g.size[1], g.size[2]}, g.rgb);
-  else if (g.type == "cylinder") mesh.add_cylinder(pose, g.size[0], g.size[1], g.rgb);
-  else if (g.type == "sphere") mesh.add_sphere(pose, g.size[0], g.rgb);
-  else mesh.add_capsule(pose, g.size[0], g.size[1], g.rgb);
+  if (g.type == "box")
+    mesh.add_box(pose, {g.size[0], g.size[1], g.size[2]}, g.rgb);
+  else if (g.type == "cylinder")
+    mesh.add_cylinder(pose, g.size[0], g.size[1], g.rgb);
+  else if (g.type == "sphere")
+    mesh.add_sphere(pose, g.size[0], g.rgb);
+  else
+    mesh.add_capsule(pose, g.size[0], g.size[1], g.rgb);
 }
 
 std::string size_attribute(const Geom& g) {
@@ -218,20 +223,18 @@ std::string size_attribute(const Geom& g) {
 // A geom element. `drawn`: the camera sees it (group 0); otherwise it is a
 // collision-only geom of a static part whose look lives in the static mesh.
 std::string geom_xml(const std::string& name, const Geom& g, bool drawn, double mass) {
-  std::string xml = "<geom name=\"" + name + "\" type=\"" + g.type + "\" size=\"" +
-                    size_attribute(g) + "\" " + pose_attributes(g.pose);
+  std::string xml = "<geom name=\"" + name + "\" type=\"" + g.type + "\" size=\"" + size_attribute(g) + "\" " +
+                    pose_attributes(g.pose);
   if (drawn) {
-    xml += " class=\"object\" rgba=\"" + fmt(g.rgb[0]) + " " + fmt(g.rgb[1]) + " " + fmt(g.rgb[2]) +
-           " 1\"";
+    xml += " class=\"object\" rgba=\"" + fmt(g.rgb[0]) + " " + fmt(g.rgb[1]) + " " + fmt(g.rgb[2]) + " 1\"";
   }
   if (mass > 0) xml += " mass=\"" + fmt(mass) + "\"";
   return xml + "/>";
 }
 
 // Emits a link's geoms; those of a fixed object's root go to the static mesh.
-void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& prefix,
-                     const Link& link, bool static_link, const Eigen::Isometry3d& world,
-                     const std::string& indent) {
+void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& prefix, const Link& link, bool static_link,
+                     const Eigen::Isometry3d& world, const std::string& indent) {
   double volume = 0;
   for (const Geom& g : link.geoms) volume += geom_volume(g);
   for (size_t i = 0; i < link.geoms.size(); ++i) {
@@ -243,18 +246,16 @@ void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& pref
   }
 }
 
-void emit_child_links(std::string& xml, std::string& welds, StaticMesh& mesh,
-                      const std::string& object, const Link& parent,
-                      const Eigen::Isometry3d& parent_world, const std::string& indent) {
+void emit_child_links(std::string& xml, std::string& welds, StaticMesh& mesh, const std::string& object,
+                      const Link& parent, const Eigen::Isometry3d& parent_world, const std::string& indent) {
   for (const Link& link : parent.links) {
     const std::string name = object + "/" + link.name;
     Eigen::Isometry3d world = parent_world;
     world.translation() += parent_world.linear() * link.pos;
     xml += indent + "<body name=\"" + name + "\" pos=\"" + fmt(link.pos) + "\">\n";
     xml += indent + "  <joint name=\"" + name + "\" type=\"" + link.joint_type + "\" axis=\"" +
-           fmt(link.axis.normalized()) + "\" range=\"" + fmt(link.range[0]) + " " +
-           fmt(link.range[1]) + "\" limited=\"true\" damping=\"" + fmt(link.damping) +
-           "\" armature=\"0.01\"/>\n";
+           fmt(link.axis.normalized()) + "\" range=\"" + fmt(link.range[0]) + " " + fmt(link.range[1]) +
+           "\" limited=\"true\" damping=\"" + fmt(link.damping) + "\" armature=\"0.01\"/>\n";
     emit_link_geoms(xml, mesh, name, link, false, world, indent + "  ");
     emit_child_links(xml, welds, mesh, object, link, world, indent + "  ");
     xml += indent + "</body>\n";
@@ -277,15 +278,16 @@ std::string root_body_name(const std::string& object, const ObjectModel& model, 
 // view; flat ellipsoids went through MPR contacts that threw the cloth about.
 std::string cloth_xml(const std::string& name, const Cloth& c, double mass) {
   const double per_body = mass / (c.count * c.count);
-  return "      <composite type=\"cloth\" count=\"" + std::to_string(c.count) + " " +
-         std::to_string(c.count) + " 1\" spacing=\"" + fmt(c.spacing) + "\" prefix=\"" + name +
+  return "      <composite type=\"cloth\" count=\"" + std::to_string(c.count) + " " + std::to_string(c.count) +
+         " 1\" spacing=\"" + fmt(c.spacing) + "\" prefix=\"" + name +
          "\" flatinertia=\"0.01\">\n"
          "        <joint kind=\"main\" damping=\"0.01\" armature=\"0.0005\"/>\n"
-         "        <geom type=\"capsule\" size=\"" + fmt(c.radius) + " " + fmt(c.spacing * 0.4) +
-         "\" mass=\"" + fmt(per_body) + "\" group=\"" + std::to_string(kStaticGroup) +
+         "        <geom type=\"capsule\" size=\"" +
+         fmt(c.radius) + " " + fmt(c.spacing * 0.4) + "\" mass=\"" + fmt(per_body) + "\" group=\"" +
+         std::to_string(kStaticGroup) +
          // contype 4, conaffinity 3: tiles touch the scene (1) and the robot (2), not each other.
-         "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " +
-         fmt(c.rgb[2]) + " 1\" friction=\"0.8 0.02 0.001\"/>\n"
+         "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " + fmt(c.rgb[2]) +
+         " 1\" friction=\"0.8 0.02 0.001\"/>\n"
          "      </composite>\n";
 }
 
@@ -325,16 +327,14 @@ std::string resolve_scene_path(const std::string& name, const std::string& asset
       }
     }
   }
-  throw Error("unknown scene '" + name + "' (no " + path.string() + "); known scenes: " +
-              (known.empty() ? "none" : known));
+  throw Error("unknown scene '" + name + "' (no " + path.string() +
+              "); known scenes: " + (known.empty() ? "none" : known));
 }
 
 // The cell of the static-body grid a point lies in (clamped: positions far
 // out of any room are the scene reader's to refuse, not a reason to overflow).
 std::pair<long, long> static_cell(const Eigen::Vector3d& p) {
-  auto index = [](double v) {
-    return static_cast<long>(std::floor(std::clamp(v, -1e6, 1e6) / Scene::kStaticCell));
-  };
+  auto index = [](double v) { return static_cast<long>(std::floor(std::clamp(v, -1e6, 1e6) / Scene::kStaticCell)); };
   return {index(p.x()), index(p.y())};
 }
 
@@ -378,8 +378,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   StaticMesh mesh("static_visual", kMergedGroup);
   // Ceilings in their own group, so that views from above can leave them out.
   StaticMesh ceilings("ceiling_visual", kCeilingGroup);
-  std::string world;    // <worldbody> children
-  std::string welds;    // <equality> children
+  std::string world;  // <worldbody> children
+  std::string welds;  // <equality> children
   std::string lights;
   Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
 
@@ -403,9 +403,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       const Eigen::Vector3d half((v[2] - v[0]) / 2, (v[3] - v[1]) / 2, 0.05);
       floor.translation() = Eigen::Vector3d((v[0] + v[2]) / 2, (v[1] + v[3]) / 2, -0.05);
       mesh.add_box(floor, half, floor_rgb);
-      world += "    <geom name=\"floor_" + room.name + "_" + std::to_string(k) +
-               "\" type=\"box\" size=\"" + fmt(half) + "\" pos=\"" +
-               fmt(Eigen::Vector3d(floor.translation())) + "\"/>\n";
+      world += "    <geom name=\"floor_" + room.name + "_" + std::to_string(k) + "\" type=\"box\" size=\"" + fmt(half) +
+               "\" pos=\"" + fmt(Eigen::Vector3d(floor.translation())) + "\"/>\n";
       Eigen::Isometry3d ceiling = floor;
       ceiling.translation().z() = wall_height + 0.05;
       ceilings.add_box(ceiling, half, kCeilingColor);
@@ -422,13 +421,13 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
     if (length < 1e-6) walls.at(i).fail("wall has zero length");
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d((a.x() + b.x()) / 2, (a.y() + b.y()) / 2, wall_height / 2);
-    pose.linear() = Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()),
-                                      Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.linear() =
+        Eigen::AngleAxisd(std::atan2(b.y() - a.y(), b.x() - a.x()), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     // Extended by half a thickness at both ends so corners close.
     const Eigen::Vector3d half((length + wall_thickness) / 2, wall_thickness / 2, wall_height / 2);
     mesh.add_box(pose, half, kWallColor);
-    world += "    <geom name=\"wall_" + std::to_string(i) + "\" type=\"box\" size=\"" + fmt(half) +
-             "\" " + pose_attributes(pose) + "/>\n";
+    world += "    <geom name=\"wall_" + std::to_string(i) + "\" type=\"box\" size=\"" + fmt(half) + "\" " +
+             pose_attributes(pose) + "/>\n";
   }
 
   if (j.has("ceiling_lights")) {
@@ -439,18 +438,18 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       lights += "    <light name=\"ceiling_" + std::to_string(i) + "\" pos=\"" +
                 fmt(Eigen::Vector3d(pos[0], pos[1], pos[2])) +
                 "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"85\" "
-                "exponent=\"1\" attenuation=\"1 0 0\" diffuse=\"" + fmt(rgb[0]) + " " + fmt(rgb[1]) +
-                " " + fmt(rgb[2]) + "\" specular=\"0.1 0.1 0.1\"/>\n";
+                "exponent=\"1\" attenuation=\"1 0 0\" diffuse=\"" +
+                fmt(rgb[0]) + " " + fmt(rgb[1]) + " " + fmt(rgb[2]) + "\" specular=\"0.1 0.1 0.1\"/>\n";
     }
   }
 
   // Objects.
   std::map<std::string, ObjectModel> models;
-  std::vector<std::string> holder_bodies;  // per object: its root body's name, or its static body's
-  std::vector<char> in_static_body;        // per object: its geoms are in a static body
-  std::vector<std::optional<Cloth>> cloths;  // per object: its cloth, if simulated
+  std::vector<std::string> holder_bodies;                     // per object: its root body's name, or its static body's
+  std::vector<char> in_static_body;                           // per object: its geoms are in a static body
+  std::vector<std::optional<Cloth>> cloths;                   // per object: its cloth, if simulated
   std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
-  std::vector<std::string> static_roots;  // fixed objects with moving parts: their static roots
+  std::vector<std::string> static_roots;                      // fixed objects with moving parts: their static roots
   const JsonReader objects = j.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) {
     const JsonReader o = objects.at(i);
@@ -477,18 +476,16 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
     const auto pos = o.numbers("pos", 3);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    pose.linear() = Eigen::AngleAxisd(o.number("yaw", 0.0) * M_PI / 180.0,
-                                      Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.linear() = Eigen::AngleAxisd(o.number("yaw", 0.0) * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 
     if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(object.mat.data()) = pose.linear();
     Eigen::Map<Eigen::Vector3d>(object.pos.data()) = pose.translation();
     if (model.light) {
-      lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" +
-                fmt(Eigen::Vector3d(pose * model.light->pos)) +
+      lights += "    <light name=\"lamp_" + object.name + "\" pos=\"" + fmt(Eigen::Vector3d(pose * model.light->pos)) +
                 "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"90\" "
-                "exponent=\"0\" attenuation=\"1 0 0.2\" diffuse=\"" + fmt(model.light->rgb[0]) +
-                " " + fmt(model.light->rgb[1]) + " " + fmt(model.light->rgb[2]) +
+                "exponent=\"0\" attenuation=\"1 0 0.2\" diffuse=\"" +
+                fmt(model.light->rgb[0]) + " " + fmt(model.light->rgb[1]) + " " + fmt(model.light->rgb[2]) +
                 "\" specular=\"0.1 0.1 0.1\"/>\n";
     }
     if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
@@ -548,9 +545,10 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   // own: the world body is paired with every body each step, and each of its
   // geoms visited in the pair. (Welded to the world, its inertia is never
   // used; massless geoms need one given.)
-  std::string statics = "    <body name=\"static_visuals\">\n"
-                        "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n" +
-                        mesh.mjcf_geom() + ceilings.mjcf_geom() + "    </body>\n";
+  std::string statics =
+      "    <body name=\"static_visuals\">\n"
+      "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n" +
+      mesh.mjcf_geom() + ceilings.mjcf_geom() + "    </body>\n";
   std::vector<std::string> unmoving = {"world", "static_visuals"};
   for (const auto& [cell, geoms] : static_cells) {
     const std::string name = static_body_name(cell);
@@ -572,16 +570,13 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   // Cameras: a top-down overview, and a stand-in for the head camera when the
   // robot is left out.
   const Eigen::Vector2d center = (lo + hi) / 2, span = hi - lo;
-  const double overview_height =
-      wall_height + 0.5 * std::max(span.x(), span.y()) / std::tan(30.0 * M_PI / 180.0);
-  world += "    <camera name=\"overview\" pos=\"" +
-           fmt(Eigen::Vector3d(center.x(), center.y(), overview_height)) +
+  const double overview_height = wall_height + 0.5 * std::max(span.x(), span.y()) / std::tan(30.0 * M_PI / 180.0);
+  world += "    <camera name=\"overview\" pos=\"" + fmt(Eigen::Vector3d(center.x(), center.y(), overview_height)) +
            "\" xyaxes=\"1 0 0 0 1 0\" fovy=\"60\"/>\n";
   if (!options.robot) {
     const Pose2& p = scene->robot_start_;
-    world += "    <camera name=\"scene_camera\" pos=\"" +
-             fmt(Eigen::Vector3d(p.x, p.y, kCameraHeight)) + "\" xyaxes=\"" +
-             fmt(std::sin(p.yaw)) + " " + fmt(-std::cos(p.yaw)) + " 0 0 0 1\" fovy=\"58\"/>\n";
+    world += "    <camera name=\"scene_camera\" pos=\"" + fmt(Eigen::Vector3d(p.x, p.y, kCameraHeight)) +
+             "\" xyaxes=\"" + fmt(std::sin(p.yaw)) + " " + fmt(-std::cos(p.yaw)) + " 0 0 0 1\" fovy=\"58\"/>\n";
   }
 
   // <size>: MuJoCo 2.2.2 preallocates for njmax constraint rows; each mjData
@@ -591,30 +586,43 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   int free_objects = 0;
   for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
   const int nconmax = 200 + 8 * free_objects, njmax = 4 * nconmax;
-  std::string xml =
-      "<mujoco model=\"" + scene->name_ + "\">\n"
-      "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"
-      "  <option timestep=\"" + fmt(kTimestep) + "\" integrator=\"Euler\" solver=\"Newton\" "
-      "iterations=\"30\" tolerance=\"1e-6\"/>\n"
-      "  <size nconmax=\"" + std::to_string(nconmax) + "\" njmax=\"" + std::to_string(njmax) + "\"/>\n"
-      "  <visual>\n"
-      "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
-      "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"
-      "    <map znear=\"" + fmt(kZNear) + "\" zfar=\"" + fmt(kZFar) + "\"/>\n"
-      "    <headlight ambient=\"0.25 0.25 0.25\" diffuse=\"0 0 0\" specular=\"0 0 0\"/>\n"
-      "  </visual>\n"
-      "  <statistic extent=\"" + fmt(kExtent) + "\" center=\"" +
-      fmt(Eigen::Vector3d(center.x(), center.y(), 1.0)) + "\"/>\n"
-      "  <default>\n"
-      "    <geom contype=\"1\" conaffinity=\"1\" group=\"" + std::to_string(kCollisionGroup) +
-      "\" friction=\"0.8 0.02 0.001\"/>\n"
-      "    <default class=\"visual\"><geom contype=\"0\" conaffinity=\"0\" group=\"" +
-      std::to_string(kStaticGroup) + "\" mass=\"0\"/></default>\n"
-      "    <default class=\"object\"><geom group=\"" + std::to_string(kStaticGroup) +
-      "\"/></default>\n"
-      "  </default>\n"
-      "  <asset>\n" + mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n"
-      "  <worldbody>\n" + lights + world + "  </worldbody>\n";
+  std::string xml = "<mujoco model=\"" + scene->name_ +
+                    "\">\n"
+                    "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"
+                    "  <option timestep=\"" +
+                    fmt(kTimestep) +
+                    "\" integrator=\"Euler\" solver=\"Newton\" "
+                    "iterations=\"30\" tolerance=\"1e-6\"/>\n"
+                    "  <size nconmax=\"" +
+                    std::to_string(nconmax) + "\" njmax=\"" + std::to_string(njmax) +
+                    "\"/>\n"
+                    "  <visual>\n"
+                    "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
+                    "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"
+                    "    <map znear=\"" +
+                    fmt(kZNear) + "\" zfar=\"" + fmt(kZFar) +
+                    "\"/>\n"
+                    "    <headlight ambient=\"0.25 0.25 0.25\" diffuse=\"0 0 0\" specular=\"0 0 0\"/>\n"
+                    "  </visual>\n"
+                    "  <statistic extent=\"" +
+                    fmt(kExtent) + "\" center=\"" + fmt(Eigen::Vector3d(center.x(), center.y(), 1.0)) +
+                    "\"/>\n"
+                    "  <default>\n"
+                    "    <geom contype=\"1\" conaffinity=\"1\" group=\"" +
+                    std::to_string(kCollisionGroup) +
+                    "\" friction=\"0.8 0.02 0.001\"/>\n"
+                    "    <default class=\"visual\"><geom contype=\"0\" conaffinity=\"0\" group=\"" +
+                    std::to_string(kStaticGroup) +
+                    "\" mass=\"0\"/></default>\n"
+                    "    <default class=\"object\"><geom group=\"" +
+                    std::to_string(kStaticGroup) +
+                    "\"/></default>\n"
+                    "  </default>\n"
+                    "  <asset>\n" +
+                    mesh.mjcf_assets() + ceilings.mjcf_assets() +
+                    "  </asset>\n"
+                    "  <worldbody>\n" +
+                    lights + world + "  </worldbody>\n";
   if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();

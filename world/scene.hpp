@@ -34,11 +34,11 @@ struct Room {
 };
 
 struct SceneObject {
-  std::string name;      // instance name, unique in the scene
-  std::string model;     // object model file (assets/objects/<model>.json)
+  std::string name;   // instance name, unique in the scene
+  std::string model;  // object model file (assets/objects/<model>.json)
   std::string category;
   std::string synset;
-  bool fixed = false;    // welded to the world (furniture) or a free body
+  bool fixed = false;  // welded to the world (furniture) or a free body
   // Root body id; -1 for fixed furniture without moving parts, whose geoms are
   // compiled into a static body shared with its neighbours (static_body): a
   // body costs every physics step, a geom only where something comes near.
@@ -48,10 +48,10 @@ struct SceneObject {
   // xmat): for ever for furniture in a static body, the initial pose otherwise.
   std::array<double, 3> pos{};
   std::array<double, 9> mat{};
-  int grasp_weld = -1;   // equality id of the gripper weld (free objects only)
-  std::vector<int> joints;  // articulated joints (drawers, doors)
+  int grasp_weld = -1;          // equality id of the gripper weld (free objects only)
+  std::vector<int> joints;      // articulated joints (drawers, doors)
   std::vector<int> link_welds;  // per joint: the gripper weld of the link it moves
-  std::vector<int> geoms;   // collision geoms of the object and its links
+  std::vector<int> geoms;       // collision geoms of the object and its links
   // Cloth only: its four corner bodies (keypoints) and their diagonal when flat.
   std::vector<int> keypoints;
   double flat_diagonal = 0;
@@ -105,7 +105,7 @@ class Scene {
   int camera() const { return camera_; }                    // the egocentric camera
   int overview_camera() const { return overview_camera_; }  // third-person, top-down
   const std::vector<int>& ceiling_lights() const { return ceiling_lights_; }
-  const std::string& mjcf() const { return mjcf_; }         // the generated MJCF text
+  const std::string& mjcf() const { return mjcf_; }  // the generated MJCF text
 
  private:
   Scene() = default;

@@ -84,8 +84,7 @@ Segmentation::Segmentation(const World& world) {
   object_classes.erase(std::unique(object_classes.begin(), object_classes.end()), object_classes.end());
   for (const auto& [category, synset] : object_classes) classes_.push_back({category, synset});
   auto class_of = [&](const SceneObject& o) {
-    const auto at = std::lower_bound(object_classes.begin(), object_classes.end(),
-                                     std::pair{o.category, o.synset});
+    const auto at = std::lower_bound(object_classes.begin(), object_classes.end(), std::pair{o.category, o.synset});
     return kAgent + 1 + static_cast<int>(at - object_classes.begin());
   };
 
@@ -186,8 +185,8 @@ int Segmentation::resolve(const double point[3], int& part) const {
   return part < 0 ? 0 : parts_[part].instance;
 }
 
-void Segmentation::label(const Pinhole& camera, const CameraPose& pose, const std::int32_t* geom,
-                         const float* depth, std::int32_t* instance, std::int32_t* semantic) const {
+void Segmentation::label(const Pinhole& camera, const CameraPose& pose, const std::int32_t* geom, const float* depth,
+                         std::int32_t* instance, std::int32_t* semantic) const {
   int part = -1;  // the static part the last resolved pixel lay on
   for (int row = 0, i = 0; row < camera.height; ++row) {
     for (int col = 0; col < camera.width; ++col, ++i) {

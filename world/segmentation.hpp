@@ -55,11 +55,11 @@ class Segmentation {
 
   // Per pixel: `geom` (from the segmentation pass, -1: nothing) and metric
   // `depth` to instance and semantic ids; either output may be nullptr.
-  void label(const Pinhole& camera, const CameraPose& pose, const std::int32_t* geom,
-             const float* depth, std::int32_t* instance, std::int32_t* semantic) const;
+  void label(const Pinhole& camera, const CameraPose& pose, const std::int32_t* geom, const float* depth,
+             std::int32_t* instance, std::int32_t* semantic) const;
 
  private:
-  struct Part;   // a static collision geom and its instance
+  struct Part;  // a static collision geom and its instance
   // The instance of the static part nearest a point; `part` (in: a guess, -1
   // for none; out: the part found) carries one pixel's answer to the next.
   int resolve(const double point[3], int& part) const;

@@ -15,14 +15,17 @@ bool SensorNoise::rgb() const {
 bool SensorNoise::depth() const {
   return depth_noise > 0 || depth_noise_quadratic > 0 || depth_edge > 0 || depth_max > 0;
 }
-bool SensorNoise::lidar() const { return lidar_noise > 0 || lidar_dropout > 0; }
+bool SensorNoise::lidar() const {
+  return lidar_noise > 0 || lidar_dropout > 0;
+}
 
 void validate(const SensorNoise& n) {
   auto fail = [](const char* name, double value, const char* expected) {
     throw Error(std::string("noise.") + name + " = " + std::to_string(value) + ": expected " + expected);
   };
   if (!(n.rgb_exposure > 0 && std::isfinite(n.rgb_exposure))) fail("rgb_exposure", n.rgb_exposure, "a positive gain");
-  if (!(n.rgb_black_level >= 0 && n.rgb_black_level < 1)) fail("rgb_black_level", n.rgb_black_level, "a fraction in [0, 1)");
+  if (!(n.rgb_black_level >= 0 && n.rgb_black_level < 1))
+    fail("rgb_black_level", n.rgb_black_level, "a fraction in [0, 1)");
   if (!(n.lidar_dropout >= 0 && n.lidar_dropout < 1)) fail("lidar_dropout", n.lidar_dropout, "a probability in [0, 1)");
   const std::pair<const char*, double> nonnegative[] = {
       {"rgb_shot_noise", n.rgb_shot_noise}, {"rgb_read_noise", n.rgb_read_noise},
@@ -58,8 +61,8 @@ void add_depth_noise(const SensorNoise& n, Rng& rng, float* depth, int width, in
         auto nearer = [&](int c, int r) {
           return c >= 0 && c < width && r >= 0 && r < height && z - depth[r * width + c] > n.depth_edge;
         };
-        shadow[row * width + col] = nearer(col - 1, row) || nearer(col + 1, row) ||
-                                    nearer(col, row - 1) || nearer(col, row + 1);
+        shadow[row * width + col] =
+            nearer(col - 1, row) || nearer(col + 1, row) || nearer(col, row - 1) || nearer(col, row + 1);
       }
     }
   }
@@ -71,7 +74,8 @@ void add_depth_noise(const SensorNoise& n, Rng& rng, float* depth, int width, in
       depth[i] = 0;
       continue;
     }
-    if (noisy) depth[i] = static_cast<float>(std::max(0.0, z + normal() * (n.depth_noise + n.depth_noise_quadratic * z * z)));
+    if (noisy)
+      depth[i] = static_cast<float>(std::max(0.0, z + normal() * (n.depth_noise + n.depth_noise_quadratic * z * z)));
   }
 }
 

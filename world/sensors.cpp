@@ -13,8 +13,12 @@ namespace {
 // Streams drawn from an episode seed (random.hpp's derive_seed).
 constexpr uint64_t kSensorStream = 1;
 
-bool needs_ids(const SensorFrame& f) { return f.semantic || f.instance || f.flow; }
-bool needs_depth(const SensorFrame& f) { return f.depth || f.normal || needs_ids(f); }
+bool needs_ids(const SensorFrame& f) {
+  return f.semantic || f.instance || f.flow;
+}
+bool needs_depth(const SensorFrame& f) {
+  return f.depth || f.normal || needs_ids(f);
+}
 
 }  // namespace
 
@@ -58,8 +62,8 @@ void Sensors::finish(const World& world, const SensorFrame& frame) {
   const Pinhole pinhole = Pinhole::of(m, camera, width_, height_);
   const float* depth = frame.depth ? frame.depth : depth_.data();
   if (frame.semantic || frame.instance) {
-    segmentation(world).label(pinhole, CameraPose::of(world.data(), camera), geom_.data(), depth,
-                              frame.instance, frame.semantic);
+    segmentation(world).label(pinhole, CameraPose::of(world.data(), camera), geom_.data(), depth, frame.instance,
+                              frame.semantic);
   }
   if (frame.normal) {
     // What the far plane bounds was not seen.

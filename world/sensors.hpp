@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
+#include "base/random.hpp"
 #include "world/lidar.hpp"
 #include "world/optical_flow.hpp"
-#include "base/random.hpp"
 #include "world/renderer.hpp"
 #include "world/segmentation.hpp"
 #include "world/sensor_noise.hpp"
@@ -61,10 +61,10 @@ class Sensors {
   LidarConfig lidar_;
   SensorNoise noise_;
   Rng rng_;
-  std::vector<float> depth_;         // depth a derived modality needs when it is not observed
-  std::vector<std::int32_t> geom_;   // the segmentation pass's geom ids
+  std::vector<float> depth_;        // depth a derived modality needs when it is not observed
+  std::vector<std::int32_t> geom_;  // the segmentation pass's geom ids
   mutable std::unique_ptr<Segmentation> segmentation_;
-  FramePoses before_, now_;          // for flow
+  FramePoses before_, now_;  // for flow
   bool has_before_ = false;
 };
 

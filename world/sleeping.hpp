@@ -67,14 +67,14 @@ class Sleeping {
 
  private:
   struct Object {
-    std::vector<int> bodies;  // the object's bodies (its root's subtree)
-    std::vector<int> geoms;   // its collision geoms
+    std::vector<int> bodies;      // the object's bodies (its root's subtree)
+    std::vector<int> geoms;       // its collision geoms
     std::vector<int> qpos, dofs;  // its joints' coordinates and degrees of freedom
-    bool free = false;        // moves on its own (else welded to the world, links aside)
-    bool never = false;       // has unbounded geoms (planes, height fields)
-    int static_body = -1;     // furniture in a static body: index into static_bodies_
+    bool free = false;            // moves on its own (else welded to the world, links aside)
+    bool never = false;           // has unbounded geoms (planes, height fields)
+    int static_body = -1;         // furniture in a static body: index into static_bodies_
     bool asleep = false;
-    int still_steps = 0;      // steps below the rest speed
+    int still_steps = 0;            // steps below the rest speed
     std::vector<double> rest_qpos;  // where it fell asleep
   };
   bool moved_while_asleep(const Object& o, const mjData* d) const;
@@ -83,8 +83,8 @@ class Sleeping {
   std::vector<Object> objects_;
   std::vector<int> geom_object_;  // Scene::object_of_geom, copied
   std::vector<int> robot_geoms_;
-  std::vector<char> robot_geom_;  // per geom
-  std::vector<int> body_geomnum_;  // the model's own counts
+  std::vector<char> robot_geom_;       // per geom
+  std::vector<int> body_geomnum_;      // the model's own counts
   std::vector<Aabb> boxes_, regions_;  // mask()'s scratch: objects' boxes, awake regions
   std::vector<char> awake_, fell_asleep_;
   std::vector<int> static_bodies_;

@@ -11,8 +11,8 @@
 namespace chore {
 namespace {
 
-constexpr double kSoakSeconds = 0.5;     // in water this long: saturated
-constexpr double kCoolingRate = 0.01;    // towards room temperature, per second
+constexpr double kSoakSeconds = 0.5;   // in water this long: saturated
+constexpr double kCoolingRate = 0.01;  // towards room temperature, per second
 
 // A soakable object overlapping the water of a container (`moved` has
 // `moved_box` instead of its box in the world).
@@ -52,8 +52,7 @@ void touch(ObjectStates& states, const World& w, const mjContact& con, double no
   const ObjectAbilities* a1 = o1 >= 0 ? states.abilities(o1) : nullptr;
   const ObjectAbilities* a2 = o2 >= 0 ? states.abilities(o2) : nullptr;
   std::map<int, ObjectState>& state_of = states.all_states();
-  for (const auto& [self, mine, other, theirs] :
-       {std::tuple{o1, a1, o2, a2}, std::tuple{o2, a2, o1, a1}}) {
+  for (const auto& [self, mine, other, theirs] : {std::tuple{o1, a1, o2, a2}, std::tuple{o2, a2, o1, a1}}) {
     if (!mine) continue;
     ObjectState& s = state_of[self];
     if (mine->breakable && normal_force > mine->break_force) s.broken = true;
@@ -127,9 +126,8 @@ void update_states_after_env_step(World& w, double dt) {
         const ObjectState& ss = state_of.at(source);
         if (t->requires_toggled_on && !ss.toggled) continue;
         if (t->requires_closed && is_open(w, source)) continue;
-        const bool near = t->requires_inside
-                              ? inside(w, object, source)
-                              : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
+        const bool near = t->requires_inside ? inside(w, object, source)
+                                             : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
         if (!near) continue;
         s.temperature += (t->temperature - s.temperature) * std::min(1.0, t->rate * dt);
         heated = true;
@@ -151,8 +149,8 @@ void draw_states(const World& w, mjvScene* scene) {
     float add;
     float tint[3];
   };
-  constexpr TextureChange kFrozen{0.3f, {1, 1, 1}}, kBurnt{-0.3f, {1, 1, 1}},
-      kCooked{0.1f, {1.5f, 0.75f, 0.25f}}, kSoaked{0.1f, {0.5f, 0.5f, 1.5f}};
+  constexpr TextureChange kFrozen{0.3f, {1, 1, 1}}, kBurnt{-0.3f, {1, 1, 1}}, kCooked{0.1f, {1.5f, 0.75f, 0.25f}},
+      kSoaked{0.1f, {0.5f, 0.5f, 1.5f}};
   std::map<int, const TextureChange*> changes;
   for (const auto& [object, state] : state_of) {
     const bool wet = std::any_of(state.soaked.begin(), state.soaked.end(),
@@ -170,7 +168,8 @@ void draw_states(const World& w, mjvScene* scene) {
       if (g.objtype != mjOBJ_GEOM) continue;
       const auto it = changes.find(w.scene().object_of_geom(g.objid));
       if (it == changes.end()) continue;
-      for (int c = 0; c < 3; ++c) g.rgba[c] = std::clamp(it->second->tint[c] * (g.rgba[c] + it->second->add), 0.0f, 1.0f);
+      for (int c = 0; c < 3; ++c)
+        g.rgba[c] = std::clamp(it->second->tint[c] * (g.rgba[c] + it->second->add), 0.0f, 1.0f);
     }
   }
 

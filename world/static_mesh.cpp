@@ -66,8 +66,8 @@ int StaticMesh::add_vertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n, i
   return static_cast<int>(vertices_.size()) - 1;
 }
 
-void StaticMesh::add_quad(const Eigen::Vector3d& corner, const Eigen::Vector3d& u,
-                          const Eigen::Vector3d& v, int color) {
+void StaticMesh::add_quad(const Eigen::Vector3d& corner, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                          int color) {
   const Eigen::Vector3d normal = u.cross(v).normalized();
   const int nu = std::max(1, static_cast<int>(std::ceil(u.norm() / kMaxEdge)));
   const int nv = std::max(1, static_cast<int>(std::ceil(v.norm() / kMaxEdge)));
@@ -86,8 +86,7 @@ void StaticMesh::add_quad(const Eigen::Vector3d& corner, const Eigen::Vector3d& 
   }
 }
 
-void StaticMesh::add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half,
-                         const Rgb& color) {
+void StaticMesh::add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half, const Rgb& color) {
   const int c = start_shape(pose.translation(), color);
   const Eigen::Matrix3d r = pose.linear();
   const Eigen::Vector3d center = pose.translation();
@@ -99,15 +98,14 @@ void StaticMesh::add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& h
       Eigen::Vector3d u = r.col(a) * (2 * half[a]);
       Eigen::Vector3d v = r.col(b) * (2 * half[b]);
       if (sign < 0) std::swap(u, v);
-      const Eigen::Vector3d corner = center + r.col(axis) * (sign * half[axis]) -
-                                     r.col(a) * half[a] - r.col(b) * half[b];
+      const Eigen::Vector3d corner =
+          center + r.col(axis) * (sign * half[axis]) - r.col(a) * half[a] - r.col(b) * half[b];
       add_quad(corner, u, v, c);
     }
   }
 }
 
-void StaticMesh::add_cylinder(const Eigen::Isometry3d& pose, double radius, double half_height,
-                              const Rgb& color) {
+void StaticMesh::add_cylinder(const Eigen::Isometry3d& pose, double radius, double half_height, const Rgb& color) {
   const int c = start_shape(pose.translation(), color);
   const Eigen::Matrix3d r = pose.linear();
   const Eigen::Vector3d center = pose.translation(), z = r.col(2);
@@ -133,8 +131,10 @@ void StaticMesh::add_cylinder(const Eigen::Isometry3d& pose, double radius, doub
     for (int k = 0; k < kRoundSegments; ++k) add_vertex(center + rim(k) * radius + n * half_height, n, c);
     for (int k = 0; k < kRoundSegments; ++k) {
       const int a = ring + k, b = ring + (k + 1) % kRoundSegments;
-      if (sign > 0) add_face(hub, a, b);
-      else add_face(hub, b, a);
+      if (sign > 0)
+        add_face(hub, a, b);
+      else
+        add_face(hub, b, a);
     }
   }
 }
@@ -143,8 +143,7 @@ void StaticMesh::add_sphere(const Eigen::Isometry3d& pose, double radius, const 
   add_capsule(pose, radius, 0.0, color);
 }
 
-void StaticMesh::add_capsule(const Eigen::Isometry3d& pose, double radius, double half_length,
-                             const Rgb& color) {
+void StaticMesh::add_capsule(const Eigen::Isometry3d& pose, double radius, double half_length, const Rgb& color) {
   // Latitude rings from the bottom pole to the top pole; the two hemispheres are
   // pulled apart by +-half_length along z.
   const int c = start_shape(pose.translation(), color);
@@ -158,13 +157,12 @@ void StaticMesh::add_capsule(const Eigen::Isometry3d& pose, double radius, doubl
     // The equator ring appears twice when the capsule has a cylinder part.
     const int copies = (i == stacks / 2 && half_length > 0) ? 2 : 1;
     for (int copy = 0; copy < copies; ++copy) {
-      const double offset = (i < stacks / 2 || (i == stacks / 2 && copy == 0 && copies == 2))
-                                ? -half_length
-                                : half_length;
+      const double offset =
+          (i < stacks / 2 || (i == stacks / 2 && copy == 0 && copies == 2)) ? -half_length : half_length;
       for (int k = 0; k < kRoundSegments; ++k) {
         const double t = 2 * M_PI * k / kRoundSegments;
-        const Eigen::Vector3d n = r * Eigen::Vector3d(std::cos(phi) * std::cos(t),
-                                                      std::cos(phi) * std::sin(t), std::sin(phi));
+        const Eigen::Vector3d n =
+            r * Eigen::Vector3d(std::cos(phi) * std::cos(t), std::cos(phi) * std::sin(t), std::sin(phi));
         add_vertex(center + n * radius + r.col(2) * offset, n, c);
       }
       ++rings;
@@ -181,7 +179,9 @@ void StaticMesh::add_capsule(const Eigen::Isometry3d& pose, double radius, doubl
   }
 }
 
-int StaticMesh::texture_width() const { return kBlock * kBlocksPerRow; }
+int StaticMesh::texture_width() const {
+  return kBlock * kBlocksPerRow;
+}
 
 int StaticMesh::texture_height() const {
   const int rows = (static_cast<int>(palette_.size()) + kBlocksPerRow - 1) / kBlocksPerRow;
@@ -190,8 +190,7 @@ int StaticMesh::texture_height() const {
 
 std::array<double, 2> StaticMesh::texcoord(int color) const {
   const int bx = color % kBlocksPerRow, by = color / kBlocksPerRow;
-  return {(bx * kBlock + kBlock / 2.0) / texture_width(),
-          (by * kBlock + kBlock / 2.0) / texture_height()};
+  return {(bx * kBlock + kBlock / 2.0) / texture_width(), (by * kBlock + kBlock / 2.0) / texture_height()};
 }
 
 std::map<StaticMesh::Chunk, std::vector<size_t>> StaticMesh::faces_by_chunk() const {
@@ -205,8 +204,8 @@ std::string StaticMesh::mjcf_assets() const {
   std::string xml = "    <texture name=\"" + name_ + "\" type=\"2d\" builtin=\"flat\" width=\"" +
                     std::to_string(texture_width()) + "\" height=\"" + std::to_string(texture_height()) +
                     "\" rgb1=\"1 1 1\"/>\n"
-                    "    <material name=\"" + name_ + "\" texture=\"" + name_ +
-                    "\" specular=\"0.05\" shininess=\"0.1\"/>\n";
+                    "    <material name=\"" +
+                    name_ + "\" texture=\"" + name_ + "\" specular=\"0.05\" shininess=\"0.1\"/>\n";
   int index = 0;
   for (const auto& [chunk, faces] : faces_by_chunk()) {
     // The chunk's own vertices, renumbered in order of first use.
@@ -228,9 +227,9 @@ std::string StaticMesh::mjcf_assets() const {
         texcoords.push_back(uv[1]);
       }
     }
-    xml += "    <mesh name=\"" + name_ + "_" + std::to_string(index++) + "\" vertex=\"" +
-           format_numbers(positions) + "\" normal=\"" + format_numbers(normals) + "\" texcoord=\"" +
-           format_numbers(texcoords) + "\" face=\"" + format_indices(local) + "\"/>\n";
+    xml += "    <mesh name=\"" + name_ + "_" + std::to_string(index++) + "\" vertex=\"" + format_numbers(positions) +
+           "\" normal=\"" + format_numbers(normals) + "\" texcoord=\"" + format_numbers(texcoords) + "\" face=\"" +
+           format_indices(local) + "\"/>\n";
   }
   return xml;
 }
@@ -249,8 +248,7 @@ std::string StaticMesh::mjcf_geom() const {
 void StaticMesh::paint_palette(mjModel_* model) const {
   if (empty()) return;
   const int id = mj_name2id(model, mjOBJ_TEXTURE, name_.c_str());
-  if (id < 0 || model->tex_width[id] != texture_width() ||
-      model->tex_height[id] != texture_height()) {
+  if (id < 0 || model->tex_width[id] != texture_width() || model->tex_height[id] != texture_height()) {
     throw Error("static mesh '" + name_ + "': palette texture missing from the compiled model");
   }
   unsigned char* texels = model->tex_rgb + model->tex_adr[id];  // tex_adr counts bytes

@@ -11,8 +11,8 @@
 
 #include <array>
 #include <map>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 struct mjModel_;
@@ -29,11 +29,9 @@ class StaticMesh {
 
   // Shapes in MuJoCo's conventions (half sizes), placed by `pose`.
   void add_box(const Eigen::Isometry3d& pose, const Eigen::Vector3d& half, const Rgb& color);
-  void add_cylinder(const Eigen::Isometry3d& pose, double radius, double half_height,
-                    const Rgb& color);
+  void add_cylinder(const Eigen::Isometry3d& pose, double radius, double half_height, const Rgb& color);
   void add_sphere(const Eigen::Isometry3d& pose, double radius, const Rgb& color);
-  void add_capsule(const Eigen::Isometry3d& pose, double radius, double half_length,
-                   const Rgb& color);
+  void add_capsule(const Eigen::Isometry3d& pose, double radius, double half_length, const Rgb& color);
 
   bool empty() const { return faces_.empty(); }
   size_t vertex_count() const { return vertices_.size(); }
@@ -61,8 +59,7 @@ class StaticMesh {
   int add_vertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n, int color);
   // A planar quad (corner, two edges), subdivided so that per-vertex lighting
   // of large faces looks right.
-  void add_quad(const Eigen::Vector3d& corner, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
-                int color);
+  void add_quad(const Eigen::Vector3d& corner, const Eigen::Vector3d& u, const Eigen::Vector3d& v, int color);
   std::array<double, 2> texcoord(int color) const;
   int texture_width() const;
   int texture_height() const;
@@ -71,8 +68,8 @@ class StaticMesh {
   int group_;
   std::vector<Vertex> vertices_;
   std::vector<std::array<int, 3>> faces_;
-  std::vector<Chunk> face_chunk_;  // per face
-  Chunk chunk_;                    // of the shape being added
+  std::vector<Chunk> face_chunk_;              // per face
+  Chunk chunk_;                                // of the shape being added
   std::map<std::array<int, 3>, int> palette_;  // 8-bit rgb -> index
 };
 

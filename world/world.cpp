@@ -52,8 +52,7 @@ void World::reset(const Pose2& base) {
     data_->qpos[r.gripper_left.qpos] = Robot::kGripperOpen;
     data_->qpos[r.gripper_right.qpos] = Robot::kGripperOpen;
     // Position actuators hold the configuration they start in.
-    for (const RobotJoint* j : {&r.torso, &r.gripper_left, &r.gripper_right, &r.head_pan,
-                                &r.head_tilt}) {
+    for (const RobotJoint* j : {&r.torso, &r.gripper_left, &r.gripper_right, &r.head_pan, &r.head_tilt}) {
       data_->ctrl[j->actuator] = data_->qpos[j->qpos];
     }
     for (const RobotJoint& j : r.arm) data_->ctrl[j.actuator] = data_->qpos[j.qpos];
@@ -90,11 +89,12 @@ double World::commanded_position(const RobotJoint& joint) const {
 
 Pose2 World::base_pose() const {
   if (!robot_) return scene_->robot_start();
-  return {data_->qpos[robot_->base_x.qpos], data_->qpos[robot_->base_y.qpos],
-          data_->qpos[robot_->base_yaw.qpos]};
+  return {data_->qpos[robot_->base_x.qpos], data_->qpos[robot_->base_y.qpos], data_->qpos[robot_->base_yaw.qpos]};
 }
 
-double World::time() const { return data_->time; }
+double World::time() const {
+  return data_->time;
+}
 
 World::StepReport World::step(int substeps) {
   StepReport report;
@@ -110,7 +110,8 @@ World::StepReport World::step(int substeps) {
       // so trajectories are followed closely rather than lagging (and arrive
       // within the primitives' settling time). qfrc_bias is from the last step.
       for (const RobotJoint* j : robot_->torso_and_arm()) {
-        data_->qfrc_applied[j->dof] = data_->qfrc_bias[j->dof] + model_->dof_damping[j->dof] * velocity_command_[j->actuator];
+        data_->qfrc_applied[j->dof] =
+            data_->qfrc_bias[j->dof] + model_->dof_damping[j->dof] * velocity_command_[j->actuator];
       }
       // And the carried load's weight, a known payload, at its centre of mass.
       if (const int load = carried_object(); load >= 0) {
@@ -275,9 +276,7 @@ namespace {
 // collision still reaches them through their bodies.
 class StaticGeomsLeftOut {
  public:
-  StaticGeomsLeftOut(mjModel* m, const Scene& scene) : m_(m), ngeom_(m->ngeom) {
-    m->ngeom = scene.first_static_geom();
-  }
+  StaticGeomsLeftOut(mjModel* m, const Scene& scene) : m_(m), ngeom_(m->ngeom) { m->ngeom = scene.first_static_geom(); }
   ~StaticGeomsLeftOut() { m_->ngeom = ngeom_; }
   StaticGeomsLeftOut(const StaticGeomsLeftOut&) = delete;
   StaticGeomsLeftOut& operator=(const StaticGeomsLeftOut&) = delete;

@@ -59,8 +59,8 @@ class World {
   double commanded_position(const RobotJoint& joint) const;
 
   struct StepReport {
-    bool diverged = false;      // MuJoCo found bad accelerations and reset the state
-    bool grasp_refused = false; // the gripper closed on an object over the mass limit
+    bool diverged = false;       // MuJoCo found bad accelerations and reset the state
+    bool grasp_refused = false;  // the gripper closed on an object over the mass limit
   };
   // Runs `substeps` physics steps of 1/120 s.
   StepReport step(int substeps);

@@ -4,7 +4,11 @@
 #include "policies/policy.hpp"
 
 #ifdef CHORE_TEST_API_VERSION
-extern "C" int chore_policy_api_version() { return CHORE_TEST_API_VERSION; }
+extern "C" int chore_policy_api_version() {
+  return CHORE_TEST_API_VERSION;
+}
 #endif
-extern "C" chore::Policy* chore_create_policy(const chore::PolicySpec*, char*, int) { return nullptr; }
+extern "C" chore::Policy* chore_create_policy(const chore::PolicySpec*, char*, int) {
+  return nullptr;
+}
 extern "C" void chore_destroy_policy(chore::Policy*) {}
