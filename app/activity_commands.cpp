@@ -7,7 +7,9 @@
 
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "tasks/activity.hpp"
+#include "world/renderer.hpp"
 
 namespace chore {
 
@@ -56,9 +58,9 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   // The third-person view: the whole scene from above, ceilings left out.
   Renderer top(env.world().model(), kTop, kTop);
   ArrayDict overview(Space::dict({{"rgb", Space::box({kTop, kTop, 3}, DType::uint8, 0, 255)}}), 1);
-  std::vector<CameraView> view = {{env.world().model(), env.world().data(), env.world().scene().overview_camera(),
-                                   static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false,
-                                   &env.world()}};
+  std::vector<CameraView> view = {
+      {env.world().model(), env.impl().world().data(), env.world().scene().overview_camera(),
+       static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false, &env.world()}};
   top.render(view);
   cv::Mat head = to_bgr(reset.obs["rgb"], kHead, kHead);
   cv::Mat panel(kTop, kHead + kTop, CV_8UC3, cv::Scalar(0, 0, 0));
@@ -77,7 +79,7 @@ void sample_activity_seeds(const std::string& activity, const std::string& scene
   config.observations = {"proprio"};
   Env env(config);
   const auto start = std::chrono::steady_clock::now();
-  for (uint64_t seed = first; seed <= last; ++seed) env.reset_state(seed);
+  for (uint64_t seed = first; seed <= last; ++seed) env.impl().reset_state(seed);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out << activity << " in " << env.world().scene().name() << ": seeds " << first << "-" << last << " all instantiated ("
       << (last - first + 1) << "), " << 1000 * seconds / (last - first + 1) << " ms each\n";

@@ -9,6 +9,7 @@
 
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "world/segmentation.hpp"
 
 namespace chore {
 namespace {

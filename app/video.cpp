@@ -6,6 +6,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "base/error.hpp"
+#include "world/renderer.hpp"
 
 namespace chore {
 namespace {

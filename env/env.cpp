@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "base/error.hpp"
+#include "env/env_impl.hpp"
 #include "env/observations.hpp"
 #include "env/rewards.hpp"
 
@@ -38,7 +39,54 @@ EnvAssets load_assets(const EnvConfig& config) {
 
 Env::Env(const EnvConfig& config) : Env(config, load_assets(config)) {}
 
-Env::Env(const EnvConfig& config, const EnvAssets& assets)
+Env::Env(const EnvConfig& config, const EnvAssets& assets) : impl_(std::make_unique<Impl>(config, assets)) {}
+
+Env::~Env() = default;
+
+const Space& Env::observation_space() const {
+  return impl_->observation_space_;
+}
+const Space& Env::action_space() const {
+  return impl_->action_space_;
+}
+const std::vector<PrimitiveAction>& Env::primitive_actions() const {
+  return impl_->primitive_actions_;
+}
+const EnvConfig& Env::config() const {
+  return impl_->config_;
+}
+void Env::close() {
+  impl_->close();
+}
+bool Env::closed() const {
+  return impl_->closed_;
+}
+const Segmentation& Env::segmentation() const {
+  return impl_->sensors_->segmentation(*impl_->world_);
+}
+const PrimitiveResult& Env::last_primitive() const {
+  return impl_->last_primitive_;
+}
+const Activity* Env::activity() const {
+  return impl_->activity_.get();
+}
+const World& Env::world() const {
+  return *impl_->world_;
+}
+
+Env::ResetResult Env::reset(std::optional<uint64_t> seed) {
+  Info info = impl_->reset_state(seed);
+  impl_->observe();
+  return {impl_->obs_, info};
+}
+
+Env::StepResult Env::step(std::span<const float> action) {
+  Env::Impl::Outcome out = impl_->advance(action);
+  impl_->observe();
+  return {impl_->obs_, out.reward, out.terminated, out.truncated, out.info};
+}
+
+Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
     : config_(config), scene_(assets.scene), activity_(assets.activity) {
   if (config_.width <= 0 || config_.height <= 0) {
     throw Error("env config: image size " + std::to_string(config_.width) + "x" + std::to_string(config_.height) +
@@ -117,20 +165,20 @@ Env::Env(const EnvConfig& config, const EnvAssets& assets)
   obs_ = ArrayDict(observation_space_, 1);
 }
 
-Env::~Env() = default;
+Env::Impl::~Impl() = default;
 
-void Env::check_open() const {
+void Env::Impl::check_open() const {
   if (closed_) throw Error("env: used after close()");
 }
 
-void Env::close() {
+void Env::Impl::close() {
   if (closed_) return;
   renderer_.reset();
   world_.reset();
   closed_ = true;
 }
 
-Info Env::make_info(const Score* score) const {
+Info Env::Impl::make_info(const Score* score) const {
   Info info;
   info.elapsed_steps = elapsed_;
   info.episode_seed = episode_seed_;
@@ -147,7 +195,7 @@ Info Env::make_info(const Score* score) const {
   return info;
 }
 
-Info Env::reset_state(std::optional<uint64_t> seed) {
+Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   check_open();
   if (seed) rng_.seed(*seed);
   episode_seed_ = seed ? *seed : episode_seed_ + 1;
@@ -182,7 +230,7 @@ Info Env::reset_state(std::optional<uint64_t> seed) {
   return make_info(&goal.score);
 }
 
-std::string Env::first_out_of_reach() {
+std::string Env::Impl::first_out_of_reach() {
   std::vector<PrimitiveType> types;
   std::vector<int> objects;
   for (const PrimitiveAction& a : reach_checks_) types.push_back(a.type), objects.push_back(a.object);
@@ -190,7 +238,7 @@ std::string Env::first_out_of_reach() {
   return problem.index < 0 ? "" : to_string(reach_checks_[problem.index]) + ": " + problem.reason;
 }
 
-Env::Outcome Env::advance(std::span<const float> action) {
+Env::Impl::Outcome Env::Impl::advance(std::span<const float> action) {
   check_open();
   if (episode_over_) throw Error("env: step() after the episode ended; call reset() first");
   const size_t expected = action_space_.element_count();
@@ -229,7 +277,7 @@ Env::Outcome Env::advance(std::span<const float> action) {
   return out;
 }
 
-int64_t Env::act_low_level(std::span<const float> action, World::StepReport& report) {
+int64_t Env::Impl::act_low_level(std::span<const float> action, World::StepReport& report) {
   if (const Robot* r = world_->robot()) {
     auto a = [&](int i) { return std::clamp(static_cast<double>(action[i]), -1.0, 1.0); };
     World& w = *world_;
@@ -251,7 +299,7 @@ int64_t Env::act_low_level(std::span<const float> action, World::StepReport& rep
   return kPhysicsSubsteps;
 }
 
-int64_t Env::act_primitive(std::span<const float> action, World::StepReport& report) {
+int64_t Env::Impl::act_primitive(std::span<const float> action, World::StepReport& report) {
   const float value = action[0];
   if (value != std::floor(value) || value < 0 || value >= static_cast<float>(primitive_actions_.size())) {
     throw Error("env: primitive action " + std::to_string(value) + " is not an integer in [0, " +
@@ -277,7 +325,7 @@ int64_t Env::act_primitive(std::span<const float> action, World::StepReport& rep
   return result.physics_steps;
 }
 
-SensorFrame Env::sensor_frame(ArrayDict& obs, int index) const {
+SensorFrame Env::Impl::sensor_frame(ArrayDict& obs, int index) const {
   SensorFrame f;
   for (const Modality& m : modalities()) {
     if (m.bind && obs.contains(m.name)) m.bind(f, obs[m.name].item(index));
@@ -285,29 +333,29 @@ SensorFrame Env::sensor_frame(ArrayDict& obs, int index) const {
   return f;
 }
 
-ObservationSource Env::observation_source() const {
+ObservationSource Env::Impl::observation_source() const {
   return {config_, *world_, *sensors_, primitive_actions_};
 }
 
-std::vector<CameraView> Env::camera_views(ArrayDict& obs, int index) {
+std::vector<CameraView> Env::Impl::camera_views(ArrayDict& obs, int index) {
   check_open();
   return sensors_->views(*world_, sensor_frame(obs, index));
 }
 
-void Env::finish_observation(ArrayDict& obs, int index) {
+void Env::Impl::finish_observation(ArrayDict& obs, int index) {
   check_open();
   sensors_->finish(*world_, sensor_frame(obs, index));
   write_state(obs, index);
 }
 
-void Env::write_state(ArrayDict& obs, int index) const {
+void Env::Impl::write_state(ArrayDict& obs, int index) const {
   const ObservationSource source = observation_source();
   for (const Modality& m : modalities()) {
     if (m.write && obs.contains(m.name)) m.write(source, obs[m.name].item(index));
   }
 }
 
-void Env::observe() {
+void Env::Impl::observe() {
   std::vector<CameraView> views = camera_views(obs_, 0);
   if (!views.empty()) {
     if (!renderer_) {
@@ -316,18 +364,6 @@ void Env::observe() {
     renderer_->render(views);
   }
   finish_observation(obs_, 0);
-}
-
-Env::ResetResult Env::reset(std::optional<uint64_t> seed) {
-  Info info = reset_state(seed);
-  observe();
-  return {obs_, info};
-}
-
-Env::StepResult Env::step(std::span<const float> action) {
-  Outcome out = advance(action);
-  observe();
-  return {obs_, out.reward, out.terminated, out.truncated, out.info};
 }
 
 }  // namespace chore

@@ -16,17 +16,19 @@
 #include <string>
 #include <vector>
 
-#include "base/random.hpp"
 #include "env/primitive_actions.hpp"
 #include "env/spaces.hpp"
 #include "env/state.hpp"
 #include "env/types.hpp"
 #include "tasks/activity.hpp"
-#include "world/renderer.hpp"
-#include "world/sensors.hpp"
+#include "world/appearance.hpp"
+#include "world/lidar.hpp"
+#include "world/sensor_noise.hpp"
 #include "world/world.hpp"
 
 namespace chore {
+
+class Segmentation;
 
 struct EnvConfig {
   // A BDDL activity (tasks/activities/<name>.bddl or a path); empty: no
@@ -95,11 +97,11 @@ class Env : public EnvState {
   Env(const EnvConfig& config, const EnvAssets& assets);
   ~Env() override;
 
-  const Space& observation_space() const { return observation_space_; }
-  const Space& action_space() const { return action_space_; }
+  const Space& observation_space() const;
+  const Space& action_space() const;
   // The primitive action space's actions, in action order (empty for low_level).
-  const std::vector<PrimitiveAction>& primitive_actions() const override { return primitive_actions_; }
-  const EnvConfig& config() const override { return config_; }
+  const std::vector<PrimitiveAction>& primitive_actions() const override;
+  const EnvConfig& config() const override;
 
   struct ResetResult {
     const ArrayDict& obs;
@@ -117,63 +119,23 @@ class Env : public EnvState {
   StepResult step(std::span<const float> action);
   // Idempotent; any other call after it throws chore::Error.
   void close();
-  bool closed() const { return closed_; }
+  bool closed() const;
 
-  // The pieces of reset/step, for VectorEnv to batch rendering across envs.
-  Info reset_state(std::optional<uint64_t> seed);
-  struct Outcome {
-    double reward = 0;
-    bool terminated = false, truncated = false;
-    Info info;
-  };
-  Outcome advance(std::span<const float> action);
-  // The camera views writing into element `index` of `obs` (empty when no
-  // image is observed). Once they are rendered, finish_observation() writes
-  // the rest: the modalities derived from the images, the LiDAR, sensor
-  // noise, and the state observations (those alone: write_state()).
-  std::vector<CameraView> camera_views(ArrayDict& obs, int index);
-  void finish_observation(ArrayDict& obs, int index);
-  void write_state(ArrayDict& obs, int index) const;
   // The semantic classes and instances that "seg_semantic" and "seg_instance" number.
-  const Segmentation& segmentation() const { return sensors_->segmentation(*world_); }
-
+  const Segmentation& segmentation() const;
   // The last primitive's full result (reason, timings), primitive action space only.
-  const PrimitiveResult& last_primitive() const { return last_primitive_; }
+  const PrimitiveResult& last_primitive() const;
   // The activity (nullptr without one).
-  const Activity* activity() const override { return activity_.get(); }
-  World& world() { return *world_; }
-  const World& world() const override { return *world_; }
+  const Activity* activity() const override;
+  const World& world() const override;
+
+  // The implementation (env/env_impl.hpp: the stages of reset and step that
+  // VectorEnv's workers run, the mutable world); opaque here.
+  struct Impl;
+  Impl& impl() { return *impl_; }
 
  private:
-  void check_open() const;
-  Info make_info(const Score* score = nullptr) const;
-  // Applies one action to the world; returns physics steps run.
-  int64_t act_low_level(std::span<const float> action, World::StepReport& report);
-  int64_t act_primitive(std::span<const float> action, World::StepReport& report);
-  std::string first_out_of_reach();  // a reach check failing in the sampled instance, or ""
-  void observe();                    // renders and writes into obs_ with this env's own renderer
-  SensorFrame sensor_frame(ArrayDict& obs, int index) const;
-  struct ObservationSource observation_source() const;
-
-  EnvConfig config_;
-  std::shared_ptr<const Scene> scene_;
-  std::shared_ptr<const Activity> activity_;
-  double potential_ = 0;  // BEHAVIOR's potential after the last step
-  const struct RewardKind* reward_ = nullptr;
-  std::unique_ptr<World> world_;
-  std::unique_ptr<Renderer> renderer_;  // made on first use, on the calling thread
-  std::unique_ptr<Sensors> sensors_;
-  Space observation_space_, action_space_;
-  ArrayDict obs_;
-  Rng rng_;
-  std::vector<PrimitiveAction> primitive_actions_;
-  std::vector<PrimitiveAction> reach_checks_;  // what reset checks is within reach
-  PrimitiveResult last_primitive_;
-  std::array<int, kPrimitiveStatuses> primitive_counts_{};
-  int last_primitive_status_ = -1, last_invalid_action_ = -1, invalid_repeats_ = 0;
-  int64_t elapsed_ = 0;
-  uint64_t episode_seed_ = 0;
-  bool episode_over_ = true, closed_ = false, diverged_ = false;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace chore

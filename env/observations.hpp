@@ -12,6 +12,7 @@
 
 #include "env/env.hpp"
 #include "env/spaces.hpp"
+#include "world/sensors.hpp"
 
 namespace chore {
 

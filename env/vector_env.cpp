@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "base/error.hpp"
+#include "env/env_impl.hpp"
 
 namespace chore {
 namespace {
@@ -173,7 +174,7 @@ struct VectorEnv::Impl {
   int tiles() const { return tile_count; }
 
   void add_views(std::vector<CameraView>& views, int env, ArrayDict& obs, int index) {
-    for (CameraView v : envs[env]->camera_views(obs, index)) {
+    for (CameraView v : envs[env]->impl().camera_views(obs, index)) {
       v.tile = env % tiles();
       views.push_back(v);
     }
@@ -197,12 +198,12 @@ struct VectorEnv::Impl {
       Block& b = *rows[i].block;
       const int r = rows[i].index;
       b.env_ids[r] = e;
-      Env::Outcome out;
+      Env::Impl::Outcome out;
       if (task.reset || needs_reset[e]) {
-        out.info = env.reset_state(task.reset ? seeds[e] : std::nullopt);
+        out.info = env.impl().reset_state(task.reset ? seeds[e] : std::nullopt);
         needs_reset[e] = 0;
       } else {
-        out = env.advance(actions[e]);
+        out = env.impl().advance(actions[e]);
         if (out.terminated || out.truncated) {
           if (same_step) {
             ended.push_back(i);
@@ -226,8 +227,8 @@ struct VectorEnv::Impl {
     render(views, renderer);
     for (size_t i : ended) {
       Block& b = *rows[i].block;
-      envs[task.envs[i]]->finish_observation(b.final_obs, rows[i].index);
-      Info info = envs[task.envs[i]]->reset_state(std::nullopt);
+      envs[task.envs[i]]->impl().finish_observation(b.final_obs, rows[i].index);
+      Info info = envs[task.envs[i]]->impl().reset_state(std::nullopt);
       info.env_id = task.envs[i];
       b.infos[rows[i].index] = info;
     }
@@ -236,7 +237,7 @@ struct VectorEnv::Impl {
     }
     render(views, renderer);
     for (size_t i = 0; i < rows.size(); ++i) {
-      envs[task.envs[i]]->finish_observation(rows[i].block->obs, rows[i].index);
+      envs[task.envs[i]]->impl().finish_observation(rows[i].block->obs, rows[i].index);
     }
   }
 

@@ -6,6 +6,7 @@
 
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "test_util.hpp"
 #include "world/sampling.hpp"
 
@@ -140,7 +141,7 @@ TEST(EnvActivity, RewardFollowsTheGoalsPotentialAndSuccessTerminates) {
   EXPECT_FALSE(r.info.success);
   const EnvAssets assets = load_assets(c);
   const Activity& activity = *assets.activity;
-  World& w = env.world();
+  World& w = env.impl().world();
   Rng rng(1);
   const int cabinet = activity.object("cabinet.n.01_1");
   std::vector<float> zero(kLowLevelActionSize, 0.f);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "primitives/arm_planner.hpp"
 #include "primitives/kinematics.hpp"
 #include "test_util.hpp"
@@ -40,7 +41,7 @@ Env make_env(const std::string& activity) {
 TEST(RobotKinematics, PlacesTheRobotAndItsLoadAsMujocoDoes) {
   Env env = make_env("store_decoration");
   env.reset(1);
-  World& w = env.world();
+  World& w = env.impl().world();
   const Robot& r = *w.robot();
   // Carry a pumpkin: its geoms move with the hand.
   const int pumpkin = env.activity()->object("pumpkin.n.02_1");
@@ -73,7 +74,7 @@ TEST(RobotKinematics, PlacesTheRobotAndItsLoadAsMujocoDoes) {
 TEST(RobotKinematics, SiteJacobianMatchesMujocos) {
   Env env = make_env("store_decoration");
   env.reset(2);
-  World& w = env.world();
+  World& w = env.impl().world();
   const Robot& r = *w.robot();
   RobotKinematics kinematics(w);
   Sampler sample;
@@ -114,7 +115,7 @@ TEST(ArmCollisionChecker, AgreesWithMujocosCollisionDetection) {
   for (const std::string activity : {"store_decoration", "clean_table"}) {
     Env env = make_env(activity);
     env.reset(3);
-    World& w = env.world();
+    World& w = env.impl().world();
     const Robot& r = *w.robot();
     Sampler sample;
     int collisions = 0, trials = 0;

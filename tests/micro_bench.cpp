@@ -8,6 +8,7 @@
 #include <string>
 
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "world/renderer.hpp"
 
 namespace chore {
@@ -37,7 +38,7 @@ void BM_RenderRgbd(benchmark::State& state) {
   env.reset(0);
   ArrayDict out(env.observation_space(), 1);
   Renderer renderer(env.world().model(), 128, 128, 1);
-  std::vector<CameraView> views = env.camera_views(out, 0);
+  std::vector<CameraView> views = env.impl().camera_views(out, 0);
   for (auto _ : state) renderer.render(views);
 }
 BENCHMARK(BM_RenderRgbd);
@@ -51,7 +52,7 @@ void BM_RenderTiled(benchmark::State& state) {
   for (int i = 0; i < n; ++i) {
     envs.push_back(std::make_unique<Env>(rgbd(), apartment()));
     envs.back()->reset(0);  // the same view in every tile: only the batching differs
-    for (CameraView v : envs.back()->camera_views(out, i)) {
+    for (CameraView v : envs.back()->impl().camera_views(out, i)) {
       v.tile = i;
       views.push_back(v);
     }
@@ -68,7 +69,7 @@ void BM_WriteState(benchmark::State& state) {
   env.reset(0);
   ArrayDict out(env.observation_space(), 8);
   int i = 0;
-  for (auto _ : state) env.write_state(out, i++ % 8);
+  for (auto _ : state) env.impl().write_state(out, i++ % 8);
 }
 BENCHMARK(BM_WriteState);
 
@@ -82,7 +83,7 @@ void BM_ActionMask(benchmark::State& state) {
   Env env(c);
   env.reset(1);
   ArrayDict out(env.observation_space(), 1);
-  for (auto _ : state) env.write_state(out, 0);
+  for (auto _ : state) env.impl().write_state(out, 0);
 }
 BENCHMARK(BM_ActionMask);
 
@@ -154,7 +155,7 @@ void physics_step_activity(benchmark::State& state, const std::string& activity,
   c.observations = {"is_grasping"};
   Env env(c);
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   w.model()->opt.solver = solver;
   w.set_sleeping(sleeping);
   time_physics_steps(state, w);

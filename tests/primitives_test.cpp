@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "env/vector_env.hpp"
 #include "policies/expert.hpp"
 #include "primitives/arm_planner.hpp"
@@ -42,7 +43,7 @@ int index_of(const Env& env, const std::string& name) {
   return static_cast<int>(it - names.begin());
 }
 
-Env::Outcome act(Env& env, const std::string& name) {
+Env::Impl::Outcome act(Env& env, const std::string& name) {
   const float a = static_cast<float>(index_of(env, name));
   const Env::StepResult r = env.step({&a, 1});
   return {r.reward, r.terminated, r.truncated, r.info};
@@ -111,11 +112,11 @@ TEST(PrimitiveActions, BadActionsAndConfigsAreErrors) {
 TEST(Primitives, EachFailureKindIsReportedWithItsCause) {
   Env env(primitive_config("store_decoration", ExecutionMode::symbolic));
   env.reset(1);
-  World& w = env.world();
-  auto status = [&](const Env::Outcome& r) { return static_cast<PrimitiveStatus>(r.info.primitive_status); };
+  World& w = env.impl().world();
+  auto status = [&](const Env::Impl::Outcome& r) { return static_cast<PrimitiveStatus>(r.info.primitive_status); };
 
   // Place with an empty hand: precondition.
-  Env::Outcome r = act(env, "place(cabinet.n.01_1)");
+  Env::Impl::Outcome r = act(env, "place(cabinet.n.01_1)");
   EXPECT_EQ(status(r), PrimitiveStatus::precondition_failure);
   EXPECT_EQ(env.last_primitive().reason, "the hand holds nothing");
   EXPECT_EQ(env.last_primitive().mode, ExecutionMode::symbolic);
@@ -166,10 +167,10 @@ TEST(Primitives, TheSameInvalidActionThreeTimesInARowEndsTheEpisode) {
   Env env(primitive_config("store_decoration", ExecutionMode::symbolic));
   env.reset(1);
   for (int k = 1; k <= 2; ++k) {
-    const Env::Outcome r = act(env, "place(cabinet.n.01_1)");
+    const Env::Impl::Outcome r = act(env, "place(cabinet.n.01_1)");
     EXPECT_FALSE(r.terminated || r.info.policy_failure) << k;
   }
-  const Env::Outcome third = act(env, "place(cabinet.n.01_1)");
+  const Env::Impl::Outcome third = act(env, "place(cabinet.n.01_1)");
   EXPECT_TRUE(third.terminated && third.info.policy_failure);
   // A valid action in between starts the count again.
   env.reset(1);
@@ -178,7 +179,7 @@ TEST(Primitives, TheSameInvalidActionThreeTimesInARowEndsTheEpisode) {
   EXPECT_FALSE(act(env, "navigate(cabinet.n.01_1)").terminated);  // valid: resets the count
   act(env, "place(cabinet.n.01_1)");
   act(env, "place(cabinet.n.01_1)");
-  const Env::Outcome r = act(env, "place(cabinet.n.01_1)");
+  const Env::Impl::Outcome r = act(env, "place(cabinet.n.01_1)");
   EXPECT_TRUE(r.terminated);
   EXPECT_FALSE(r.truncated);
   EXPECT_TRUE(r.info.policy_failure);
@@ -282,7 +283,7 @@ TEST(Primitives, TheCheckersLoadContactsAreThoseMuJoCoFindsForThePose) {
   ASSERT_EQ(act(env, "navigate(rag.n.01_1)").info.primitive_status, 0);
   ASSERT_EQ(act(env, "pick(rag.n.01_1)").info.primitive_status, 0);
   ASSERT_EQ(act(env, "navigate(table.n.02_1)").info.primitive_status, 0);
-  World& w = env.world();
+  World& w = env.impl().world();
   const int rag = env.activity()->object("rag.n.01_1"), table = env.activity()->object("table.n.02_1");
   // The hand 15 cm above the stain nearest the base, pointing down; then
   // lowered until the rag meets the table, and pressed 1 cm in.
@@ -354,7 +355,7 @@ TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) 
     env.reset(3);
     act(env, "navigate(rag.n.01_1)");
     act(env, "pick(rag.n.01_1)");  // a tool in hand: navigate's purpose is wiping
-    World& w = env.world();
+    World& w = env.impl().world();
     const int table = env.activity()->object("table.n.02_1");
     EXPECT_GE(w.grasped_object(), 0);
     w.states().state(table).dirt.at("stain") = particles;
@@ -403,7 +404,7 @@ TEST(Primitives, OutOfReachNamesWhatNoDrivableBasePoseReaches) {
   sd_config.reachable_instances = false;  // the scene of BasePlanner.AnEnclosedGoalIsRefusedWithoutSearching
   Env sd(sd_config);
   sd.reset(6);
-  World& w = sd.world();
+  World& w = sd.impl().world();
   EXPECT_EQ(out_of_reach(w, PrimitiveType::pick, sd.activity()->object("pumpkin.n.02_1"), 1),
             "no base pose the robot can drive to brings 'pumpkin_1' within reach to pick it");
   EXPECT_EQ(out_of_reach(w, PrimitiveType::pick, sd.activity()->object("pumpkin.n.02_2"), 1), "");

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "test_util.hpp"
 #include "world/renderer.hpp"
 
@@ -121,10 +122,10 @@ TEST(Render, ATileRendersTheSameWhateverElseIsInThePass) {
   Renderer renderer(a.world().model(), 128, 128, 4);
   std::vector<CameraView> pass;
   for (int i = 0; i < 3; ++i) {
-    std::vector<CameraView> views = envs[i]->camera_views(alone, i);
+    std::vector<CameraView> views = envs[i]->impl().camera_views(alone, i);
     for (CameraView& v : views) v.tile = i + 1;
     renderer.render(views);
-    for (CameraView& v : envs[i]->camera_views(together, i)) {
+    for (CameraView& v : envs[i]->impl().camera_views(together, i)) {
       v.tile = i + 1;
       pass.push_back(v);
     }
@@ -137,8 +138,8 @@ TEST(Render, ATileRendersTheSameWhateverElseIsInThePass) {
   // Tile 0 of a wide buffer equals a one-tile renderer's image.
   Renderer single(a.world().model(), 128, 128, 1);
   ArrayDict one(a.observation_space(), 1);
-  single.render(a.camera_views(one, 0));
-  std::vector<CameraView> first = a.camera_views(together, 0);
+  single.render(a.impl().camera_views(one, 0));
+  std::vector<CameraView> first = a.impl().camera_views(together, 0);
   renderer.render(first);
   EXPECT_EQ(std::memcmp(one["rgb"].item(0), together["rgb"].item(0), one["rgb"].item_bytes()), 0);
 }
@@ -152,7 +153,8 @@ TEST(Render, ApartmentPictures) {
   // The whole apartment from above, ceilings left out (docs/images/).
   Renderer top(env.world().model(), 512, 512, 1);
   ArrayDict overview(Space::dict({{"rgb", Space::box({512, 512, 3}, DType::uint8, 0, 255)}}), 1);
-  std::vector<CameraView> view = {{env.world().model(), env.world().data(), env.world().scene().overview_camera(),
+  std::vector<CameraView> view = {{env.world().model(), env.impl().world().data(),
+                                   env.world().scene().overview_camera(),
                                    static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false}};
   top.render(view);
   save_png(overview["rgb"], 0, 512, 512, "apartment_overview.png");

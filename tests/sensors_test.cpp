@@ -11,6 +11,7 @@
 
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "env/vector_env.hpp"
 #include "test_util.hpp"
 
@@ -78,7 +79,7 @@ TEST(Segmentation, RobotLinksAreInstancesOfTheAgentClass) {
   // Head tilted fully down: the tucked arm and gripper come into view.
   const Robot* robot = env.world().robot();
   env.world().data()->qpos[robot->head_tilt.qpos] = -0.98;
-  env.world().command_position(robot->head_tilt, -0.98);
+  env.impl().world().command_position(robot->head_tilt, -0.98);
   const auto r = env.step(std::vector<float>(kLowLevelActionSize, 0.f));
   const int32_t* instance = r.obs["seg_instance"].data<int32_t>();
   const int32_t* semantic = r.obs["seg_semantic"].data<int32_t>();
@@ -182,7 +183,7 @@ TEST(Flow, APureCameraYawMatchesTheAnalyticFlow) {
       << "the first frame of an episode has no flow";
   // Turn the camera left by delta about its own vertical axis.
   const double delta = 0.05;
-  mjModel* m = env.world().model();
+  mjModel* m = env.impl().world().model();
   const int cam = env.world().scene().camera();
   const double turn[4] = {std::cos(delta / 2), 0, std::sin(delta / 2), 0};  // about camera +y
   double q[4];
@@ -213,8 +214,8 @@ TEST(Flow, AMovingObjectMatchesTheAnalyticFlowAndTheRestIsStill) {
   env.reset(0);
   // The small block, set on the floor in front of the panel, then slid 0.2 m left (+y).
   const SceneObject& block = *env.world().scene().find_object("small_block_1");
-  mjModel* m = env.world().model();
-  mjData* d = env.world().data();
+  mjModel* m = env.impl().world().model();
+  mjData* d = env.impl().world().data();
   double* qpos = d->qpos + m->jnt_qposadr[m->body_jntadr[block.body]];
   const double unit_quat[4] = {1, 0, 0, 0};
   auto place = [&](double x, double y) {
@@ -532,7 +533,7 @@ TEST(Appearance, RandomisationIsSeededAndLeavesSegmentationAlone) {
   EXPECT_NE(rgb1, rgb2);
   EXPECT_EQ(b.reset(1).obs["rgb"].bytes, rgb1);  // after another episode's draws
   // Zero spreads put the scene's own lights, colours and textures back.
-  World& w = b.world();
+  World& w = b.impl().world();
   Rng rng(0);
   w.randomize_appearance({}, rng);
   const mjModel* scene = w.scene().model();

@@ -3,6 +3,7 @@
 
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "test_util.hpp"
 #include "world/mujoco_errors.hpp"
 #include "world/predicates.hpp"
@@ -30,7 +31,7 @@ TEST(MujocoErrors, ErrorsBecomeChoreErrorsNotExit) {
 TEST(World, DivergingSimulationTruncatesWithAFlag) {
   Env env(box_room_config());
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   const SceneObject* block = w.scene().find_object("small_block_1");
   const int dof = w.model()->jnt_dofadr[w.model()->body_jntadr[block->body]];
   w.data()->qvel[dof] = 1e30;  // beyond mjMAXVAL: MuJoCo resets and warns
@@ -85,7 +86,7 @@ std::vector<float> gripper_action(float gripper, float torso = 0) {
 TEST(World, AssistiveGraspHoldsAnObjectBothFingersTouchUntilOpened) {
   Env env(box_room_config());
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   const int body = place_between_fingers(w, "small_block_1");
   for (int i = 0; i < 15 && w.grasped_object() < 0; ++i) env.step(gripper_action(-1));
   ASSERT_GE(w.grasped_object(), 0);
@@ -111,7 +112,7 @@ TEST(World, AssistiveGraspHoldsAnObjectBothFingersTouchUntilOpened) {
 TEST(World, ObjectsOverTheMassLimitAreRefused) {
   Env env(box_room_config());
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   place_between_fingers(w, "heavy_block_1");
   bool refused = false;
   for (int i = 0; i < 15; ++i) refused |= env.step(gripper_action(-1)).info.grasp_refused;
@@ -148,7 +149,7 @@ bool in_contact_list(const World& w, const char* name) {
 TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndKeepTheirContacts) {
   Env env(box_room_config());
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   w.set_sleeping(false);
   // A block 0.45 m in front of the robot (within its reach) and one 2.8 m away.
   double* near = w.data()->qpos + (object_qpos(w, "heavy_block_1") - w.data()->qpos);
@@ -190,7 +191,7 @@ TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndKeepTheirContacts) {
 TEST(Sleeping, AnObjectLetGoInTheAirFallsBeforeItSleeps) {
   Env env(box_room_config());
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   w.step(120);
   ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
   // A sampler's move: 30 cm up, still. The sleeper wakes, and an object
@@ -237,7 +238,7 @@ TEST(Sleeping, StaticGeomsLeftOutOfTheStepStayPutAndStillCollide) {
 TEST(Sleeping, AMovingObjectWakesWhatItWouldHit) {
   Env env(box_room_config());
   env.reset(0);
-  World& w = env.world();
+  World& w = env.impl().world();
   w.step(60);
   w.set_sleeping(true);
   w.step(4);
