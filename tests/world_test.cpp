@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <cstring>
+
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
@@ -42,6 +44,44 @@ TEST(World, DivergingSimulationTruncatesWithAFlag) {
   EXPECT_TRUE(step.info.diverged);
   EXPECT_THROW(env.step(zero), Error);  // must reset first
   EXPECT_FALSE(env.reset(0).info.diverged);
+}
+
+// A MuJoCo error inside a step (seen in training: "xaxis of contact frame
+// undefined", a degenerate contact normal) ends the episode as a divergence
+// instead of the run, and leaves the model whole: no sleeper stays masked.
+void fail_mid_step(const mjModel*, mjData*) {
+  mju_error("injected failure");
+}
+
+TEST(World, AMuJoCoErrorMidStepTruncatesLikeADivergence) {
+  Env env(box_room_config());
+  env.reset(0);
+  std::vector<float> zero(kLowLevelActionSize, 0.f);
+  for (int i = 0; i < 10; ++i) env.step(zero);  // the blocks fall asleep
+  const World& w = env.world();
+  const std::vector<int> geoms(w.model()->body_geomnum, w.model()->body_geomnum + w.model()->nbody);
+  const int ngeom = w.model()->ngeom;
+  mjcb_control = fail_mid_step;
+  const Env::StepResult step = [&] {
+    struct Restore {
+      ~Restore() { mjcb_control = nullptr; }
+    } restore;
+    return env.step(zero);
+  }();
+  EXPECT_TRUE(step.truncated);
+  EXPECT_TRUE(step.info.diverged);
+  EXPECT_EQ(std::vector<int>(w.model()->body_geomnum, w.model()->body_geomnum + w.model()->nbody), geoms);
+  EXPECT_EQ(w.model()->ngeom, ngeom);
+  // The next episode runs as one that never failed.
+  env.reset(0);
+  const auto first = env.step(zero);
+  Env fresh(box_room_config());
+  fresh.reset(0);
+  const auto reference = fresh.step(zero);
+  EXPECT_FALSE(first.info.diverged);
+  const Array& a = first.obs["proprio"];
+  const Array& b = reference.obs["proprio"];
+  EXPECT_EQ(std::memcmp(a.item(0), b.item(0), a.item_bytes()), 0);
 }
 
 // Reaching pose of assets/robots/tiago.xml: the gripper 0.6 m in front at

@@ -129,8 +129,19 @@ World::StepReport World::step(int substeps) {
              data_->warning[mjWARN_BADQACC].number;
     };
     const int bad_before = bad_state_count();
-    run_masked(mj_step);
-    if (bad_state_count() != bad_before) {
+    bool failed = false;
+    try {
+      run_masked(mj_step);
+    } catch (const Error&) {
+      // A numerical failure inside the step (a degenerate contact frame,
+      // "xaxis of contact frame undefined"): the state is lost as when it
+      // diverges. The reset also restores MuJoCo's stack, left mid-step.
+      mj_resetData(model_, data_);
+      mj_kinematics(model_, data_);  // poses to draw the last frame from; nothing that could fail again
+      mj_camlight(model_, data_);
+      failed = true;
+    }
+    if (failed || bad_state_count() != bad_before) {
       // MuJoCo has already reset the state; the episode cannot go on.
       report.diverged = true;
       release();
@@ -286,15 +297,31 @@ class StaticGeomsLeftOut {
   int ngeom_;
 };
 
+// Sleepers out of the model while this lives, back in however the stage
+// ends: a MuJoCo error throws through it (mujoco_errors.hpp).
+class SleepersMasked {
+ public:
+  SleepersMasked(Sleeping* sleeping, mjModel* m, mjData* d, int held_body) : sleeping_(sleeping), m_(m), d_(d) {
+    if (sleeping_) sleeping_->mask(m_, d_, held_body);
+  }
+  ~SleepersMasked() {
+    if (sleeping_) sleeping_->unmask(m_, d_);
+  }
+  SleepersMasked(const SleepersMasked&) = delete;
+  SleepersMasked& operator=(const SleepersMasked&) = delete;
+
+ private:
+  Sleeping* sleeping_;
+  mjModel* m_;
+  mjData* d_;
+};
+
 }  // namespace
 
 void World::run_masked(void (*stage)(const mjModel*, mjData*)) {
-  if (sleeping_on_) sleeping_->mask(model_, data_, grasped_body());
-  {
-    const StaticGeomsLeftOut out(model_, *scene_);
-    stage(model_, data_);
-  }
-  if (sleeping_on_) sleeping_->unmask(model_, data_);
+  const SleepersMasked masked(sleeping_on_ ? &*sleeping_ : nullptr, model_, data_, grasped_body());
+  const StaticGeomsLeftOut out(model_, *scene_);
+  stage(model_, data_);
 }
 
 void World::pose_robot(const Pose2& base, const double* torso_and_arm) {

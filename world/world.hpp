@@ -59,7 +59,7 @@ class World {
   double commanded_position(const RobotJoint& joint) const;
 
   struct StepReport {
-    bool diverged = false;       // MuJoCo found bad accelerations and reset the state
+    bool diverged = false;       // MuJoCo found bad accelerations (or failed mid-step) and the state was reset
     bool grasp_refused = false;  // the gripper closed on an object over the mass limit
   };
   // Runs `substeps` physics steps of 1/120 s.
