@@ -133,9 +133,12 @@ World::StepReport World::step(int substeps) {
     try {
       run_masked(mj_step);
     } catch (const Error&) {
-      // A numerical failure inside the step (a degenerate contact frame,
-      // "xaxis of contact frame undefined"): the state is lost as when it
-      // diverges. The reset also restores MuJoCo's stack, left mid-step.
+      // A MuJoCo error inside the step. Seen in training: MuJoCo resets a
+      // diverging state (bad acceleration) inside mj_step, where the static
+      // geoms are left out (StaticGeomsLeftOut): their poses stay zeroed, and
+      // the step's collision with them fails ("xaxis of contact frame
+      // undefined"). The state is lost as when it diverges. The reset also
+      // restores MuJoCo's stack, left mid-step.
       mj_resetData(model_, data_);
       mj_kinematics(model_, data_);  // poses to draw the last frame from; nothing that could fail again
       mj_camlight(model_, data_);
