@@ -7,6 +7,7 @@
 #include "env/env_impl.hpp"
 #include "env/observations.hpp"
 #include "env/rewards.hpp"
+#include "primitives/primitive.hpp"
 
 namespace chore {
 namespace {
@@ -151,9 +152,8 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
       });
     };
     for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_)) {
-      const bool acts = a.type == PrimitiveType::pick || a.type == PrimitiveType::push ||
-                        a.type == PrimitiveType::dip || a.type == PrimitiveType::wipe;
-      if (acts && !(a.type == PrimitiveType::pick && placed_inside(a.instance))) reach_checks_.push_back(a);
+      if (primitive_touches(a.type) && !(a.type == PrimitiveType::pick && placed_inside(a.instance)))
+        reach_checks_.push_back(a);
     }
   }
   // A fixed order, whatever the config's: the layout of batched buffers.

@@ -91,4 +91,8 @@ std::string unmet_precondition(const World& world, PrimitiveType type, int objec
 // for any (which objects are placement targets is the activity's to say).
 bool primitive_applies(const World& world, PrimitiveType type, int object);
 
+// Whether the hand acts on the object itself (pick, push, dip, wipe), not
+// from beside it (navigate) or above it (place).
+bool primitive_touches(PrimitiveType type);
+
 }  // namespace chore

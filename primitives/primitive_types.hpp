@@ -7,8 +7,17 @@
 
 namespace chore {
 
-enum class PrimitiveType { navigate, pick, place, push, dip, wipe };
-inline constexpr int kPrimitiveTypes = 6;
+// The registry of primitives, in the order of PrimitiveType (and of the
+// primitive action space's actions): each is defined in its own file,
+// primitives/<name>.cpp (docs/architecture.md, "A primitive").
+#define CHORE_PRIMITIVES(X) X(navigate) X(pick) X(place) X(push) X(dip) X(wipe)
+
+#define CHORE_PRIMITIVE_ENUM(name) name,
+enum class PrimitiveType { CHORE_PRIMITIVES(CHORE_PRIMITIVE_ENUM) };
+#undef CHORE_PRIMITIVE_ENUM
+#define CHORE_PRIMITIVE_COUNT(name) +1
+inline constexpr int kPrimitiveTypes = 0 CHORE_PRIMITIVES(CHORE_PRIMITIVE_COUNT);
+#undef CHORE_PRIMITIVE_COUNT
 
 enum class ExecutionMode { physical, symbolic };
 

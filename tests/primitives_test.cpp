@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <set>
 
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
@@ -13,6 +14,7 @@
 #include "primitives/arm_planner.hpp"
 #include "primitives/ik.hpp"
 #include "primitives/motion.hpp"
+#include "primitives/primitive_def.hpp"
 #include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
@@ -107,6 +109,40 @@ TEST(PrimitiveActions, BadActionsAndConfigsAreErrors) {
   unknown.action_space = "teleport";
   EXPECT_EQ(test::error_of([&] { Env e(unknown); }),
             "env config: unknown action space 'teleport' (known: low_level, primitives)");
+}
+
+TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
+  std::set<std::string> names;
+  std::set<const PrimitiveDef*> defs;
+  for (int t = 0; t < kPrimitiveTypes; ++t) {
+    const auto type = static_cast<PrimitiveType>(t);
+    names.insert(to_string(type));
+    defs.insert(&primitive_def(type));
+    EXPECT_EQ(parse_primitive_type(to_string(type)), type);
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe"}));
+  EXPECT_EQ(defs.size(), 6u);
+  EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
+            "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe)");
+  for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
+    EXPECT_TRUE(primitive_touches(t)) << to_string(t);
+  EXPECT_FALSE(primitive_touches(PrimitiveType::navigate));
+  EXPECT_FALSE(primitive_touches(PrimitiveType::place));
+  // What the registry's entries say of the clean_table scene's objects.
+  Env env(primitive_config("clean_table", ExecutionMode::symbolic));
+  env.reset(0);
+  const World& w = env.impl().world();
+  const int rag = env.impl().activity_->binding("rag.n.01_1").index;
+  const int bucket = env.impl().activity_->binding("bucket.n.01_1").index;
+  EXPECT_TRUE(primitive_applies(w, PrimitiveType::pick, rag));
+  EXPECT_FALSE(primitive_applies(w, PrimitiveType::dip, rag));
+  EXPECT_TRUE(primitive_applies(w, PrimitiveType::dip, bucket));
+  EXPECT_EQ(unmet_precondition(w, PrimitiveType::dip, bucket), "the hand holds nothing");
+  const int n = static_cast<int>(w.scene().objects().size());
+  EXPECT_EQ(test::error_of([&] { primitive_applies(w, PrimitiveType::pick, n); }),
+            "primitives: no object " + std::to_string(n) + " in scene '" + w.scene().name() + "'");
+  EXPECT_EQ(test::error_of([&] { unmet_precondition(w, PrimitiveType::wipe, -1); }),
+            "primitives: no object -1 in scene '" + w.scene().name() + "'");
 }
 
 TEST(Primitives, EachFailureKindIsReportedWithItsCause) {

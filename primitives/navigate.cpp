@@ -1,0 +1,96 @@
+// navigate(object): drives the base to a pose from which the hand reaches
+// what the next primitive on the object would need (OmniGibson's base-pose
+// sampler, then a collision-free base path), the arm tucked.
+#include "primitives/primitive_def.hpp"
+#include "world/predicates.hpp"
+
+namespace chore {
+namespace {
+
+// Navigation aims at what will be done there: an articulated object's handle
+// (to push it) while the hand is empty; while holding, dirt lying on it to
+// wipe, a liquid to dip into, or a place to put the load.
+PrimitiveType purpose_of_navigation(const World& w, int object) {
+  const ObjectAbilities* ab = w.states().abilities(object);
+  if (w.grasped_object() < 0 && articulation(w, object) && !is_open(w, object)) return PrimitiveType::push;
+  if (w.grasped_object() >= 0 && ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
+  if (w.grasped_object() >= 0 && primitive_applies(w, PrimitiveType::dip, object)) return PrimitiveType::dip;
+  return w.grasped_object() >= 0 ? PrimitiveType::place : PrimitiveType::pick;
+}
+
+bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object) {
+  const PrimitiveType purpose = purpose_of_navigation(w, object);
+  const std::vector<Approach> a = approaches(w, purpose, object, w.base_pose());
+  const Scene& scene = w.scene();
+  return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a[0].point.x(), a[0].point.y()) &&
+         reach(ik, checker, w, object, a, w.base_pose(), purpose, load_below_hand(w)).has_value();
+}
+
+bool applies(const World&, int) {
+  return true;
+}
+
+std::string unmet_precondition(const World& w, int object) {
+  return within_reach(w, object) ? "already within reach of '" + w.scene().objects().at(object).name + "'" : "";
+}
+
+bool act(Executor& e) {
+  World& w = e.world();
+  Motion& m = e.motion();
+  PrimitiveResult& result = e.result();
+  const int object = e.object();
+  // Tucked (or carrying) if it can be; where furniture is in the way the
+  // footprint measures the arm as it is.
+  if (!e.at(w.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration) && !e.tuck_where_possible()) {
+    return false;
+  }
+  const Clock::time_point t = Clock::now();
+  const PrimitiveType purpose = purpose_of_navigation(w, object);
+  const std::vector<Approach> here = approaches(w, purpose, object, w.base_pose());
+  ArmCollisionChecker checker(w);
+  if (reachable_here(w, m.ik(), checker, object)) {
+    result.planning_seconds += since(t);
+    return e.fail(PrimitiveStatus::precondition_failure, "already within reach of '" + e.name() + "'");
+  }
+  const Footprint footprint(w);
+  const auto targets = [&](const Pose2& p) { return approaches(w, purpose, object, p); };
+  BasePoseTally tally;
+  int path_failures = 0;
+  bool arrived = false;
+  Clock::time_point planning = t;
+  sample_base_poses(w, m.ik(), checker, footprint, purpose, object, here, targets, m.next_seed(), load_below_hand(w),
+                    e.options().base_pose_samples, tally, [&](const Pose2& p) {
+                      // Reachable with the arm; now the base must get there.
+                      result.planning_seconds += since(planning);
+                      arrived = m.base_to(p, footprint);
+                      planning = Clock::now();
+                      if (arrived || result.diverged || ++path_failures == 3) return true;
+                      result.status = PrimitiveStatus::success;  // try the next candidate
+                      result.reason.clear();
+                      return false;
+                    });
+  result.planning_seconds += since(planning);
+  if (arrived || result.diverged || path_failures == 3) return arrived;
+  return e.fail(
+      PrimitiveStatus::motion_planning_failure,
+      "no collision-free base pose within reach of '" + e.name() + "' in its room (" + std::to_string(tally.blocked) +
+          " samples in collision, then of " + std::to_string(tally.elsewhere + tally.unreachable + path_failures) +
+          " free ones: " + std::to_string(tally.elsewhere) + " in another room, " + std::to_string(tally.unreachable) +
+          " out of the arm's reach, " + std::to_string(path_failures) + " without a path)");
+}
+
+}  // namespace
+
+bool within_reach(const World& world, int object) {
+  IkSolver ik(world);
+  ArmCollisionChecker checker(world);
+  return reachable_here(world, ik, checker, object);
+}
+
+const PrimitiveDef& navigate_primitive() {
+  static const PrimitiveDef def{
+      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .touches = false, .drives = true};
+  return def;
+}
+
+}  // namespace chore

@@ -1,0 +1,83 @@
+// pick(object): to the object's pre-pose, along the approach until the
+// fingers touch it, close (the assistive grasp holds what lies between
+// them), lift and tuck into the carry pose.
+#include <algorithm>
+#include <cmath>
+
+#include "primitives/primitive_def.hpp"
+#include "world/object_geometry.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kSlim = 0.08;  // m: objects this narrow fit between the open fingers
+
+bool applies(const World& w, int object) {
+  const SceneObject& o = w.scene().objects().at(object);
+  return !o.fixed && o.grasp_weld >= 0 && w.model()->body_subtreemass[o.body] <= World::kGraspMassLimit;
+}
+
+std::string unmet_precondition(const World& w, int object) {
+  if (w.grasped_object() >= 0) return "the hand is not empty";
+  // Fixed objects cannot be picked; a heavy one is refused by the grasp itself.
+  return w.scene().objects()[object].fixed ? "'" + w.scene().objects()[object].name + "' cannot be picked up" : "";
+}
+
+// From above, or for slim upright objects (a bottle on a high counter, out
+// of reach from above) from the side, the fingers closing horizontally.
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
+  std::vector<Approach> out = {{top_centre(w, object), kDown, std::nullopt}};
+  const Aabb box = object_aabb(w, object);
+  const Eigen::Vector3d size = box.hi - box.lo;
+  Eigen::Vector3d towards(box.center().x() - base.x, box.center().y() - base.y, 0);
+  if (std::max(size.x(), size.y()) <= kSlim && size.z() >= kSlim && towards.norm() > 1e-6) {
+    towards.normalize();
+    const Eigen::Vector3d point(box.center().x(), box.center().y(), box.lo.z() + 0.6 * size.z());
+    out.push_back({point - towards * std::max(size.x(), size.y()) / 2, towards, kUp.cross(towards)});
+  }
+  return out;
+}
+
+bool act(Executor& e) {
+  World& w = e.world();
+  Motion& m = e.motion();
+  const int object = e.object();
+  if (!e.go_to_pre_pose()) return false;
+  // Towards the object until contact: through its height from above, its width from the side.
+  const Aabb box = object_aabb(w, object);
+  // Within a waypoint (1 cm) of the contact point reach() checked, the line
+  // may end without a touch: a slim object taken from the side sits between
+  // the open fingers.
+  const Approach& a = e.approach();
+  const double extent = std::abs(a.direction.dot(box.hi - box.lo));
+  const double length = kClearance + extent + 0.02;
+  const double needed = kClearance + contact_depth(w, object, a) - 0.01;
+  if (!m.line(a.direction * length, true, kApproachSpeed, needed / length)) return false;
+  m.gripper(false);
+  if (!m.physical()) {
+    // The assistive grasp's condition, kinematically: the object between the fingers.
+    const Eigen::Vector3d hand = m.hand_position();
+    const Eigen::Vector3d nearest = hand.cwiseMax(box.lo).cwiseMin(box.hi);
+    if ((nearest - hand).norm() < 0.05 && !w.hold(object)) e.result().grasp_refused = true;
+  }
+  if (w.grasped_object() != object) {
+    m.gripper(true);
+    m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
+    return e.fail(PrimitiveStatus::grasp_failure,
+                  e.result().grasp_refused ? "'" + e.name() + "' is too heavy to hold" : "the hand closed on nothing");
+  }
+  m.line(kUp * kLift, false, kRetreatSpeed, 0.0);  // lift as far as the arm goes; tuck plans the rest
+  if (!e.tuck_where_possible()) return false;
+  if (w.grasped_object() != object) return e.fail(PrimitiveStatus::grasp_failure, "'" + e.name() + "' slipped out");
+  return true;
+}
+
+}  // namespace
+
+const PrimitiveDef& pick_primitive() {
+  static const PrimitiveDef def{
+      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .approaches = approaches};
+  return def;
+}
+
+}  // namespace chore

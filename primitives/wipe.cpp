@@ -1,0 +1,119 @@
+// wipe(object): with a tool in hand, down onto the object's densest dirt,
+// then strokes left-right, row by row towards the robot, pressing 1 cm in;
+// the cleaning rules remove the dirt the tool passes over.
+#include <algorithm>
+#include <cmath>
+
+#include "primitives/primitive_def.hpp"
+
+namespace chore {
+namespace {
+
+// Strokes: kRows rows kRowSpacing apart, the first kFarRow beyond the approach point.
+constexpr int kRows = 4;
+constexpr double kRowSpacing = 0.08, kFarRow = 1.5 * kRowSpacing;
+constexpr double kYawSpread = 0.6;  // rad: a base pose to wipe from faces the dirt within +-0.3
+
+bool applies(const World& w, int object) {
+  const ObjectAbilities* ab = w.states().abilities(object);
+  return ab && ab->covered;
+}
+
+std::string unmet_precondition(const World& w, int object) {
+  if (w.carried_object() < 0) return "the hand holds nothing";
+  return applies(w, object) ? "" : "'" + w.scene().objects().at(object).name + "' has nothing to wipe";
+}
+
+// Where to wipe, densest dirt first: particles ordered by how many lie
+// within kPatchRadius of them (the strokes sweep about that far), each kept
+// unless within kPatchSpacing of one kept before; then the particles passed
+// over, so that a last reachable one beside an unreachable patch is still
+// aimed at. Particles themselves, not the means of their neighbourhoods: a
+// mean can lie beyond reach where every particle does not. The top centre
+// when clean.
+std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
+  constexpr double kPatchRadius = 0.25, kPatchSpacing = 0.15;
+  const std::vector<Eigen::Vector3d> particles = dirt_particles(w, object);
+  if (particles.empty()) return {top_centre(w, object)};
+  std::vector<std::pair<int, size_t>> density;  // (-neighbours, particle): sorted densest first
+  for (size_t i = 0; i < particles.size(); ++i) {
+    int n = 0;
+    for (const Eigen::Vector3d& q : particles) n += (q - particles[i]).head<2>().norm() < kPatchRadius;
+    density.push_back({-n, i});
+  }
+  std::sort(density.begin(), density.end());
+  std::vector<Eigen::Vector3d> patches, passed;
+  for (const auto& [count, i] : density) {
+    const bool near_kept = std::any_of(patches.begin(), patches.end(), [&](const Eigen::Vector3d& kept) {
+      return (kept - particles[i]).head<2>().norm() < kPatchSpacing;
+    });
+    (near_kept ? passed : patches).push_back(particles[i]);
+  }
+  patches.insert(patches.end(), passed.begin(), passed.end());
+  return patches;
+}
+
+std::vector<Approach> approaches(const World& w, int object, const Pose2&) {
+  std::vector<Approach> out;
+  for (const Eigen::Vector3d& patch : dirt_patches(w, object)) out.push_back({patch, kDown, std::nullopt});
+  return out;
+}
+
+// At contact where the strokes begin: their farthest row.
+Eigen::Vector3d line_end(const World& w, int object, const Approach& a, const Pose2& base, double) {
+  return contact_point(w, object, a) + Eigen::Vector3d(std::cos(base.yaw), std::sin(base.yaw), 0) * kFarRow;
+}
+
+// Enough of the dirt within reach that wiping all of that leaves the object clean.
+std::string out_of_reach(ReachSearch& s) {
+  int missed = 0;
+  for (const Eigen::Vector3d& particle : dirt_particles(s.w, s.object)) {
+    const std::vector<Approach> at = {{particle, kDown, std::nullopt}};
+    const bool reached = s.kept_reaches(at) || s.sample(
+                                                   at, [&](const Pose2&) { return at; }, s.seed++);
+    if (!reached && ++missed == ObjectStates::kCoveredParticles) {
+      return std::to_string(missed) + " dirt particles on '" + s.w.scene().objects().at(s.object).name +
+             "' lie out of reach of every base pose the robot can drive to";
+    }
+  }
+  return "";
+}
+
+bool act(Executor& e) {
+  World& w = e.world();
+  Motion& m = e.motion();
+  if (!e.go_to_pre_pose()) return false;
+  if (!m.line(kDown * (kClearance + 0.06), true, kApproachSpeed)) return false;
+  if (!m.touched()) return e.fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
+  // Strokes left-right, row by row towards the robot, pressing 1 cm in.
+  const double yaw = w.base_pose().yaw;
+  const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
+  constexpr double kHalfWidth = 0.22;
+  // Each stroke goes as far as the arm reaches along it.
+  m.line(forward * kFarRow - left * kHalfWidth + kDown * 0.01, false, 0.25, 0.0);
+  for (int row = 0; row < kRows; ++row) {
+    const double side = row % 2 == 0 ? 1.0 : -1.0;
+    m.line(left * (2 * kHalfWidth * side), false, 0.3, 0.0);
+    if (row + 1 < kRows) m.line(-forward * kRowSpacing, false, 0.25, 0.0);
+  }
+  m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
+  if (!e.tuck_where_possible()) return false;
+  if (w.grasped_object() < 0) return e.fail(PrimitiveStatus::grasp_failure, "dropped the tool");
+  return true;
+}
+
+}  // namespace
+
+const PrimitiveDef& wipe_primitive() {
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = unmet_precondition,
+                                .act = act,
+                                .approaches = approaches,
+                                .line_end = line_end,
+                                .out_of_reach = out_of_reach,
+                                .with_tool = true,
+                                .yaw_spread = kYawSpread};
+  return def;
+}
+
+}  // namespace chore
