@@ -294,6 +294,8 @@ class Parser {
     const Sexp& head = e.items[0];
     const std::optional<Op> op = head.is_list ? std::nullopt : operator_named(head.atom);
     Formula f;
+    f.line = e.pos.line;
+    f.column = e.pos.column;
     if (!op) {
       f.literal = atom(e);
       return f;
@@ -305,6 +307,8 @@ class Parser {
         expect_size(e, 2);
         if (operand.op == Op::literal) {
           operand.literal.negated = !operand.literal.negated;
+          operand.line = f.line;
+          operand.column = f.column;
           return operand;
         }
         f.children.push_back(std::move(operand));
@@ -412,6 +416,8 @@ Formula nnf(const Formula& f, bool negate) {
       if (!negate) return out;
       Formula negation;
       negation.op = Op::negation;
+      negation.line = f.line;
+      negation.column = f.column;
       negation.children.push_back(std::move(out));
       return negation;
     }
@@ -434,7 +440,9 @@ const char* keyword(Op op) {
 
 Problem parse_bddl(std::string_view text, std::string_view file_name, const ParseOptions& options) {
   const Sexp document = Reader(text, file_name).document();
-  return Parser(file_name, options).problem(document);
+  Problem p = Parser(file_name, options).problem(document);
+  p.file = file_name;
+  return p;
 }
 
 Problem load_bddl(const std::string& path, const ParseOptions& options) {

@@ -79,16 +79,22 @@ struct Formula {
   std::vector<Variable> variables;  // quantifiers: one, or two for the pair quantifiers
   int count = 0;                    // forn, fornpairs: N >= 1
   std::vector<Formula> children;    // operands; a quantifier's body is children[0]
-  bool operator==(const Formula&) const = default;
+  int line = 0, column = 0;         // where it starts in its file (0: not parsed); not compared
+  bool operator==(const Formula& o) const {
+    return op == o.op && literal == o.literal && variables == o.variables && count == o.count && children == o.children;
+  }
 };
 
 struct Problem {
+  std::string file;  // the file it was parsed from, for messages; not compared
   std::string name;
   Domain domain = Domain::igibson;
   std::vector<ObjectDecl> objects;  // in file order
   std::vector<Literal> init;        // ground; includes (inroom obj room)
   Formula goal;
-  bool operator==(const Problem&) const = default;
+  bool operator==(const Problem& o) const {
+    return name == o.name && domain == o.domain && objects == o.objects && init == o.init && goal == o.goal;
+  }
 };
 
 struct ParseOptions {

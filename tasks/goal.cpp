@@ -15,41 +15,91 @@ namespace {
 using Options = std::vector<GroundOption>;
 using Visit = std::function<bool(const std::vector<size_t>&)>;  // an index tuple; true: accepted
 
+// "FILE:LINE:COL" of a construct of a parsed problem, else "activity NAME".
+std::string where(const Problem& problem, int line, int column) {
+  if (line == 0) return "activity " + problem.name;
+  return problem.file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+// The work grounding may do (goal.hpp's kMaxGroundNodes, kMaxGroundWork),
+// and the construct being ground, which an error names.
+class Budget {
+ public:
+  explicit Budget(const Problem& problem) : problem_(problem) {}
+
+  void node() {
+    if (++nodes_ > kMaxGroundNodes) exceeded(std::to_string(kMaxGroundNodes) + " formula nodes");
+  }
+  void work(size_t steps) {
+    work_ += steps;
+    if (work_ > kMaxGroundWork)
+      exceeded(std::to_string(kMaxGroundWork) + " steps (option tuples visited plus literals copied)");
+  }
+  // The construct at file line:column, described by `what`, is being ground.
+  void at(int line, int column, std::string what) {
+    line_ = line;
+    column_ = column;
+    what_ = std::move(what);
+  }
+
+ private:
+  [[noreturn]] void exceeded(const std::string& limit) const {
+    throw Error(where(problem_, line_, column_) + ": grounding " + what_ + " takes more than " + limit + ", the limit");
+  }
+
+  const Problem& problem_;
+  size_t nodes_ = 0, work_ = 0;
+  int line_ = 0, column_ = 0;
+  std::string what_ = "the goal";
+};
+
 // Visits elements of the product of sequences of the given sizes, as index
 // tuples, in bddl's truncated_product order: increasing index sum, then
 // lexicographic. Stops once `visit` has accepted `cap` of them. No sequences:
-// one empty tuple; an empty sequence: nothing.
-void truncated_product(const std::vector<size_t>& sizes, size_t cap, const Visit& visit) {
+// one empty tuple; an empty sequence: nothing. Iterative: the number of
+// sequences is data-sized (a forall over every object).
+void truncated_product(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit) {
   if (std::find(sizes.begin(), sizes.end(), 0) != sizes.end()) return;
   const size_t k = sizes.size();
   std::vector<size_t> slack(k + 1, 0);  // slack[j]: the largest index sum of sequences j..k-1
   for (size_t j = k; j-- > 0;) slack[j] = slack[j + 1] + sizes[j] - 1;
   std::vector<size_t> index(k);
-  size_t accepted = 0;
-  // Fills index[j..] with sum `rest`, lexicographically; true once capped.
-  const std::function<bool(size_t, size_t)> fill = [&](size_t j, size_t rest) {
-    if (j == k) return visit(index) && ++accepted >= cap;
-    const size_t low = rest > slack[j + 1] ? rest - slack[j + 1] : 0;
-    for (size_t i = low; i <= std::min(rest, sizes[j] - 1); ++i) {
-      index[j] = i;
-      if (fill(j + 1, rest - i)) return true;
+  // index[j..] := the lexicographically first tuple with sum `rest`: each
+  // index as low as what follows can make up for.
+  const auto first_from = [&](size_t j, size_t rest) {
+    for (; j < k; ++j) {
+      index[j] = rest > slack[j + 1] ? rest - slack[j + 1] : 0;
+      rest -= index[j];
     }
-    return false;
   };
-  for (size_t sum = 0; sum <= slack[0]; ++sum)
-    if (fill(0, sum)) return;
+  size_t accepted = 0;
+  for (size_t sum = 0; sum <= slack[0]; ++sum) {
+    first_from(0, sum);
+    for (;;) {
+      budget.work(1 + k);
+      if (visit(index) && ++accepted >= cap) return;
+      // The next tuple of this sum: raise the rightmost index that can take
+      // one from those after it, which then start again from their first.
+      size_t j = k, tail = 0;  // tail: the sum of index[j..]
+      while (j > 0 && !(tail >= 1 && index[j - 1] + 1 < sizes[j - 1])) tail += index[--j];
+      if (j == 0) break;
+      ++index[j - 1];
+      first_from(j, tail - 1);
+    }
+  }
 }
 
 // bddl's itertools.product (and, the goal's options): complete, in
 // lexicographic order, when it has at most `cap` elements; else the first
 // `cap` accepted in truncated_product's order.
-void bounded_product(const std::vector<size_t>& sizes, size_t cap, const Visit& visit) {
+void bounded_product(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit) {
   size_t count = 1;
   for (size_t s : sizes) count = s == 0 ? 0 : (count > cap / s ? cap + 1 : count * s);
-  if (count > cap) return truncated_product(sizes, cap, visit);
+  if (count > cap) return truncated_product(sizes, cap, budget, visit);
   if (count == 0) return;
   std::vector<size_t> index(sizes.size(), 0);
   for (;;) {
+    budget.work(1 + sizes.size());
     visit(index);
     size_t j = sizes.size();
     while (j > 0 && ++index[j - 1] == sizes[j - 1]) index[--j] = 0;
@@ -102,16 +152,19 @@ void append(GroundOption& to, const GroundOption& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
 
-using Product = void (*)(const std::vector<size_t>& sizes, size_t cap, const Visit& visit);
+using Product = void (*)(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit);
 
 // Options with the chosen element of each sequence concatenated.
-Options product(Product order, const std::vector<Options>& sequences, size_t cap) {
+Options product(Product order, const std::vector<Options>& sequences, size_t cap, Budget& budget) {
   std::vector<size_t> sizes;
   for (const Options& s : sequences) sizes.push_back(s.size());
   Options out;
-  order(sizes, cap, [&](const std::vector<size_t>& index) {
+  order(sizes, cap, budget, [&](const std::vector<size_t>& index) {
     GroundOption& option = out.emplace_back();
-    for (size_t j = 0; j < index.size(); ++j) append(option, sequences[j][index[j]]);
+    for (size_t j = 0; j < index.size(); ++j) {
+      budget.work(sequences[j][index[j]].size());
+      append(option, sequences[j][index[j]]);
+    }
     return true;
   });
   return out;
@@ -123,11 +176,21 @@ Options without_repeats(Options options) {
   Options out;
   std::set<GroundOption> seen;
   for (GroundOption& option : options) {
+    // First occurrences, in order: sorted (id, position) pairs find them in
+    // n log n (an option of a forall over every object is long).
+    std::vector<std::pair<LiteralId, size_t>> sorted;
+    for (size_t i = 0; i < option.size(); ++i) sorted.push_back({option[i], i});
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<size_t> first;
+    GroundOption key;
+    for (size_t i = 0; i < sorted.size(); ++i) {
+      if (i > 0 && sorted[i].first == sorted[i - 1].first) continue;
+      first.push_back(sorted[i].second);
+      key.push_back(sorted[i].first);
+    }
+    std::sort(first.begin(), first.end());
     GroundOption unique;
-    for (LiteralId id : option)
-      if (std::find(unique.begin(), unique.end(), id) == unique.end()) unique.push_back(id);
-    GroundOption key = unique;
-    std::sort(key.begin(), key.end());
+    for (size_t i : first) unique.push_back(option[i]);
     if (seen.insert(std::move(key)).second) out.push_back(std::move(unique));
   }
   return out;
@@ -135,10 +198,11 @@ Options without_repeats(Options options) {
 
 class Grounder {
  public:
-  Grounder(const Problem& problem, const TypeTest& is_a, GroundGoal& goal)
-      : problem_(problem), is_a_(is_a), goal_(goal) {}
+  Grounder(const Problem& problem, const TypeTest& is_a, GroundGoal& goal, Budget& budget)
+      : problem_(problem), is_a_(is_a), goal_(goal), budget_(budget) {}
 
   GroundCondition condition(const Formula& f) {
+    budget_.at(f.line, f.column, f.op == Op::literal ? "a literal" : "(" + std::string(keyword(f.op)) + " ...)");
     GroundCondition c;
     c.formula = expand(f);
     c.options = options(c.formula);
@@ -163,12 +227,12 @@ class Grounder {
     return it->second;
   }
 
-  std::vector<std::string> instances(const Variable& v) const {
+  std::vector<std::string> instances(const Formula& quantifier, const Variable& v) const {
     std::vector<std::string> out;
     for (const ObjectDecl& o : problem_.objects)
       if (o.type == v.type || (is_a_ && is_a_(o.type, v.type))) out.push_back(o.name);
     if (out.empty())
-      throw Error("activity " + problem_.name + ": (" + v.name + " - " + v.type +
+      throw Error(where(problem_, quantifier.line, quantifier.column) + ": (" + v.name + " - " + v.type +
                   ") ranges over no object declared in :objects");
     return out;
   }
@@ -181,9 +245,12 @@ class Grounder {
   }
 
   GroundFormula expand(const Formula& f) {
+    budget_.node();
     GroundFormula g;
     g.op = f.op;
     g.count = static_cast<size_t>(f.count);
+    g.line = f.line;
+    g.column = f.column;
     switch (f.op) {
       case Op::literal: {
         GroundLiteral l = f.literal;
@@ -191,7 +258,7 @@ class Grounder {
           if (!arg.starts_with('?')) continue;
           const auto it =
               std::find_if(bindings_.rbegin(), bindings_.rend(), [&](const auto& b) { return b.first == arg; });
-          if (it == bindings_.rend()) throw Error("activity " + problem_.name + ": unbound variable " + arg);
+          if (it == bindings_.rend()) throw Error(where(problem_, f.line, f.column) + ": unbound variable " + arg);
           arg = it->second;
         }
         g.literal = intern(l);
@@ -200,16 +267,16 @@ class Grounder {
       case Op::forall:
       case Op::exists:
       case Op::forn:
-        for (const std::string& x : instances(f.variables[0]))
+        for (const std::string& x : instances(f, f.variables[0]))
           g.children.push_back(bound(f.children[0], {{f.variables[0].name, x}}));
         return g;
       case Op::forpairs:
       case Op::fornpairs: {
-        const std::vector<std::string> columns = instances(f.variables[1]);
+        const std::vector<std::string> columns = instances(f, f.variables[1]);
         g.columns = columns.size();
         GroundFormula no_pair;  // the empty disjunction: false, with no option
         no_pair.op = Op::disjunction;
-        for (const std::string& x : instances(f.variables[0]))
+        for (const std::string& x : instances(f, f.variables[0]))
           for (const std::string& y : columns)
             g.children.push_back(x == y ? no_pair
                                         : bound(f.children[0], {{f.variables[0].name, x}, {f.variables[1].name, y}}));
@@ -224,21 +291,25 @@ class Grounder {
   Options options(const GroundFormula& g) {
     std::vector<Options> children;
     for (const GroundFormula& c : g.children) children.push_back(options(c));
+    budget_.at(g.line, g.column, g.op == Op::literal ? "a literal" : "(" + std::string(keyword(g.op)) + " ...)");
     switch (g.op) {
       case Op::literal:
         return {{g.literal}};
       case Op::negation:
         return negated(children[0]);
       case Op::conjunction:
-        return without_repeats(product(bounded_product, children, kMaxGoalOptions));
+        return without_repeats(product(bounded_product, children, kMaxGoalOptions, budget_));
       case Op::disjunction:
       case Op::exists: {
         Options out;
-        for (Options& c : children) out.insert(out.end(), c.begin(), c.end());
+        for (Options& c : children) {
+          for (const GroundOption& o : c) budget_.work(1 + o.size());
+          out.insert(out.end(), c.begin(), c.end());
+        }
         return without_repeats(std::move(out));
       }
       case Op::forall:
-        return without_repeats(product(truncated_product, children, kMaxGroundOptions));
+        return without_repeats(product(truncated_product, children, kMaxGroundOptions, budget_));
       case Op::forn:
         return forn(children, g.count);
       case Op::forpairs:
@@ -262,7 +333,7 @@ class Grounder {
         c.push_back({intern(l)});
       }
     }
-    return without_repeats(product(bounded_product, choices, kMaxGoalOptions));
+    return without_repeats(product(bounded_product, choices, kMaxGoalOptions, budget_));
   }
 
   // Exactly N: the N-combinations of the operands within each truncated-product option.
@@ -270,11 +341,15 @@ class Grounder {
     std::vector<size_t> sizes;
     for (const Options& c : children) sizes.push_back(c.size());
     Options out;
-    truncated_product(sizes, kMaxGroundOptions, [&](const std::vector<size_t>& index) {
+    truncated_product(sizes, kMaxGroundOptions, budget_, [&](const std::vector<size_t>& index) {
       combinations(children.size(), n, [&](const std::vector<size_t>& chosen) {
         if (out.size() == kMaxGoalOptions) return false;
         GroundOption& option = out.emplace_back();
-        for (size_t j : chosen) append(option, children[j][index[j]]);
+        budget_.work(1);
+        for (size_t j : chosen) {
+          budget_.work(children[j][index[j]].size());
+          append(option, children[j][index[j]]);
+        }
         return true;
       });
       return true;
@@ -310,7 +385,7 @@ class Grounder {
           const size_t row = outer_rows ? o[k] : i[k], column = outer_rows ? i[k] : o[k];
           chosen.push_back(cells[row * columns + column]);
         }
-        const Options choice = product(truncated_product, chosen, kMaxGroundOptions);
+        const Options choice = product(truncated_product, chosen, kMaxGroundOptions, budget_);
         out.insert(out.end(), choice.begin(), choice.end());
       }
     }
@@ -320,6 +395,7 @@ class Grounder {
   const Problem& problem_;
   const TypeTest& is_a_;
   GroundGoal& goal_;
+  Budget& budget_;
   std::map<GroundLiteral, LiteralId> ids_;
   std::vector<std::pair<std::string, std::string>> bindings_;  // variable -> instance, innermost last
 };
@@ -389,7 +465,8 @@ double fraction(size_t satisfied, size_t total) {
 
 GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
   GroundGoal goal;
-  Grounder grounder(problem, is_a, goal);
+  Budget budget(problem);
+  Grounder grounder(problem, is_a, goal, budget);
   const Formula nnf = to_nnf(problem.goal);
   if (nnf.op == Op::conjunction) {
     for (const Formula& c : nnf.children) goal.conditions.push_back(grounder.condition(c));
@@ -403,9 +480,13 @@ GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
   for (const GroundCondition& c : goal.conditions) sizes.push_back(c.options.size());
   std::vector<bool> in_option(goal.literals.size(), false);
   Options options;
-  bounded_product(sizes, kMaxGoalOptions, [&](const std::vector<size_t>& index) {
+  budget.at(problem.goal.line, problem.goal.column, "the goal's options");
+  bounded_product(sizes, kMaxGoalOptions, budget, [&](const std::vector<size_t>& index) {
     GroundOption option;
-    for (size_t j = 0; j < index.size(); ++j) append(option, goal.conditions[j].options[index[j]]);
+    for (size_t j = 0; j < index.size(); ++j) {
+      budget.work(goal.conditions[j].options[index[j]].size());
+      append(option, goal.conditions[j].options[index[j]]);
+    }
     for (LiteralId id : option) in_option[id] = true;
     const bool consistent = std::none_of(option.begin(), option.end(),
                                          [&](LiteralId id) { return complement[id] && in_option[*complement[id]]; });

@@ -45,6 +45,13 @@ inline constexpr size_t kMaxGroundPermutations = 10;  // bddl GROUND_GOALS_MAX_P
 // product is complete and lexicographic (itertools.product); past it, it is
 // truncated in forall's order.
 inline constexpr size_t kMaxGoalOptions = 1000;
+// Bounds on the work of grounding, which the input sizes (objects, nested
+// quantifiers, options that contradict themselves) could otherwise make
+// unbounded: formula nodes built, and option tuples visited plus literals
+// copied into options. Past either, ground_goal throws an error naming the
+// construct (file:line:col) that exceeds it.
+inline constexpr size_t kMaxGroundNodes = 1000000;
+inline constexpr size_t kMaxGroundWork = 20000000;
 
 // Does an instance of synset `instance_type` belong to quantifier type `type`?
 // An empty TypeTest means equality only; the knowledge base widens it to
@@ -67,6 +74,7 @@ struct GroundFormula {
   // is an empty disjunction: false, with no option.
   size_t columns = 0;
   std::vector<GroundFormula> children;
+  int line = 0, column = 0;  // of the construct in its BDDL file (0: not parsed)
 };
 
 struct GroundCondition {

@@ -300,7 +300,7 @@ TEST(GoalTypes, QuantifiersRangeOverTheTypeTest) {
     ground_goal(p);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "activity g: (?f - fruit.n.01) ranges over no object declared in :objects");
+    EXPECT_STREQ(e.what(), "goal_test:1:126: (?f - fruit.n.01) ranges over no object declared in :objects");
   }
   const GroundGoal g = ground_goal(p, [](std::string_view instance_type, std::string_view type) {
     return type == "fruit.n.01" && (instance_type == "apple.n.01" || instance_type == "pear.n.01");
@@ -318,6 +318,41 @@ std::vector<Problem> corpus() {
   for (int n = 1; n <= 5; ++n)
     out.push_back(load_bddl(test::data_path("bddl/seed_listing_" + std::to_string(n) + ".bddl"), lenient));
   return out;
+}
+
+// The grounding's bounds: a data-sized product is iterative, and work past
+// the limits is an error naming the construct, not a hang or a crash.
+TEST(GoalBounds, AForallOverManyObjectsGroundsWithoutRecursingPerObject) {
+  std::string objects;
+  for (int i = 0; i < 150000; ++i) objects += "o" + std::to_string(i) + " ";
+  const GroundGoal g = ground_goal(problem(objects + "- t", "(forall (?x - t) (p ?x))"));
+  ASSERT_EQ(g.options.size(), 1u);
+  EXPECT_EQ(g.options[0].size(), 150000u);
+  EXPECT_EQ(to_bddl(g.literals[g.options[0].back()]), "(p o149999)");
+}
+
+TEST(GoalBounds, OptionsThatContradictThemselvesSpendTheBudget) {
+  // Every one of the 2^30 options holds (p x) and (not (p x)).
+  std::string goal = "(and (p x) (not (p x))";
+  for (int i = 0; i < 30; ++i) goal += " (or (q" + std::to_string(i) + " x) (r" + std::to_string(i) + " x))";
+  const std::string error = test::error_of([&] { ground_goal(problem("x - t", goal + ")")); });
+  EXPECT_EQ(error,
+            "goal_test:1:74: grounding the goal's options takes more than 20000000 steps (option tuples "
+            "visited plus literals copied), the limit");
+}
+
+TEST(GoalBounds, NestedQuantifiersBuildAtMostTheNodeLimit) {
+  std::string objects;
+  for (int i = 0; i < 40; ++i) objects += "o" + std::to_string(i) + " ";
+  const std::string goal = "(forall (?a - t) (forall (?b - t) (forall (?c - t) (forall (?d - t) (p ?a ?b ?c ?d)))))";
+  const std::string error = test::error_of([&] { ground_goal(problem(objects + "- t", goal)); });
+  EXPECT_NE(error.find("goal_test:1:"), std::string::npos) << error;
+  EXPECT_NE(error.find(": grounding (forall ...) takes more than 1000000 formula nodes, the limit"), std::string::npos)
+      << error;
+  // Under the limit (40^3 bindings) it grounds.
+  const GroundGoal g =
+      ground_goal(problem(objects + "- t", "(forall (?a - t) (forall (?b - t) (forall (?c - t) (p ?a ?b ?c))))"));
+  EXPECT_EQ(g.literals.size(), 64000u);
 }
 
 TEST(GoalCorpus, EveryActivityGroundsAndItsFirstOptionSucceeds) {
