@@ -7,30 +7,90 @@
 
 namespace chore {
 
-nlohmann::json read_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+namespace {
+
+// "LINE:COLUMN" of byte `offset` of text.
+std::string line_column(const std::string& text, size_t offset) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+// The offset of the first '[' or '{' (outside strings) nested deeper than
+// kMaxJsonDepth, or npos.
+size_t too_deep(const std::string& text) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
+// The offset of number token `token` in text (where nlohmann says no more than its text).
+size_t find_token(const std::string& text, const std::string& token) {
+  for (size_t at = text.find(token); at != std::string::npos; at = text.find(token, at + 1)) {
+    const bool starts = at == 0 || std::string_view(",:[ \t\r\n").find(text[at - 1]) != std::string_view::npos;
+    if (starts) return at;
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+nlohmann::json parse_json(const std::string& text, const std::string& where) {
+  if (const size_t at = too_deep(text); at != std::string::npos) {
+    throw Error(where + ":" + line_column(text, at) + ": nested deeper than " + std::to_string(kMaxJsonDepth) +
+                " levels, the limit");
+  }
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    // Convert nlohmann's byte offset into line:column.
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
     std::string what = e.what();
     const auto pos = what.find("syntax error");
-    throw Error(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+    throw Error(where + ":" + line_column(text, e.byte == 0 ? 0 : e.byte - 1) + ": " +
                 (pos == std::string::npos ? what : what.substr(pos)));
+  } catch (const nlohmann::json::exception& e) {
+    // A number out of double's range (1e400): nlohmann names its text only.
+    std::string what = e.what();
+    const size_t open = what.find('\''), close = what.rfind('\'');
+    const std::string token = open < close ? what.substr(open + 1, close - open - 1) : "";
+    const size_t at = token.empty() ? std::string::npos : find_token(text, token);
+    const std::string message = token.empty() ? what : "the number " + token + " is out of range";
+    throw Error(where + (at == std::string::npos ? "" : ":" + line_column(text, at)) + ": " + message);
   }
+}
+
+nlohmann::json read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw Error(path + ": cannot open file");
+  const std::streamoff bytes = in.tellg();
+  if (bytes < 0 || static_cast<size_t>(bytes) > kMaxJsonBytes) {
+    throw Error(path + ": larger than " + std::to_string(kMaxJsonBytes >> 20) + " MB, the limit for a JSON file");
+  }
+  in.seekg(0);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_json(buffer.str(), path);
 }
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string where) : value_(value), where_(std::move(where)) {}
@@ -69,14 +129,28 @@ std::string JsonReader::string(const char* key, const std::string& fallback) con
   return has(key) ? string(key) : fallback;
 }
 
-double JsonReader::number(const char* key) const {
-  const JsonReader field = at(key);
-  if (!field.value_.is_number()) field.fail("expected a number");
-  return field.value_.get<double>();
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
-double JsonReader::number(const char* key, double fallback) const {
-  return has(key) ? number(key) : fallback;
+}  // namespace
+
+double JsonReader::number(const char* key, Bounds bounds) const {
+  const JsonReader field = at(key);
+  if (!field.value_.is_number()) field.fail("expected a number");
+  const double v = field.value_.get<double>();
+  if (!(v >= bounds.low && v <= bounds.high)) {
+    field.fail(fmt(v) + " is outside [" + fmt(bounds.low) + ", " + fmt(bounds.high) + "]");
+  }
+  return v;
+}
+
+double JsonReader::number(const char* key, double fallback, Bounds bounds) const {
+  return has(key) ? number(key, bounds) : fallback;
 }
 
 bool JsonReader::boolean(const char* key, bool fallback) const {
@@ -86,7 +160,7 @@ bool JsonReader::boolean(const char* key, bool fallback) const {
   return field.value_.get<bool>();
 }
 
-std::vector<double> JsonReader::as_numbers(size_t count) const {
+std::vector<double> JsonReader::as_numbers(size_t count, Bounds bounds) const {
   if (!value_.is_array() || value_.size() != count) {
     fail("expected an array of " + std::to_string(count) + " numbers");
   }
@@ -94,16 +168,21 @@ std::vector<double> JsonReader::as_numbers(size_t count) const {
   for (const auto& v : value_) {
     if (!v.is_number()) fail("expected an array of " + std::to_string(count) + " numbers");
     out.push_back(v.get<double>());
+    if (!(out.back() >= bounds.low && out.back() <= bounds.high)) {
+      fail("[" + std::to_string(out.size() - 1) + "] = " + fmt(out.back()) + " is outside [" + fmt(bounds.low) + ", " +
+           fmt(bounds.high) + "]");
+    }
   }
   return out;
 }
 
-std::vector<double> JsonReader::numbers(const char* key, size_t count) const {
-  return at(key).as_numbers(count);
+std::vector<double> JsonReader::numbers(const char* key, size_t count, Bounds bounds) const {
+  return at(key).as_numbers(count, bounds);
 }
 
-std::vector<double> JsonReader::numbers(const char* key, size_t count, std::vector<double> fallback) const {
-  return has(key) ? numbers(key, count) : fallback;
+std::vector<double> JsonReader::numbers(const char* key, size_t count, std::vector<double> fallback,
+                                        Bounds bounds) const {
+  return has(key) ? numbers(key, count, bounds) : fallback;
 }
 
 }  // namespace chore

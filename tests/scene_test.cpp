@@ -7,6 +7,7 @@
 #include <set>
 
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "test_util.hpp"
 #include "world/scene.hpp"
 
@@ -118,6 +119,38 @@ TEST(Scene, MalformedJsonGivesFileLineAndColumn) {
   test::write_file(dir / "bad.json", "{\n  \"name\": \"bad\",\n  \"rooms\": [ oops ]\n}\n");
   const std::string e = test::error_of([&] { Scene::load((dir / "bad.json").string()); });
   EXPECT_NE(e.find("bad.json:3:"), std::string::npos) << e;
+}
+
+TEST(Scene, JsonNestingSizeAndNumbersAreBounded) {
+  const auto dir = test::scratch_dir("bounded_json");
+  // 50,000 nested links: refused where the nesting passes the limit, before any reader recurses.
+  std::string deep = "{\"links\": ";
+  for (int i = 0; i < 50000; ++i) deep += "[{\"links\": ";
+  test::write_file(dir / "deep.json", deep);
+  std::string e = test::error_of([&] { read_json_file((dir / "deep.json").string()); });
+  EXPECT_EQ(e, (dir / "deep.json").string() + ":1:353: nested deeper than 64 levels, the limit");
+  // A number past double's range, located.
+  test::write_file(dir / "huge.json", "{\n  \"mass\": 1e400\n}\n");
+  e = test::error_of([&] { read_json_file((dir / "huge.json").string()); });
+  EXPECT_EQ(e, (dir / "huge.json").string() + ":2:11: the number 1e400 is out of range");
+  // A file past the size limit (sparse: nothing is written).
+  test::write_file(dir / "big.json", "{}");
+  std::filesystem::resize_file(dir / "big.json", kMaxJsonBytes + 1);
+  e = test::error_of([&] { read_json_file((dir / "big.json").string()); });
+  EXPECT_EQ(e, (dir / "big.json").string() + ": larger than 256 MB, the limit for a JSON file");
+}
+
+TEST(Scene, PositionsAndRoomsOutsideAHouseAreErrors) {
+  const auto dir = test::scratch_dir("bounded_scene");
+  const std::string tail = R"("walls": [], "robot": {"pos": [1, 1]}, "objects": [)";
+  const std::string room = R"({"rooms": [{"name": "r_0", "type": "r", "rects": [[0, 0, 2, 2]]}], )";
+  test::write_file(dir / "far.json", room + tail + R"({"name": "x", "model": "apple", "pos": [1, 1e308, 0]}]})");
+  std::string e = test::error_of([&] { Scene::load((dir / "far.json").string()); });
+  EXPECT_NE(e.find("objects[0].pos: [1] = 1e+308 is outside [-100, 100]"), std::string::npos) << e;
+  test::write_file(dir / "vast.json",
+                   R"({"rooms": [{"name": "r_0", "type": "r", "rects": [[-1e6, -1e6, 1e6, 1e6]]}], )" + tail + "]}");
+  e = test::error_of([&] { Scene::load((dir / "vast.json").string()); });
+  EXPECT_NE(e.find("rooms[0].rects[0]: [0] = -1e+06 is outside [-100, 100]"), std::string::npos) << e;
 }
 
 TEST(Scene, MissingFieldAndUnknownModelAreNamed) {

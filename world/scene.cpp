@@ -41,6 +41,17 @@ constexpr double kZNear = 0.005;       // near plane = 0.05 m
 constexpr double kZFar = 5.0;          // far plane = 50 m
 constexpr double kCameraHeight = 1.1;  // the robot-less stand-in camera, like Tiago's head
 const Rgb kWallColor = {0.86, 0.84, 0.80};
+
+// What scene and object files may say (JsonReader errors past these): a
+// house fits in 200 m, its parts in 20 m; BEHAVIOR's largest scenes span ~40 m.
+constexpr Bounds kSceneCoordinate{-100, 100};  // m, in the scene's frame
+constexpr Bounds kPartCoordinate{-10, 10};     // m, in an object's or link's frame
+constexpr Bounds kSize{0, 10};                 // m, half-sizes of geoms
+constexpr Bounds kDegrees{-360, 360};
+constexpr Bounds kColor{0, 1};
+constexpr Bounds kMass{0, 1e4};  // kg
+constexpr Bounds kDamping{0, 1e6};
+constexpr Bounds kUnitScale{0, 1};  // m, cloth spacing and radius
 const Rgb kCeilingColor = {0.95, 0.95, 0.93};
 
 struct Geom {
@@ -102,14 +113,14 @@ Geom read_geom(const JsonReader& j) {
   const std::map<std::string, size_t> sizes = {{"box", 3}, {"cylinder", 2}, {"sphere", 1}, {"capsule", 2}};
   const auto it = sizes.find(g.type);
   if (it == sizes.end()) j.fail("type '" + g.type + "' is not one of box, cylinder, sphere, capsule");
-  g.size = j.numbers("size", it->second);
+  g.size = j.numbers("size", it->second, kSize);
   for (double s : g.size) {
     if (!(s > 0)) j.fail("size must be positive");
   }
-  const auto pos = j.numbers("pos", 3, {0, 0, 0});
+  const auto pos = j.numbers("pos", 3, {0, 0, 0}, kPartCoordinate);
   g.pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-  g.pose.linear() = rotation_xyz_degrees(j.numbers("euler", 3, {0, 0, 0}));
-  g.rgb = to_rgb(j.numbers("rgb", 3, {0.7, 0.7, 0.7}));
+  g.pose.linear() = rotation_xyz_degrees(j.numbers("euler", 3, {0, 0, 0}, kDegrees));
+  g.rgb = to_rgb(j.numbers("rgb", 3, {0.7, 0.7, 0.7}, kColor));
   return g;
 }
 
@@ -117,24 +128,24 @@ Link read_link(const JsonReader& j, bool root) {
   Link link;
   if (!root) {
     link.name = j.string("name");
-    const auto pos = j.numbers("pos", 3);
+    const auto pos = j.numbers("pos", 3, kPartCoordinate);
     link.pos = Eigen::Vector3d(pos[0], pos[1], pos[2]);
     const JsonReader joint = j.at("joint");
     link.joint_type = joint.string("type");
     if (link.joint_type != "slide" && link.joint_type != "hinge") {
       joint.fail("type '" + link.joint_type + "' is not slide or hinge");
     }
-    const auto axis = joint.numbers("axis", 3);
+    const auto axis = joint.numbers("axis", 3, Bounds{-1, 1});
     link.axis = Eigen::Vector3d(axis[0], axis[1], axis[2]);
     if (link.axis.norm() < 1e-9) joint.fail("axis is zero");
-    const auto range = joint.numbers("range", 2);
+    const auto range = joint.numbers("range", 2, link.joint_type == "hinge" ? kDegrees : kPartCoordinate);
     const double scale = link.joint_type == "hinge" ? M_PI / 180.0 : 1.0;
     link.range[0] = range[0] * scale;
     link.range[1] = range[1] * scale;
     if (!(link.range[0] < link.range[1])) joint.fail("range must be [low, high] with low < high");
-    link.damping = joint.number("damping", 1.0);
+    link.damping = joint.number("damping", 1.0, kDamping);
   }
-  link.mass = j.number("mass");
+  link.mass = j.number("mass", kMass);
   if (!(link.mass > 0)) j.fail("mass must be positive");
   const JsonReader geoms = j.at("geoms");
   for (size_t i = 0; i < geoms.size(); ++i) link.geoms.push_back(read_geom(geoms.at(i)));
@@ -155,22 +166,22 @@ ObjectModel read_object_model(const std::string& path) {
   if (j.has("cloth")) {
     const JsonReader c = j.at("cloth");
     Cloth cloth;
-    cloth.count = static_cast<int>(c.number("count", 5));
-    cloth.spacing = c.number("spacing", 0.06);
-    cloth.radius = c.number("radius", 0.006);
-    cloth.rgb = to_rgb(c.numbers("rgb", 3, {0.45, 0.65, 0.85}));
+    cloth.count = static_cast<int>(c.number("count", 5, Bounds{3, 15}));
+    cloth.spacing = c.number("spacing", 0.06, kUnitScale);
+    cloth.radius = c.number("radius", 0.006, kUnitScale);
+    cloth.rgb = to_rgb(c.numbers("rgb", 3, {0.45, 0.65, 0.85}, kColor));
     if (cloth.count < 3 || cloth.count > 15 || cloth.count % 2 == 0) c.fail("count must be odd, 3..15");
     if (!(cloth.spacing > 2 * cloth.radius) || !(cloth.radius > 0)) c.fail("need spacing > 2 x radius > 0");
     m.cloth = cloth;
-    m.root.mass = j.number("mass");
+    m.root.mass = j.number("mass", kMass);
     if (!(m.root.mass > 0)) j.fail("mass must be positive");
     return m;
   }
   m.root = read_link(j, true);
   if (j.has("light")) {
     const JsonReader light = j.at("light");
-    const auto pos = light.numbers("pos", 3);
-    m.light = Light{Eigen::Vector3d(pos[0], pos[1], pos[2]), to_rgb(light.numbers("rgb", 3, {1, 0.9, 0.75}))};
+    const auto pos = light.numbers("pos", 3, kPartCoordinate);
+    m.light = Light{Eigen::Vector3d(pos[0], pos[1], pos[2]), to_rgb(light.numbers("rgb", 3, {1, 0.9, 0.75}, kColor))};
   }
   return m;
 }
@@ -373,8 +384,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   scene->path_ = path;
   scene->has_robot_ = options.robot;
 
-  const double wall_height = j.number("wall_height", 2.6);
-  const double wall_thickness = j.number("wall_thickness", 0.1);
+  const double wall_height = j.number("wall_height", 2.6, Bounds{0.5, 20});
+  const double wall_thickness = j.number("wall_thickness", 0.1, Bounds{0.01, 2});
   StaticMesh mesh("static_visual", kMergedGroup);
   // Ceilings in their own group, so that views from above can leave them out.
   StaticMesh ceilings("ceiling_visual", kCeilingGroup);
@@ -391,10 +402,10 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
     for (const Room& other : scene->rooms_) {
       if (other.name == room.name) r.fail("duplicate room name '" + room.name + "'");
     }
-    const Rgb floor_rgb = to_rgb(r.numbers("floor_rgb", 3, {0.6, 0.6, 0.6}));
+    const Rgb floor_rgb = to_rgb(r.numbers("floor_rgb", 3, {0.6, 0.6, 0.6}, kColor));
     const JsonReader rects = r.at("rects");
     for (size_t k = 0; k < rects.size(); ++k) {
-      const auto v = rects.at(k).as_numbers(4);
+      const auto v = rects.at(k).as_numbers(4, kSceneCoordinate);
       if (!(v[0] < v[2] && v[1] < v[3])) rects.at(k).fail("expected [xmin, ymin, xmax, ymax]");
       room.rects.push_back({v[0], v[1], v[2], v[3]});
       lo = lo.cwiseMin(Eigen::Vector2d(v[0], v[1]));
@@ -415,7 +426,7 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
 
   const JsonReader walls = j.at("walls");
   for (size_t i = 0; i < walls.size(); ++i) {
-    const auto w = walls.at(i).as_numbers(4);
+    const auto w = walls.at(i).as_numbers(4, kSceneCoordinate);
     const Eigen::Vector2d a(w[0], w[1]), b(w[2], w[3]);
     const double length = (b - a).norm();
     if (length < 1e-6) walls.at(i).fail("wall has zero length");
@@ -433,8 +444,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   if (j.has("ceiling_lights")) {
     const JsonReader cl = j.at("ceiling_lights");
     for (size_t i = 0; i < cl.size(); ++i) {
-      const auto pos = cl.at(i).numbers("pos", 3);
-      const Rgb rgb = to_rgb(cl.at(i).numbers("rgb", 3, {0.5, 0.5, 0.5}));
+      const auto pos = cl.at(i).numbers("pos", 3, kSceneCoordinate);
+      const Rgb rgb = to_rgb(cl.at(i).numbers("rgb", 3, {0.5, 0.5, 0.5}, kColor));
       lights += "    <light name=\"ceiling_" + std::to_string(i) + "\" pos=\"" +
                 fmt(Eigen::Vector3d(pos[0], pos[1], pos[2])) +
                 "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"85\" "
@@ -473,10 +484,11 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
     object.category = model.category;
     object.synset = o.string("synset", model.synset);
     object.fixed = o.boolean("fixed", false);
-    const auto pos = o.numbers("pos", 3);
+    const auto pos = o.numbers("pos", 3, kSceneCoordinate);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    pose.linear() = Eigen::AngleAxisd(o.number("yaw", 0.0) * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.linear() =
+        Eigen::AngleAxisd(o.number("yaw", 0.0, kDegrees) * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 
     if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(object.mat.data()) = pose.linear();
@@ -564,8 +576,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   }
 
   const JsonReader robot = j.at("robot");
-  const auto start = robot.numbers("pos", 2);
-  scene->robot_start_ = {start[0], start[1], robot.number("yaw", 0.0) * M_PI / 180.0};
+  const auto start = robot.numbers("pos", 2, kSceneCoordinate);
+  scene->robot_start_ = {start[0], start[1], robot.number("yaw", 0.0, kDegrees) * M_PI / 180.0};
 
   // Cameras: a top-down overview, and a stand-in for the head camera when the
   // robot is left out.
