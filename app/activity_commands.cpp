@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "app/png.hpp"
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
@@ -66,7 +67,7 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   cv::Mat panel(kTop, kHead + kTop, CV_8UC3, cv::Scalar(0, 0, 0));
   head.copyTo(panel(cv::Rect(0, (kTop - kHead) / 2, kHead, kHead)));
   to_bgr(overview["rgb"], kTop, kTop).copyTo(panel(cv::Rect(kHead, 0, kTop, kTop)));
-  if (!cv::imwrite(png, panel)) throw Error("cannot write '" + png + "'");
+  write_png(png, panel, "activity sample");
   out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q " << reset.info.q << ", "
       << reset.info.satisfied << "/" << reset.info.total << " goal literals hold; picture: " << png << "\n";
 }

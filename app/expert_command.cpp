@@ -73,18 +73,27 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
   std::atomic<int> next{0};
   std::mutex log_mutex;
   const auto start = std::chrono::steady_clock::now();
+  std::exception_ptr error;  // the first a worker met; it stops the others and is rethrown here
   auto worker = [&] {
-    Env env(config, assets);
-    for (int i = next++; i < options.episodes; i = next++) {
-      episodes[i] = run_episode(env, options.seed + static_cast<uint64_t>(i));
+    try {
+      Env env(config, assets);
+      for (int i = next++; i < options.episodes; i = next++) {
+        episodes[i] = run_episode(env, options.seed + static_cast<uint64_t>(i));
+        const std::lock_guard<std::mutex> lock(log_mutex);
+        log << "episode " << i << " (seed " << options.seed + i
+            << "): " << (episodes[i].success ? "success" : "failure") << ", " << episodes[i].steps << " steps, Q "
+            << episodes[i].q << "\n";
+      }
+    } catch (...) {
       const std::lock_guard<std::mutex> lock(log_mutex);
-      log << "episode " << i << " (seed " << options.seed + i << "): " << (episodes[i].success ? "success" : "failure")
-          << ", " << episodes[i].steps << " steps, Q " << episodes[i].q << "\n";
+      if (!error) error = std::current_exception();
+      next = options.episodes;
     }
   };
   std::vector<std::thread> threads;
   for (int t = 0; t < std::min(options.threads, options.episodes); ++t) threads.emplace_back(worker);
   for (std::thread& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   nlohmann::json failures = nlohmann::json::object();

@@ -4,6 +4,7 @@
 #include <malloc.h>
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <iostream>
 #include <regex>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "app/activity_commands.hpp"
 #include "app/bench.hpp"
+#include "app/cli_numbers.hpp"
 #include "app/expert_command.hpp"
 #include "app/observe_command.hpp"
 #include "app/plot.hpp"
@@ -18,23 +20,27 @@
 #include "app/train_command.hpp"
 #include "app/video.hpp"
 #include "base/error.hpp"
+#include "base/random.hpp"
 #include "policies/evaluate.hpp"
 #include "training/checkpoint.hpp"
 #include "training/trainer.hpp"
 
 namespace {
 
-// "A-B" (or "A") as a seed range.
+// "A-B" (or "A") as a seed range, each seed in [0, kMaxSeed].
 std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::string& option) {
   std::smatch m;
   uint64_t first = 0, last = 0;
+  const std::string expected =
+      "': expected a seed or a range A-B of seeds in [0, " + std::to_string(chore::kMaxSeed) + "]";
   try {
-    if (!std::regex_match(text, m, std::regex(R"((\d+)(?:-(\d+))?)"))) throw std::invalid_argument(text);
+    if (!std::regex_match(text, m, std::regex(R"((\d{1,13})(?:-(\d{1,13}))?)"))) throw std::invalid_argument(text);
     first = std::stoull(m[1]);
     last = m[2].matched ? std::stoull(m[2]) : first;
   } catch (const std::exception&) {
-    throw chore::Error(option + " '" + text + "': expected a seed or a range A-B");
+    throw chore::Error(option + " '" + text + expected);
   }
+  if (first > chore::kMaxSeed || last > chore::kMaxSeed) throw chore::Error(option + " '" + text + expected);
   if (last < first) throw chore::Error(option + " '" + text + "': B is below A");
   return {first, last};
 }
@@ -73,7 +79,7 @@ void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
                   "Primitive execution: physical or symbolic (default: a checkpoint's own, else physical)")
       ->check(CLI::IsMember({"physical", "symbolic"}));
   cmd->add_option("--max-steps", a.max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
-      ->check(CLI::PositiveNumber);
+      ->check(chore::integer_in(1, 1000000));
 }
 
 std::vector<chore::PolicySource> policy_sources(const PolicyArgs& a, const std::string& command) {
@@ -132,20 +138,24 @@ int main(int argc, char** argv) {
   CLI::App* bench_cmd = app.add_subcommand("bench", "Idle benchmark (seed Table A.10 protocol)");
   bench_cmd->add_option("--scenes", bench.scenes, "Scenes to benchmark")->capture_default_str();
   bench_cmd->add_option("--steps", bench.steps, "Steps per repetition")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 1000000000))
       ->capture_default_str();
   bench_cmd->add_option("--repeats", bench.repeats, "Repetitions (median reported)")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 1000))
       ->capture_default_str();
-  bench_cmd->add_option("--width", bench.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
-  bench_cmd->add_option("--height", bench.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
+  bench_cmd->add_option("--width", bench.width, "Image width")
+      ->check(chore::integer_in(1, 4096))
+      ->capture_default_str();
+  bench_cmd->add_option("--height", bench.height, "Image height")
+      ->check(chore::integer_in(1, 4096))
+      ->capture_default_str();
   bench_cmd->add_option("--envs", bench.vector_envs, "Envs of the vector-env rows")
-      ->check(CLI::Range(2, 256))
+      ->check(chore::integer_in(2, 256))
       ->capture_default_str();
   bench_cmd
       ->add_option("--primitive-episodes", bench.primitive_episodes,
                    "Expert episodes per activity and mode for the primitive rows (0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(chore::integer_in(0, 1000000))
       ->capture_default_str();
   bench_cmd
       ->add_option("--sections", bench.sections,
@@ -165,7 +175,7 @@ int main(int argc, char** argv) {
   CLI::App* sample_cmd = activity_cmd->add_subcommand("sample", "Instantiate an activity and picture it");
   sample_cmd->add_option("name", sample_name, "Activity name or .bddl path")->required();
   sample_cmd->add_option("--scene", sample_scene, "Scene (default: the activity's)");
-  sample_cmd->add_option("--seed", sample_seed, "Seed")->capture_default_str();
+  sample_cmd->add_option("--seed", sample_seed, "Seed")->check(chore::seed_number())->capture_default_str();
   std::string sample_seeds;
   auto* out_option = sample_cmd->add_option("--out", sample_out, "PNG to write");
   sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")->excludes(out_option);
@@ -175,17 +185,20 @@ int main(int argc, char** argv) {
   bool expert_json = false;
   CLI::App* expert_cmd = app.add_subcommand("expert", "Run the scripted expert on an activity (primitive actions)");
   expert_cmd->add_option("--activity", expert.activity, "Activity name or .bddl path")->required();
-  expert_cmd->add_option("--episodes", expert.episodes, "Episodes")->check(CLI::PositiveNumber)->capture_default_str();
+  expert_cmd->add_option("--episodes", expert.episodes, "Episodes")
+      ->check(chore::integer_in(1, 1000000))
+      ->capture_default_str();
   expert_cmd->add_option("--seed", expert.seed, "Seed of the first episode (episode i: seed + i)")
+      ->check(chore::seed_number())
       ->capture_default_str();
   expert_cmd->add_option("--mode", expert_mode, "Primitive execution: physical or symbolic")
       ->check(CLI::IsMember({"physical", "symbolic"}))
       ->capture_default_str();
   expert_cmd->add_option("--max-steps", expert.max_steps, "Primitive steps per episode")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 1000000))
       ->capture_default_str();
   expert_cmd->add_option("--threads", expert.threads, "Episodes in parallel")
-      ->check(CLI::Range(1, 64))
+      ->check(chore::integer_in(1, 64))
       ->capture_default_str();
   expert_cmd->add_flag("--json", expert_json, "Print the results as JSON");
 
@@ -198,10 +211,10 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--seeds", eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
       ->capture_default_str();
   eval_cmd->add_option("--episodes", eval.episodes, "Episodes per seed")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 999999))
       ->capture_default_str();
   eval_cmd->add_option("--threads", eval.threads, "Envs run in parallel")
-      ->check(CLI::Range(1, 64))
+      ->check(chore::integer_in(1, 64))
       ->capture_default_str();
   eval_cmd->add_flag("--json", eval_json, "Print the results as JSON (per seed and episode too)");
 
@@ -209,24 +222,28 @@ int main(int argc, char** argv) {
   PolicyArgs video_policy;
   CLI::App* video_cmd = app.add_subcommand("video", "Record an episode: robot camera and top-down view, to MP4");
   add_policy_options(video_cmd, video_policy);
-  video_cmd->add_option("--seed", video.seed, "The episode's env seed")->capture_default_str();
+  video_cmd->add_option("--seed", video.seed, "The episode's env seed")
+      ->check(chore::seed_number())
+      ->capture_default_str();
   video_cmd->add_option("--out", video.out, "MP4 file to write")->required();
   video_cmd->add_option("--size", video.size, "Pixels of each view")
-      ->check(CLI::Range(16, 2048))
+      ->check(chore::integer_in(16, 2048))
       ->capture_default_str();
   video_cmd->add_option("--fps", video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
-      ->check(CLI::PositiveNumber);
+      ->check(chore::real_in(0.1, 240));
 
   chore::ObserveOptions observe;
   CLI::App* observe_cmd = app.add_subcommand("observe", "Every observation modality of one frame, as a PNG panel");
   observe_cmd->add_option("--activity", observe.activity, "Activity name or .bddl path (its scene)");
   observe_cmd->add_option("--scene", observe.scene, "Scene (default: the activity's, else the apartment)");
-  observe_cmd->add_option("--seed", observe.seed, "The episode's env seed")->capture_default_str();
+  observe_cmd->add_option("--seed", observe.seed, "The episode's env seed")
+      ->check(chore::seed_number())
+      ->capture_default_str();
   observe_cmd->add_option("--size", observe.size, "Pixels of each tile")
-      ->check(CLI::Range(32, 2048))
+      ->check(chore::integer_in(32, 2048))
       ->capture_default_str();
   observe_cmd->add_option("--steps", observe.steps, "Steps of motion before the frame (flow shows the last)")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 100000))
       ->capture_default_str();
   observe_cmd->add_option("--out", observe.out, "PNG to write")->required();
 
@@ -242,8 +259,12 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("--y", plot.y, "Column for the y axis (success_rate, mean_q, mean_return, ...)")
       ->capture_default_str();
   plot_cmd->add_option("--title", plot.title, "Title (default: Y over X)");
-  plot_cmd->add_option("--width", plot.width, "Picture width")->check(CLI::Range(320, 4096))->capture_default_str();
-  plot_cmd->add_option("--height", plot.height, "Picture height")->check(CLI::Range(240, 4096))->capture_default_str();
+  plot_cmd->add_option("--width", plot.width, "Picture width")
+      ->check(chore::integer_in(320, 4096))
+      ->capture_default_str();
+  plot_cmd->add_option("--height", plot.height, "Picture height")
+      ->check(chore::integer_in(240, 4096))
+      ->capture_default_str();
 
   // The baselines' registry (training/trainer.cpp): "rl-vmc (sac), rl-prim (ppo), ...".
   std::vector<std::string> baseline_names;
@@ -257,15 +278,17 @@ int main(int argc, char** argv) {
   CLI::App* train_cmd = app.add_subcommand("train", "Train a baseline on an activity: " + baselines_trained_by);
   train_cmd->add_option("--activity", train.activity, "Activity name or .bddl path");
   train_cmd->add_option("--baseline", train.baseline, "The baseline")->check(CLI::IsMember(baseline_names));
-  train_cmd->add_option("--seed", train.seed, "Seed (env i of the vector env: seed + i)")->capture_default_str();
+  train_cmd->add_option("--seed", train.seed, "Seed (env i of the vector env: seed + i)")
+      ->check(chore::seed_number())
+      ->capture_default_str();
   auto* train_steps_option =
       train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
-          ->check(CLI::PositiveNumber);
+          ->check(chore::integer_in(1, 10000000000));
   train_cmd->add_option("--envs", train.envs, "Envs of the vector env")
-      ->check(CLI::Range(1, 256))
+      ->check(chore::integer_in(1, 256))
       ->capture_default_str();
   train_cmd->add_option("--threads", train.threads, "Env worker and torch threads")
-      ->check(CLI::Range(1, 64))
+      ->check(chore::integer_in(1, 64))
       ->capture_default_str();
   train_cmd->add_option("--out", train.out, "Run folder: metrics.csv, checkpoint.pt, checkpoint_STEPS.pt");
   train_cmd->add_option("--resume", train.resume, "Continue the run in this folder from its checkpoint.pt");
@@ -276,12 +299,13 @@ int main(int argc, char** argv) {
                         "Observed fields (default: the baseline's), e.g. rgb is_grasping");
   train_cmd
       ->add_option("--episode-steps", train.episode_steps, "Steps per episode (default: 60 primitives, 500 low-level)")
-      ->check(CLI::PositiveNumber);
+      ->check(chore::integer_in(1, 1000000));
   train_cmd->add_option("--history", train.history, "rl-prim-hist: past steps the policy sees (default 4)")
-      ->check(CLI::Range(1, 64));
-  train_cmd->add_option("--checkpoint-every", train.checkpoint_every, "Env steps between checkpoints")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+      ->check(chore::integer_in(1, 64));
+  train_cmd
+      ->add_option("--checkpoint-every", train.checkpoint_every,
+                   "Env steps between checkpoints (default 3000, or the resumed run's)")
+      ->check(chore::integer_in(1, 10000000000));
   train_cmd->add_option(
       "--set", train.settings,
       "KEY=VALUE: a config field of the new run, as named in the run folder's config.json, e.g. ppo.entropy_coef=0.01");
@@ -294,18 +318,20 @@ int main(int argc, char** argv) {
   reproduce_cmd->add_option("--methods", reproduce.methods, "Methods (baselines)")
       ->check(CLI::IsMember(baseline_names))
       ->capture_default_str();
-  reproduce_cmd->add_option("--seeds", reproduce.seeds, "Training seeds")->capture_default_str();
+  reproduce_cmd->add_option("--seeds", reproduce.seeds, "Training seeds")
+      ->check(chore::seed_number())
+      ->capture_default_str();
   reproduce_cmd->add_option("--steps", reproduce.steps, "Training env steps per run")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 10000000000))
       ->capture_default_str();
   reproduce_cmd->add_option("--mode", reproduce.mode, "Primitive execution: physical (the paper's) or symbolic")
       ->check(CLI::IsMember({"physical", "symbolic"}))
       ->capture_default_str();
   reproduce_cmd->add_option("--jobs", reproduce.jobs, "Runs at once (one core each)")
-      ->check(CLI::Range(1, 64))
+      ->check(chore::integer_in(1, 64))
       ->capture_default_str();
   reproduce_cmd->add_option("--eval-episodes", reproduce.eval_episodes, "Episodes at evaluation seed 0")
-      ->check(CLI::PositiveNumber)
+      ->check(chore::integer_in(1, 999999))
       ->capture_default_str();
   reproduce_cmd
       ->add_option("--generalisation-seeds", generalisation_seeds, "Seeds A-B of fresh instances, one episode each")
@@ -407,6 +433,10 @@ int main(int argc, char** argv) {
       }
     }
   } catch (const chore::Error& e) {
+    std::cerr << "chore: error: " << e.what() << std::endl;
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path given on the command line or in a file: bad input, not a fault.
     std::cerr << "chore: error: " << e.what() << std::endl;
     return 2;
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "app/png.hpp"
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "world/segmentation.hpp"
@@ -205,7 +206,7 @@ nlohmann::json observe_panel(const ObserveOptions& o) {
   for (size_t i = 0; i < tiles.size(); ++i) {
     tiles[i].copyTo(panel(cv::Rect(static_cast<int>(i % kColumns) * s, static_cast<int>(i / kColumns) * s, s, s)));
   }
-  if (!cv::imwrite(o.out, panel)) throw Error("observe: cannot write '" + o.out + "'");
+  write_png(o.out, panel, "observe");
   nlohmann::json out;
   out["out"] = o.out;
   out["scene"] = env.world().scene().name();

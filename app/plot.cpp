@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "app/png.hpp"
 #include "base/error.hpp"
 
 namespace chore {
@@ -261,7 +262,7 @@ nlohmann::json plot_curves(const PlotOptions& options) {
     cv::line(image, {legend.x + 8, y}, {legend.x + 34, y}, kColours[k % 10], 2, cv::LINE_AA);
     cv::putText(image, entries[k], {legend.x + 40, y + 5}, kFont, 0.45, kBlack, 1, cv::LINE_AA);
   }
-  if (!cv::imwrite(options.out, image)) throw Error("plot: cannot write '" + options.out + "'");
+  write_png(options.out, image, "plot");
 
   nlohmann::json summary = nlohmann::json::array();
   for (const Group& g : groups)

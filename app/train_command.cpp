@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "base/error.hpp"
@@ -29,6 +31,56 @@ std::string format_duration(double seconds) {
   return text;
 }
 
+// A metrics row's env steps (its first cell), or none when it is not a number.
+std::optional<int64_t> row_steps(const std::string& line) {
+  const size_t comma = line.find(',');
+  if (comma == std::string::npos) return std::nullopt;
+  int64_t steps = 0;
+  const char* end = line.data() + comma;
+  const auto [stop, error] = std::from_chars(line.data(), end, steps);
+  if (error != std::errc() || stop != end) return std::nullopt;
+  return steps;
+}
+
+// A new run's folder, made if missing (std::filesystem's errors named as the
+// option's). Until keep(), a failed run removes what it made: the folder if
+// it made it, else the files it wrote there.
+class RunFolder {
+ public:
+  RunFolder() = default;
+  explicit RunFolder(const fs::path& dir) : dir_(dir), kept_(false) {
+    std::error_code error;
+    made_dir_ = !fs::exists(dir, error);
+    if (!fs::create_directories(dir, error) && error) {
+      throw Error("train: --out " + dir.string() + ": cannot make the folder: " + error.message());
+    }
+    if (!fs::is_directory(dir)) throw Error("train: --out " + dir.string() + ": not a folder");
+  }
+  RunFolder(RunFolder&& o) noexcept : dir_(std::move(o.dir_)), made_dir_(o.made_dir_), kept_(o.kept_) {
+    o.kept_ = true;
+  }
+  RunFolder& operator=(RunFolder&& o) noexcept {
+    std::swap(dir_, o.dir_);
+    std::swap(made_dir_, o.made_dir_);
+    std::swap(kept_, o.kept_);
+    return *this;
+  }
+  ~RunFolder() {
+    if (kept_ || dir_.empty()) return;
+    std::error_code ignored;
+    if (made_dir_) {
+      fs::remove_all(dir_, ignored);
+    } else {
+      for (const char* file : {"config.json", "metrics.csv"}) fs::remove(dir_ / file, ignored);
+    }
+  }
+  void keep() { kept_ = true; }
+
+ private:
+  fs::path dir_;
+  bool made_dir_ = false, kept_ = true;
+};
+
 // Keeps metrics.csv's header and the rows up to `steps` (a resumed run redoes
 // what came after its checkpoint); writes the header for a new file.
 void prepare_metrics(const fs::path& path, const std::string& header, int64_t steps) {
@@ -38,9 +90,10 @@ void prepare_metrics(const fs::path& path, const std::string& header, int64_t st
     while (std::getline(in, line)) {
       if (keep.empty()) {
         if (line != header) throw Error(path.string() + ": header differs from this trainer's: " + line);
-      } else if (std::count(line.begin(), line.end(), ',') != std::count(header.begin(), header.end(), ',') ||
-                 std::stoll(line.substr(0, line.find(','))) > steps) {
-        continue;  // after the checkpoint, or cut short by a kill
+      } else if (const std::optional<int64_t> row = row_steps(line);
+                 std::count(line.begin(), line.end(), ',') != std::count(header.begin(), header.end(), ',') || !row ||
+                 *row > steps) {
+        continue;  // after the checkpoint, cut short by a kill, or not a row
       }
       keep.push_back(line);
     }
@@ -61,6 +114,7 @@ TrainConfig new_run_config(const TrainOptions& o) {
   config.num_envs = o.envs;
   config.threads = o.threads;
   config.total_steps = o.steps.value_or(30000);
+  config.checkpoint_every = o.checkpoint_every.value_or(3000);
   config.env.primitive_mode = parse_execution_mode(o.mode);
   if (!o.observations.empty()) config.env.observations = o.observations;
   // Primitive episodes: 60 steps (as the scripted expert's); low-level: the env's 500.
@@ -80,10 +134,11 @@ void run_train(const TrainOptions& o, std::ostream& log) {
   if (o.envs < 1) throw Error("train: --envs must be at least 1");
   if (o.threads < 1) throw Error("train: --threads must be at least 1");
   if (o.steps && *o.steps < 1) throw Error("train: --steps must be at least 1");
-  if (o.checkpoint_every < 1) throw Error("train: --checkpoint-every must be at least 1");
+  if (o.checkpoint_every && *o.checkpoint_every < 1) throw Error("train: --checkpoint-every must be at least 1");
   const fs::path checkpoint = fs::path(dir) / "checkpoint.pt";
 
   std::unique_ptr<Trainer> trainer;
+  RunFolder made;  // what a new run made, removed if it fails before its first checkpoint
   if (!o.resume.empty()) {
     if (!o.out.empty() && fs::path(o.out) != fs::path(o.resume)) {
       throw Error("train: --resume continues in its own folder; drop --out or make it the same");
@@ -94,18 +149,21 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     if (!o.settings.empty()) throw Error("train: --set changes a new run; --resume continues one as it was");
     const TrainConfig& saved = trainer->config();
     if ((!o.activity.empty() && o.activity != saved.env.activity) ||
-        (!o.baseline.empty() && o.baseline != saved.baseline)) {
+        (!o.baseline.empty() && o.baseline != saved.baseline) ||
+        (o.checkpoint_every && *o.checkpoint_every != saved.checkpoint_every)) {
       throw Error("train: " + o.resume + " holds a " + saved.baseline + " run on " + saved.env.activity +
-                  "; --resume continues it as it was");
+                  ", checkpointed every " + std::to_string(saved.checkpoint_every) +
+                  " steps; --resume continues it as it was");
     }
   } else {
     if (fs::exists(checkpoint)) {
       throw Error("train: " + dir + " already holds a run (checkpoint.pt); --resume " + dir +
                   " continues it, or choose another --out");
     }
+    // The trainer (its envs, the activity) first: a bad setting leaves no folder behind.
     const TrainConfig config = new_run_config(o);
-    fs::create_directories(dir);
     trainer = make_trainer(config);
+    made = RunFolder(dir);
     // The run's settings, readable without the checkpoint (the names --set takes).
     std::ofstream config_file(fs::path(dir) / "config.json");
     config_file << to_json(config).dump(2) << "\n";
@@ -145,10 +203,12 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     log << (tty ? "\r\033[K" : "") << line << (tty ? "" : "\n") << std::flush;
   };
 
+  const int64_t every = config.checkpoint_every;
   while (trainer->env_steps() < total) {
-    const int64_t next = std::min(total, (trainer->env_steps() / o.checkpoint_every + 1) * o.checkpoint_every);
+    const int64_t next = std::min(total, (trainer->env_steps() / every + 1) * every);
     trainer->train(next, report);
     trainer->save(checkpoint.string());
+    made.keep();
     trainer->save((fs::path(dir) / ("checkpoint_" + std::to_string(trainer->env_steps()) + ".pt")).string());
   }
   if (tty) log << "\n";

@@ -18,14 +18,14 @@ struct TrainOptions {
   uint64_t seed = 0;
   std::optional<int64_t> steps;  // total env steps; default 30000, or the resumed run's
   int envs = 1, threads = 1;
-  std::string out;                        // run folder; defaults to `resume`
-  std::string resume;                     // a run folder holding checkpoint.pt
-  std::string mode = "physical";          // primitive execution (rl-prim, rl-prim-hist)
-  std::vector<std::string> observations;  // empty: the baseline's
-  int episode_steps = 0;                  // 0: the baseline's
-  int history = 0;                        // rl-prim-hist's K; 0: PpoConfig's default
-  int64_t checkpoint_every = 3000;        // env steps
-  std::vector<std::string> settings;      // KEY=VALUE overrides of the config (with_setting)
+  std::string out;                          // run folder; defaults to `resume`
+  std::string resume;                       // a run folder holding checkpoint.pt
+  std::string mode = "physical";            // primitive execution (rl-prim, rl-prim-hist)
+  std::vector<std::string> observations;    // empty: the baseline's
+  int episode_steps = 0;                    // 0: the baseline's
+  int history = 0;                          // rl-prim-hist's K; 0: PpoConfig's default
+  std::optional<int64_t> checkpoint_every;  // env steps; default 3000, or the resumed run's
+  std::vector<std::string> settings;        // KEY=VALUE overrides of the config (with_setting)
 };
 
 // The config of a new run from the options (not --resume's); throws chore::Error.

@@ -11,6 +11,11 @@ namespace chore {
 
 using Rng = std::mt19937_64;
 
+// The largest seed chore takes from a user: seeds derived from it (env i of a
+// vector env: seed + i; eval's episode j of seed s: s * 10^6 + j) stay far
+// from wrapping around 2^64.
+inline constexpr uint64_t kMaxSeed = 1000000000000;
+
 // Uniform in [lo, hi) from 53 random bits.
 inline double uniform(Rng& rng, double lo, double hi) {
   return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);

@@ -126,10 +126,14 @@ NetworkSpec network_spec_from_json(const nlohmann::json& j) {
     s.num_actions = j.at("num_actions").get<int64_t>();
     s.action_size = j.at("action_size").get<int>();
     s.hidden = j.at("hidden").get<int>();
-    if (s.height < 0 || s.width < 0 || s.state_size < 0 || s.feature_size <= 0 || s.history < 0 || s.num_actions < 0 ||
-        s.action_size < 0 || s.hidden <= 0) {
-      throw Error("a size is out of range");
-    }
+    within("height", s.height, 0, 4096);
+    within("width", s.width, 0, 4096);
+    within("state_size", s.state_size, 0, 100000);
+    within("feature_size", s.feature_size, 1, 100000);
+    within("history", s.history, 0, 64);
+    within<int64_t>("num_actions", s.num_actions, 0, 1000000);
+    within("action_size", s.action_size, 0, 10000);
+    within("hidden", s.hidden, 1, 100000);
     return s;
   } catch (const nlohmann::json::exception& e) {
     throw Error(std::string("network spec: ") + e.what());

@@ -173,14 +173,21 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   expected["ppo"]["target_kl"] = 0.01;
   expected["env"]["max_episode_steps"] = 30;
   EXPECT_EQ(to_json(c), expected);
-  for (const auto& [bad, message] :
-       std::vector<std::pair<std::string, std::string>>{{"ppo.epochs", "expected KEY=VALUE"},
-                                                        {"ppo.nope=1", "ppo.nope: no such setting"},
-                                                        {"ppo.lr.x=1", "ppo.lr.x: no such setting"},
-                                                        {"ppo=1", "a group of settings"},
-                                                        {"ppo.epochs=1.5", "'1.5' is not a number like 10"},
-                                                        {"ppo.normalize_advantage=1", "is not a boolean"},
-                                                        {"seed=-1", "is not a number"}}) {
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"ppo.epochs", "expected KEY=VALUE"},
+           {"ppo.nope=1", "ppo.nope: no such setting"},
+           {"ppo.lr.x=1", "ppo.lr.x: no such setting"},
+           {"ppo=1", "a group of settings"},
+           {"ppo.epochs=1.5", "'1.5' is not a number like 10"},
+           {"ppo.normalize_advantage=1", "is not a boolean"},
+           {"seed=-1", "is not a number"},
+           // Ranges, and numbers that would not fit their field.
+           {"ppo.lr=-1", "--set ppo.lr=-1: ppo.lr = -1 is outside [1e-12, 1]"},
+           {"ppo.lr=1e308", "ppo.lr = 1e+308 is outside [1e-12, 1]"},
+           {"seed=1000000000001", "seed = 1000000000001 is outside"},
+           {"sac.buffer=4294967297",
+            "sac.buffer = 4294967297 does not fit the setting (it would "
+            "read as 1)"}}) {
     EXPECT_NE(test::error_of([&] { with_setting(base, bad); }).find(message), std::string::npos) << bad;
   }
   // A run saved before the fields existed normalised its advantages and never stopped early.
@@ -488,6 +495,18 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   no_steps.meta.erase("steps");
   write_checkpoint((dir / "steps.pt").string(), no_steps);
   EXPECT_NE(load_error((dir / "steps.pt").string()).find("bad metadata"), std::string::npos);
+  // Absurd sizes that pass the checksum are errors before any allocation.
+  CheckpointFile huge = file;
+  huge.meta["network"]["hidden"] = 1000000000;
+  write_checkpoint((dir / "huge.pt").string(), huge);
+  EXPECT_NE(load_error((dir / "huge.pt").string()).find("network spec: hidden = 1000000000 is outside [1, 100000]"),
+            std::string::npos);
+  CheckpointFile deep = file;
+  nlohmann::json nest = 1;
+  for (int i = 0; i < 100; ++i) nest = nlohmann::json::array({nest});
+  deep.meta["nest"] = nest;
+  write_checkpoint((dir / "deep.pt").string(), deep);
+  EXPECT_NE(load_error((dir / "deep.pt").string()).find(": metadata:1:"), std::string::npos);
   CheckpointFile bad_tensors = file;
   bad_tensors.tensors = "not a torch archive";
   write_checkpoint((dir / "tensors.pt").string(), bad_tensors);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "policies/networks.hpp"
 #include "training/torch_support.hpp"
 #include "training/trainer.hpp"
@@ -119,11 +120,7 @@ CheckpointFile read_checkpoint(const std::string& path) {
   if (checksum != fnv1a(bytes.substr(0, body))) {
     throw Error("checkpoint " + path + ": corrupt (checksum mismatch)");
   }
-  try {
-    checkpoint.meta = nlohmann::json::parse(meta);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error("checkpoint " + path + ": bad metadata: " + e.what());
-  }
+  checkpoint.meta = parse_json(meta, "checkpoint " + path + ": metadata");
   return checkpoint;
 }
 

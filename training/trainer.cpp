@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "base/error.hpp"
+#include "base/random.hpp"
 #include "base/registry.hpp"
 #include "training/checkpoint.hpp"
 
@@ -161,6 +162,7 @@ nlohmann::json to_json(const TrainConfig& c) {
           {"threads", c.threads},
           {"seed", c.seed},
           {"total_steps", c.total_steps},
+          {"checkpoint_every", c.checkpoint_every},
           {"ppo",
            {{"lr", p.lr},
             {"buffer", p.buffer},
@@ -187,6 +189,57 @@ nlohmann::json to_json(const TrainConfig& c) {
             {"report_every", s.report_every}}}};
 }
 
+namespace {
+
+// Every value `given` holds that `read` holds too must be equal there: a
+// number that does not fit its field (an int of 2^32 + 1, an int of 1.5)
+// would otherwise be changed on the way in, silently.
+void check_read_back(const nlohmann::json& given, const nlohmann::json& read, const std::string& path) {
+  if (given.is_object() && read.is_object()) {
+    for (const auto& [key, value] : given.items()) {
+      if (read.contains(key)) check_read_back(value, read.at(key), path.empty() ? key : path + "." + key);
+    }
+  } else if (given != read) {
+    throw Error(path + " = " + given.dump() + " does not fit the setting (it would read as " + read.dump() + ")");
+  }
+}
+
+// The ranges a run's settings must lie in, whether from --set or a
+// checkpoint: past them torch fails deep inside (a negative learning rate) or
+// an allocation is absurd (a replay buffer of 10^12 transitions).
+void validate(const TrainConfig& c) {
+  const PpoConfig& p = c.ppo;
+  const SacConfig& s = c.sac;
+  within("num_envs", c.num_envs, 1, 256);
+  within("threads", c.threads, 1, 64);
+  within<uint64_t>("seed", c.seed, 0, kMaxSeed);
+  within<int64_t>("total_steps", c.total_steps, 1, 10000000000);
+  within<int64_t>("checkpoint_every", c.checkpoint_every, 1, 10000000000);
+  within("ppo.lr", p.lr, 1e-12, 1.0);
+  within("ppo.buffer", p.buffer, 1, 1000000);
+  within("ppo.batch", p.batch, 1, 1000000);
+  within("ppo.epochs", p.epochs, 1, 1000);
+  within("ppo.gamma", p.gamma, 0.0, 1.0);
+  within("ppo.gae_lambda", p.gae_lambda, 0.0, 1.0);
+  within("ppo.clip", p.clip, 1e-9, 1e3);
+  within("ppo.entropy_coef", p.entropy_coef, 0.0, 1e3);
+  within("ppo.value_coef", p.value_coef, 0.0, 1e3);
+  within("ppo.max_grad_norm", p.max_grad_norm, 1e-9, 1e6);
+  within("ppo.history", p.history, 0, 64);
+  within("ppo.target_kl", p.target_kl, 0.0, 1e3);
+  within("sac.lr", s.lr, 1e-12, 1.0);
+  within("sac.buffer", s.buffer, 1, 1000000);
+  within("sac.batch", s.batch, 1, 100000);
+  within("sac.gamma", s.gamma, 0.0, 1.0);
+  within("sac.tau", s.tau, 1e-9, 1.0);
+  within("sac.learning_starts", s.learning_starts, 0, 1000000000);
+  within("sac.initial_alpha", s.initial_alpha, 1e-9, 1e3);
+  within("sac.hidden", s.hidden, 1, 4096);
+  within("sac.report_every", s.report_every, 1, 1000000000);
+}
+
+}  // namespace
+
 TrainConfig train_config_from_json(const nlohmann::json& j) {
   try {
     TrainConfig c;
@@ -196,6 +249,7 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
     c.threads = j.at("threads").get<int>();
     c.seed = j.at("seed").get<uint64_t>();
     c.total_steps = j.at("total_steps").get<int64_t>();
+    c.checkpoint_every = j.value("checkpoint_every", int64_t{3000});  // runs saved before it was kept: the default
     const nlohmann::json& p = j.at("ppo");
     c.ppo = {p.at("lr").get<double>(), p.at("buffer").get<int>(), p.at("batch").get<int>(), p.at("epochs").get<int>(),
              p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(), p.at("clip").get<double>(),
@@ -213,6 +267,8 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
              s.at("initial_alpha").get<double>(),
              s.at("hidden").get<int>(),
              s.at("report_every").get<int>()};
+    check_read_back(j, to_json(c), "");
+    validate(c);
     return c;
   } catch (const nlohmann::json::exception& e) {
     throw Error(std::string("train config: ") + e.what());
@@ -243,7 +299,11 @@ TrainConfig with_setting(const TrainConfig& config, const std::string& key_equal
     throw Error("--set " + key + ": '" + text + "' is not a " + field->type_name() + " like " + field->dump());
   }
   *field = value;
-  return train_config_from_json(tree);
+  try {
+    return train_config_from_json(tree);
+  } catch (const Error& e) {
+    throw Error("--set " + key_equals_value + ": " + e.what());
+  }
 }
 
 void EpisodeStats::record(const Batch& batch) {

@@ -62,7 +62,8 @@ struct TrainConfig {
   int num_envs = 1;
   int threads = 1;  // VectorEnv workers (at most num_envs) and torch's intra-op threads
   uint64_t seed = 0;
-  int64_t total_steps = 30000;  // env steps (primitive steps for rl-prim), as in the paper
+  int64_t total_steps = 30000;      // env steps (primitive steps for rl-prim), as in the paper
+  int64_t checkpoint_every = 3000;  // env steps between the checkpoints chore train writes
   PpoConfig ppo;
   SacConfig sac;
 };

@@ -1,0 +1,99 @@
+// The chore command line under bad input: each case exits 2 with "chore:
+// error:" or CLI11's message naming the option, never 1 (an internal
+// fault), a signal (an abort from a worker thread), a wrapped number or a
+// half-made run folder.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;  // exit status, or -1 after a signal
+  std::string err;  // stderr
+};
+
+Outcome run(const std::string& args) {
+  // Beside the test's own files: ctest runs the tests of this file in parallel.
+  const fs::path err =
+      fs::path(test::scratch_dir("cli_stderr_" +
+                                 std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()))) /
+      "stderr.txt";
+  const std::string command = std::string(CHORE_BINARY) + " " + args + " > /dev/null 2> " + err.string();
+  const int status = std::system(command.c_str());
+  std::ifstream in(err);
+  Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, {std::istreambuf_iterator<char>(in), {}}};
+  return r;
+}
+
+void expect_error(const std::string& args, const std::string& message) {
+  const Outcome r = run(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+  EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+}
+
+TEST(Cli, NumbersOutsideTheirRangeAreErrorsNamingIt) {
+  expect_error("expert --activity store_decoration --seed -5", "--seed: '-5' is not an integer in [0, 1000000000000]");
+  expect_error("train --activity store_decoration --baseline rl-prim --steps 1e20 --out x",
+               "--steps: '1e20' is not an integer in [1, 10000000000]");
+  expect_error("train --activity store_decoration --baseline rl-prim --steps abc --out x",
+               "--steps: 'abc' is not an integer in [1, 10000000000]");
+  expect_error("eval --expert --activity store_decoration --seeds 18446744073709551615",
+               "--seeds '18446744073709551615': expected a seed or a range A-B of seeds in [0, 1000000000000]");
+  expect_error("video --expert --activity store_decoration --out x.mp4 --fps inf",
+               "--fps: 'inf' is not a number in [0.1, 240]");
+}
+
+TEST(Cli, FailuresOfDependenciesAndWorkersAreErrors) {
+  const fs::path dir = test::scratch_dir("cli_failures");
+  // A chore::Error in a worker thread reaches the command, not std::terminate.
+  expect_error("expert --activity '' --episodes 2 --threads 2", "chore: error: env config:");
+  // std::filesystem: --out is a file.
+  std::ofstream(dir / "a_file") << "x";
+  expect_error("train --activity collect_trash --baseline rl-prim --out " + (dir / "a_file").string(),
+               "chore: error: train: --out " + (dir / "a_file").string() + ": cannot make the folder");
+  // OpenCV: no writer for the extension.
+  expect_error("observe --activity store_decoration --out " + (dir / "x.jpgx").string(),
+               "chore: error: observe: --out '" + (dir / "x.jpgx").string() + "' must end in .png");
+  // torch: a setting it would refuse deep inside; and nothing of the run is left.
+  expect_error("train --activity collect_trash --baseline rl-prim --set ppo.lr=-1 --out " + (dir / "lr").string(),
+               "chore: error: --set ppo.lr=-1: ppo.lr = -1 is outside [1e-12, 1]");
+  EXPECT_FALSE(fs::exists(dir / "lr"));
+  expect_error("train --activity no_such_activity --baseline rl-prim --out " + (dir / "unknown").string(),
+               "chore: error: unknown activity 'no_such_activity'");
+  EXPECT_FALSE(fs::exists(dir / "unknown"));
+}
+
+// --resume keeps the run's checkpoint interval, and a metrics row that is not
+// a number (a damaged file) is dropped, not a crash.
+TEST(Cli, ResumeKeepsEverySettingOfTheRun) {
+  const fs::path dir = test::scratch_dir("cli_resume") / "run";
+  const std::string fast =
+      "--activity collect_trash --baseline rl-prim --mode symbolic --observations proprio is_grasping "
+      "--episode-steps 16 --seed 1 ";
+  ASSERT_EQ(run("train " + fast + "--steps 600 --checkpoint-every 600 --out " + dir.string()).status, 0);
+  EXPECT_TRUE(fs::exists(dir / "checkpoint_600.pt"));
+  std::ofstream(dir / "metrics.csv", std::ios::app) << "garbage,1,2,3,4,5,6,7,8,9,10,11,12,13,14,15\n";
+  const Outcome resumed = run("train --resume " + dir.string() + " --steps 1800");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  // Every 600 steps (PPO's rollouts are 300), not the default 3000's one checkpoint at the end.
+  EXPECT_TRUE(fs::exists(dir / "checkpoint_1200.pt"));
+  EXPECT_TRUE(fs::exists(dir / "checkpoint_1800.pt"));
+  std::ifstream metrics(dir / "metrics.csv");
+  const std::string text{std::istreambuf_iterator<char>(metrics), {}};
+  EXPECT_EQ(text.find("garbage"), std::string::npos);
+  expect_error("train --resume " + dir.string() + " --checkpoint-every 100",
+               "checkpointed every 600 steps; --resume continues it as it was");
+}
+
+}  // namespace
+}  // namespace chore
