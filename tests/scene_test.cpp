@@ -179,6 +179,22 @@ TEST(Scene, MalformedRobotMjcfNamesTheFile) {
   EXPECT_NE(e.find("tiago.xml: invalid robot MJCF"), std::string::npos) << e;
 }
 
+// MuJoCo's XML reader (tinyxml2) bounds the nesting itself: a clear error, no
+// stack overflow.
+TEST(Scene, DeeplyNestedRobotMjcfIsALocatedError) {
+  const auto dir = test::scratch_dir("deep_robot");
+  std::filesystem::create_directories(dir / "robots");
+  std::filesystem::create_directory_symlink(default_assets_dir() + "/objects", dir / "objects");
+  std::string xml = "<mujoco>\n<!-- a comment -->\n<worldbody>\n";
+  for (int i = 0; i < 100000; ++i) xml += "<body><geom size=\"0.1\"/>";
+  test::write_file(dir / "robots" / "tiago.xml", xml);
+  SceneOptions options;
+  options.assets_dir = dir.string();
+  const std::string e = test::error_of([&] { Scene::load(test::box_room(), options); });
+  EXPECT_NE(e.find("tiago.xml: invalid robot MJCF: XML parse error"), std::string::npos) << e;
+  EXPECT_NE(e.find("Line number=4: Element nesting is too deep"), std::string::npos) << e;
+}
+
 TEST(Scene, MissingRobotFileNamesThePath) {
   const auto dir = test::scratch_dir("no_robot_file");
   std::filesystem::create_directory_symlink(default_assets_dir() + "/objects", dir / "objects");
