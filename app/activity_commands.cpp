@@ -16,12 +16,10 @@ namespace chore {
 
 void check_activities(const std::vector<std::string>& files, std::ostream& out) {
   const auto kb = KnowledgeBase::load();
-  auto known = [&](const std::string& t) { return t == "agent.n.01" || t == "floor.n.01" || kb->contains(t); };
+  const Vocabulary vocabulary = load_vocabulary(kb);
   for (const std::string& file : files) {
-    const Problem p = load_bddl(file);
-    for (const ObjectDecl& d : p.objects) {
-      if (!known(d.type)) kb->is_a(d.type, d.type);  // throws: unknown synset, with suggestions
-    }
+    // Predicates and arities, room types and synsets checked where they are written.
+    const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
     const GroundGoal goal = ground_goal(p, [&](std::string_view instance, std::string_view type) {
       const std::string i(instance), t(type);
       return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));

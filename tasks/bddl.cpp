@@ -32,6 +32,15 @@ std::optional<Op> operator_named(std::string_view name) {
 constexpr size_t kMaxNesting = 100;
 constexpr int kMaxCount = 1000000;
 
+// kitchen_0 -> kitchen: a scene's room names are its types numbered.
+std::string_view room_type(std::string_view room) {
+  const size_t underscore = room.rfind('_');
+  if (underscore == std::string_view::npos || underscore + 1 == room.size()) return room;
+  const std::string_view number = room.substr(underscore + 1);
+  const bool digits = std::all_of(number.begin(), number.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return digits ? room.substr(0, underscore) : room;
+}
+
 bool is_pair_quantifier(Op op) {
   return op == Op::forpairs || op == Op::fornpairs;
 }
@@ -178,6 +187,9 @@ class Parser {
     else
       fail_at(domain_name, "igibson or omnigibson");
     expect_size(domain, 2);
+    if (options_.vocabulary) {
+      predicates_ = p.domain == Domain::igibson ? &options_.vocabulary->igibson : &options_.vocabulary->omnigibson;
+    }
 
     p.objects = objects(section(define, 3, ":objects"));
     const Sexp& init = section(define, 4, ":init");
@@ -237,6 +249,7 @@ class Parser {
         if (untyped == 0) fail_at(e, "an object name");
         const Sexp& type = item(section, ++i, "a type after '-'");
         if (type.is_list || type.atom == "-" || type.atom.starts_with('?')) fail_at(type, "a type after '-'");
+        check_synset(type);
         for (size_t k = decls.size() - untyped; k < decls.size(); ++k) decls[k].type = type.atom;
         untyped = 0;
         continue;
@@ -270,8 +283,24 @@ class Parser {
     if (head.is_list || head.atom.starts_with('?') || head.atom.starts_with(':') || operator_named(head.atom))
       fail_at(head, "a predicate name");
     Literal l{head.atom, {}, false};
+    if (predicates_) {
+      const auto known = predicates_->find(head.atom);
+      if (known == predicates_->end()) fail_at(head, "a predicate of the domain");
+      if (static_cast<int>(e.items.size()) - 1 != known->second) {
+        fail(file_, e.pos, std::to_string(known->second) + " argument(s) to " + quote(head.atom),
+             std::to_string(e.items.size() - 1));
+      }
+    }
     for (size_t i = 1; i < e.items.size(); ++i) l.args.push_back(term(e.items[i], l.predicate, i - 1));
     return l;
+  }
+
+  // A synset the vocabulary knows (agent.n.01 and floor.n.01 always).
+  void check_synset(const Sexp& type) const {
+    if (!options_.vocabulary || !options_.vocabulary->unknown_synset) return;
+    if (type.atom == "agent.n.01" || type.atom == "floor.n.01") return;
+    const std::string why = options_.vocabulary->unknown_synset(type.atom);
+    if (!why.empty()) throw Error(std::string(file_) + ":" + to_string(type.pos) + ": " + why);
   }
 
   std::string term(const Sexp& e, std::string_view predicate, size_t index) const {
@@ -284,6 +313,8 @@ class Parser {
       fail_at(e, "a variable bound by an enclosing quantifier or a declared object");
     }
     const bool room = predicate == "inroom" && index == 1;
+    if (room && options_.vocabulary && !options_.vocabulary->room_types.contains(room_type(t)))
+      fail_at(e, "a room type (or a room named TYPE_N)");
     if (!room && !options_.allow_undeclared_objects && !declared_.contains(t))
       fail_at(e, "an object declared in :objects");
     return t;
@@ -352,6 +383,7 @@ class Parser {
     if (dash.is_list || dash.atom != "-") fail_at(dash, "'-'");
     const Sexp& type = item(e, 2, "a type");
     if (type.is_list || type.atom == "-" || type.atom.starts_with('?')) fail_at(type, "a type");
+    check_synset(type);
     expect_size(e, 3);
     return {var.atom, type.atom};
   }
@@ -371,6 +403,7 @@ class Parser {
   ParseOptions options_;
   std::map<std::string, Pos, std::less<>> declared_;  // :objects, with where each is declared
   std::vector<std::string> scope_;                    // goal variables in scope, innermost last
+  const Predicates* predicates_ = nullptr;            // the vocabulary's, for the problem's dialect
 };
 
 void print(std::string& out, const Formula& f, int depth) {
@@ -443,6 +476,28 @@ Problem parse_bddl(std::string_view text, std::string_view file_name, const Pars
   Problem p = Parser(file_name, options).problem(document);
   p.file = file_name;
   return p;
+}
+
+Predicates parse_domain(std::string_view text, std::string_view file_name) {
+  const Sexp define = Reader(text, file_name).document();
+  const auto fail_at = [&](const Sexp& e, std::string_view expected) { fail(file_name, e.pos, expected, describe(e)); };
+  if (!define.is_list || define.items.empty() || define.items[0].atom != "define") fail_at(define, "'(define'");
+  for (const Sexp& section : define.items) {
+    if (!section.is_list || section.items.empty() || section.items[0].atom != ":predicates") continue;
+    Predicates predicates;
+    for (size_t i = 1; i < section.items.size(); ++i) {
+      const Sexp& p = section.items[i];
+      if (!p.is_list || p.items.empty() || p.items[0].is_list) fail_at(p, "a predicate such as (ontop ?a ?b)");
+      int arity = 0;  // variables, less typed-list '- TYPE's
+      for (size_t k = 1; k < p.items.size(); ++k) {
+        if (p.items[k].is_list) fail_at(p.items[k], "a variable");
+        if (p.items[k].atom.starts_with('?')) ++arity;
+      }
+      predicates[p.items[0].atom] = arity;
+    }
+    return predicates;
+  }
+  fail(file_name, define.end, "(:predicates ...)", "')'");
 }
 
 Problem load_bddl(const std::string& path, const ParseOptions& options) {

@@ -23,6 +23,9 @@
 #pragma once
 
 #include <compare>
+#include <functional>
+#include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -97,10 +100,26 @@ struct Problem {
   }
 };
 
+// A domain's predicates with their arities, from its
+// (define (domain NAME) ... (:predicates (PREDICATE ?a ?b) ...)).
+using Predicates = std::map<std::string, int, std::less<>>;
+Predicates parse_domain(std::string_view text, std::string_view file_name);
+
+// What a problem may name beyond the grammar: each dialect's predicates and
+// arities, the room types `inroom` may name, and the synsets objects and
+// variables may have (`unknown_synset` says why one is not known, or "").
+// The parser checks them where they are written (FILE:LINE:COL).
+struct Vocabulary {
+  Predicates igibson, omnigibson;
+  std::set<std::string, std::less<>> room_types;
+  std::function<std::string(const std::string& synset)> unknown_synset;
+};
+
 struct ParseOptions {
   // Accept bare names that :objects does not declare. Off by default; the
   // BEHAVIOR-1K paper's Listings 1 and 2 need it (oven.n.01_1, bottle.n.01_1).
   bool allow_undeclared_objects = false;
+  const Vocabulary* vocabulary = nullptr;  // none: the grammar alone
 };
 
 // `file_name` only labels error messages.

@@ -214,7 +214,12 @@ std::shared_ptr<const KnowledgeBase> KnowledgeBase::load(const std::string& dir)
 
 const KnowledgeBase::Synset& KnowledgeBase::find(const std::string& synset) const {
   const auto found = synsets_.find(synset);
-  if (found != synsets_.end()) return found->second;
+  if (found == synsets_.end()) throw Error(unknown(synset));
+  return found->second;
+}
+
+std::string KnowledgeBase::unknown(const std::string& synset) const {
+  if (synsets_.contains(synset)) return "";
   // Other senses of the same lemma sort together, right after "<lemma>.".
   std::string message = "unknown synset '" + synset + "'";
   const std::string lemma = synset.substr(0, synset.find('.')) + ".";
@@ -223,7 +228,7 @@ const KnowledgeBase::Synset& KnowledgeBase::find(const std::string& synset) cons
     senses += (senses.empty() ? "" : ", ") + it->first;
   }
   if (!senses.empty()) message += "; did you mean " + senses + "?";
-  throw Error(message);
+  return message;
 }
 
 bool KnowledgeBase::contains(const std::string& synset) const {

@@ -52,6 +52,9 @@ class KnowledgeBase {
   KnowledgeBase& operator=(const KnowledgeBase&) = delete;
 
   bool contains(const std::string& synset) const;
+  // Why `synset` is not in the hierarchy ("unknown synset 'x'; did you mean
+  // x.n.01?"), or "" when it is.
+  std::string unknown(const std::string& synset) const;
   std::vector<std::string> synsets() const;  // all, sorted
 
   // The queries below throw chore::Error "unknown synset '...'" (naming other

@@ -343,6 +343,41 @@ TEST(BddlParser, RoomsInInroomAreNotObjects) {
             "f:4:16: expected an object declared in :objects got 'garden'");
 }
 
+// With a vocabulary, what the grammar allows but the domain, the room types
+// or the knowledge base do not is an error where it is written.
+TEST(BddlParser, AVocabularyChecksPredicatesArityRoomsAndSynsetsWhereWritten) {
+  Vocabulary v;
+  v.omnigibson = parse_domain(
+      "(define (domain d) (:requirements :strips) (:predicates (ontop ?a ?b) (cooked ?a) "
+      "(inroom ?a ?r) (grasped ?a - agent ?b - object)))",
+      "d.bddl");
+  EXPECT_EQ(v.omnigibson, (Predicates{{"ontop", 2}, {"cooked", 1}, {"inroom", 2}, {"grasped", 2}}));
+  v.room_types = {"kitchen", "garden"};
+  v.unknown_synset = [](const std::string& s) {
+    return s == "apple.n.01" || s == "table.n.02" ? "" : "unknown synset '" + s + "'";
+  };
+  const ParseOptions checked{.vocabulary = &v};
+  const auto error = [&](const std::string& goal) {
+    return test::error_of([&] { parse_bddl(with_goal(goal), "f", checked); });
+  };
+  EXPECT_NO_THROW(parse_bddl(with_goal("(and (cooked apple.n.01_1) (inroom table.n.02_1 kitchen_0))"), "f", checked));
+  EXPECT_EQ(error("(toasted apple.n.01_1)"), "f:4:9: expected a predicate of the domain got 'toasted'");
+  EXPECT_EQ(error("(ontop apple.n.01_1)"), "f:4:8: expected 2 argument(s) to 'ontop' got 1");
+  EXPECT_EQ(error("(inroom table.n.02_1 kichen)"),
+            "f:4:29: expected a room type (or a room named TYPE_N) got 'kichen'");
+  EXPECT_EQ(error("(forall (?p - pear.n.01) (cooked ?p))"), "f:4:22: unknown synset 'pear.n.01'");
+  EXPECT_EQ(test::error_of([&] {
+              parse_bddl(
+                  "(define (problem t) (:domain omnigibson) (:objects b - bowl.n.01) (:init) (:goal (cooked b)))", "g",
+                  checked);
+            }),
+            "g:1:56: unknown synset 'bowl.n.01'");
+  // Without one, only the grammar.
+  EXPECT_NO_THROW(parse_bddl(with_goal("(toasted apple.n.01_1)"), "f"));
+  EXPECT_EQ(test::error_of([] { parse_domain("(define (domain d))", "d.bddl"); }),
+            "d.bddl:1:19: expected (:predicates ...) got ')'");
+}
+
 TEST(BddlParser, DeepNestingIsRefusedNotOverflowed) {
   std::string goal = "(cooked apple.n.01_1)";
   for (int i = 0; i < 200; ++i) goal = "(and " + goal + ")";
