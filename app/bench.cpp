@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <span>
 #include <thread>
@@ -113,6 +114,42 @@ VectorRates vector_rates(const EnvConfig& env, int envs, const BenchOptions& o) 
     async_ratios.push_back(asyncs.back() / ones.back());
   }
   return {median(ones), median(twos), median(asyncs), median(ratios), median(async_ratios)};
+}
+
+// This process's resident memory (VmRSS), in bytes.
+double resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.starts_with("VmRSS:")) return std::stod(line.substr(6)) * 1024;  // "VmRSS:   123456 kB"
+  }
+  throw Error("bench: no VmRSS in /proc/self/status");
+}
+
+// Resident memory of a vector env of `envs` envs, after a reset and a few
+// steps (every buffer touched): what one env adds is the difference to a
+// vector env of one, per extra env; the one env's own is what the first costs
+// with the assets its vector env shares.
+// `keep` holds every vector env measured so far: memory freed and reused would
+// hide what the next one takes.
+nlohmann::json memory_per_env(const EnvConfig& env, int envs, std::vector<std::unique_ptr<VectorEnv>>& keep) {
+  const auto grow = [&](int n) {
+    const double before = resident_bytes();
+    VectorEnvConfig config;
+    config.env = env;
+    config.num_envs = n;
+    config.num_threads = 1;
+    auto v = std::make_unique<VectorEnv>(config);
+    v->reset(0);
+    const std::vector<float> zero(n * v->single_action_space().element_count(), 0.f);
+    for (int i = 0; i < 5; ++i) v->step(zero);
+    keep.push_back(std::move(v));
+    return resident_bytes() - before;
+  };
+  const double one = grow(1), many = grow(envs);
+  return {{"envs", envs},
+          {"first_env_mb", one / 1e6},
+          {"vector_env_mb", many / 1e6},
+          {"per_extra_env_mb", (many - one) / (envs - 1) / 1e6}};
 }
 
 // The observations whose cost per frame the modality rows measure, each on its
@@ -248,8 +285,9 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
   out["scenes"] = o.scenes;
   out["sections"] = o.sections;
   for (const std::string& section : o.sections) {
-    if (section != "table" && section != "vector" && section != "primitives" && section != "modalities") {
-      throw Error("bench: unknown section '" + section + "' (known: table, vector, primitives, modalities)");
+    if (section != "table" && section != "vector" && section != "primitives" && section != "modalities" &&
+        section != "memory") {
+      throw Error("bench: unknown section '" + section + "' (known: table, vector, primitives, modalities, memory)");
     }
   }
   auto runs = [&](const char* section) {
@@ -274,11 +312,23 @@ nlohmann::json run_bench(const BenchOptions& o, std::ostream& log) {
       out["table"][row.name][scene] = sps;
       if (*row.note) out["notes"][row.name] = row.note;
     }
-    if (!runs("vector")) continue;
-    // Vector env throughput with RGB-D, the observation RL uses.
+    // Vector envs with RGB-D, the observation RL uses.
     config.robot = config.cloth = config.object_states = true;
     config.activity = scene_activity(scene);
     config.observations = {"rgb", "depth", "proprio", "is_grasping"};
+    if (runs("memory") && scene == o.scenes.front()) {
+      // The first scene only: the vector envs stay alive to the end of the section.
+      std::vector<std::unique_ptr<VectorEnv>> keep;
+      for (const std::string space : {"low_level", "primitives"}) {
+        if (space == "primitives" && config.activity.empty()) continue;  // primitives act on an activity's objects
+        log << "bench: " << scene << " / memory of " << o.vector_envs << " envs, " << space << " actions ..."
+            << std::endl;
+        EnvConfig spaced = config;
+        spaced.action_space = space;
+        out["memory"][scene + " " + space] = memory_per_env(spaced, o.vector_envs, keep);
+      }
+    }
+    if (!runs("vector")) continue;
     log << "bench: " << scene << " / vector env, 1 and 2 threads ..." << std::endl;
     const VectorRates v = vector_rates(config, o.vector_envs, o);
     out["vector_env"][scene] = {{"1", v.one},
@@ -374,6 +424,20 @@ std::string format_vector_env(const nlohmann::json& r) {
   return text;
 }
 
+std::string format_memory(const nlohmann::json& r) {
+  std::string text = "\nResident memory of a vector env (RGB-D + proprioception, after reset and 5 steps), MB\n";
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%-22s%12s%18s%22s\n", "scene, actions", "first env", "vector env of N",
+                "per extra env");
+  text += buf;
+  for (const auto& [scene, m] : r["memory"].items()) {
+    std::snprintf(buf, sizeof buf, "%-22s%12.0f%14.0f (%d)%22.1f\n", scene.c_str(), m["first_env_mb"].get<double>(),
+                  m["vector_env_mb"].get<double>(), m["envs"].get<int>(), m["per_extra_env_mb"].get<double>());
+    text += buf;
+  }
+  return text;
+}
+
 std::string format_primitives(const nlohmann::json& r) {
   std::string text;
   char buf[512];
@@ -431,6 +495,7 @@ std::string format_bench(const nlohmann::json& r) {
   if (r.contains("vector_env")) text += format_vector_env(r);
   if (r.contains("primitives")) text += format_primitives(r);
   if (r.contains("modalities")) text += format_modalities(r);
+  if (r.contains("memory")) text += format_memory(r);
   return text;
 }
 

@@ -25,7 +25,9 @@ struct BenchOptions {
   // activity, in both execution modes; 0 skips them.
   int primitive_episodes = 3;
   // What to run, of "table", "vector", "primitives", "modalities" (the first
-  // scene's activity, one env).
+  // scene's activity, one env), "memory" (resident MB of a vector env of
+  // vector_envs envs on the first scene, per env, for both action spaces; not
+  // run by default).
   std::vector<std::string> sections = {"table", "vector", "primitives", "modalities"};
 };
 

@@ -160,8 +160,8 @@ int main(int argc, char** argv) {
   bench_cmd
       ->add_option("--sections", bench.sections,
                    "What to run: table (Table A.10), vector (VectorEnv), primitives, modalities "
-                   "(ms per frame of each observation, first scene)")
-      ->check(CLI::IsMember({"table", "vector", "primitives", "modalities"}))
+                   "(ms per frame of each observation, first scene), memory (MB per env of a vector env)")
+      ->check(CLI::IsMember({"table", "vector", "primitives", "modalities", "memory"}))
       ->capture_default_str();
   bench_cmd->add_flag("--json", bench_json, "Print the results as JSON");
 

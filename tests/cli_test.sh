@@ -38,6 +38,7 @@ expect 0 '"vector_env"' -- "$chore" bench --scenes "$data/scenes/box_room.json" 
 expect 0 "Full Feature Set" -- "$chore" bench --scenes "$data/scenes/box_room.json" --steps 4 --repeats 1 --envs 2
 expect 2 "sections" -- "$chore" bench --sections nope
 expect 0 "flow" -- "$chore" bench --scenes "$data/scenes/box_room.json" --sections modalities --steps 2 --repeats 1
+expect 0 "per extra env" -- "$chore" bench --scenes "$data/scenes/box_room.json" --sections memory --envs 2
 
 # Every observation modality of one frame, as a picture.
 expect 2 "size" -- "$chore" observe --size 8 --out /tmp/chore_cli_observe.png

@@ -25,7 +25,7 @@ struct Outcome {
 Outcome run(const std::string& args) {
   // Beside the test's own files: ctest runs the tests of this file in parallel.
   const fs::path err =
-      fs::path(test::scratch_dir("cli_stderr_" +
+      fs::path(test::scratch_dir("bad_input_stderr_" +
                                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()))) /
       "stderr.txt";
   const std::string command = std::string(CHORE_BINARY) + " " + args + " > /dev/null 2> " + err.string();
@@ -41,7 +41,7 @@ void expect_error(const std::string& args, const std::string& message) {
   EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
 }
 
-TEST(Cli, NumbersOutsideTheirRangeAreErrorsNamingIt) {
+TEST(BadInput, NumbersOutsideTheirRangeAreErrorsNamingIt) {
   expect_error("expert --activity store_decoration --seed -5", "--seed: '-5' is not an integer in [0, 1000000000000]");
   expect_error("train --activity store_decoration --baseline rl-prim --steps 1e20 --out x",
                "--steps: '1e20' is not an integer in [1, 10000000000]");
@@ -53,7 +53,7 @@ TEST(Cli, NumbersOutsideTheirRangeAreErrorsNamingIt) {
                "--fps: 'inf' is not a number in [0.1, 240]");
 }
 
-TEST(Cli, FailuresOfDependenciesAndWorkersAreErrors) {
+TEST(BadInput, FailuresOfDependenciesAndWorkersAreErrors) {
   const fs::path dir = test::scratch_dir("cli_failures");
   // A chore::Error in a worker thread reaches the command, not std::terminate.
   expect_error("expert --activity '' --episodes 2 --threads 2", "chore: error: env config:");
@@ -75,7 +75,7 @@ TEST(Cli, FailuresOfDependenciesAndWorkersAreErrors) {
 
 // --resume keeps the run's checkpoint interval, and a metrics row that is not
 // a number (a damaged file) is dropped, not a crash.
-TEST(Cli, ResumeKeepsEverySettingOfTheRun) {
+TEST(BadInput, ResumeKeepsEverySettingOfTheRun) {
   const fs::path dir = test::scratch_dir("cli_resume") / "run";
   const std::string fast =
       "--activity collect_trash --baseline rl-prim --mode symbolic --observations proprio is_grasping "
