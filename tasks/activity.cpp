@@ -47,29 +47,6 @@ bool room_matches(const Room& room, const std::string& bddl_room) {
 
 }  // namespace
 
-Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb, const std::string& dir) {
-  const auto read = [&](const std::string& name) {
-    const std::string path = dir + "/" + name;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return std::pair{path, text.str()};
-  };
-  Vocabulary v;
-  const auto [igibson, igibson_text] = read("igibson.bddl");
-  v.igibson = parse_domain(igibson_text, igibson);
-  const auto [omnigibson, omnigibson_text] = read("omnigibson.bddl");
-  v.omnigibson = parse_domain(omnigibson_text, omnigibson);
-  std::istringstream rooms(read("room_types.txt").second);
-  for (std::string line; std::getline(rooms, line);) {
-    line.erase(std::remove_if(line.begin(), line.end(), [](char c) { return std::isspace(uint8_t(c)); }), line.end());
-    if (!line.empty() && !line.starts_with('#')) v.room_types.insert(line);
-  }
-  v.unknown_synset = [kb = std::move(kb)](const std::string& synset) { return kb->unknown(synset); };
-  return v;
-}
-
 std::string resolve_activity_path(const std::string& name) {
   if (name.ends_with(".bddl") || name.find('/') != std::string::npos) {
     if (!fs::exists(name)) throw Error("activity file '" + name + "' does not exist");

@@ -23,6 +23,7 @@
 #include "tasks/bddl.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/knowledge_base.hpp"
+#include "tasks/vocabulary.hpp"
 #include "world/world.hpp"
 
 namespace chore {
@@ -32,12 +33,6 @@ struct Binding {
   Kind kind = Kind::object;
   int index = -1;  // object: index in scene().objects(); floor: index in scene().rooms()
 };
-
-// The vocabulary BDDL files are checked against (tasks/bddl.hpp): the
-// dialects' domains and the room types in <dir> (tasks/domains), the
-// synsets of `kb`.
-Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb,
-                           const std::string& dir = default_tasks_dir() + "/domains");
 
 // The scene an activity is set in (tasks/activities/scenes.json), or "" if
 // it names none; and the first activity set in a scene, or "".

@@ -1,0 +1,36 @@
+#include "tasks/vocabulary.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+#include "base/error.hpp"
+
+namespace chore {
+
+Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb, const std::string& dir) {
+  const auto read = [&](const std::string& name) {
+    const std::string path = dir + "/" + name;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open file");
+    std::stringstream text;
+    text << in.rdbuf();
+    return std::pair{path, text.str()};
+  };
+  Vocabulary v;
+  const auto [igibson, igibson_text] = read("igibson.bddl");
+  v.igibson = parse_domain(igibson_text, igibson);
+  const auto [omnigibson, omnigibson_text] = read("omnigibson.bddl");
+  v.omnigibson = parse_domain(omnigibson_text, omnigibson);
+  std::istringstream rooms(read("room_types.txt").second);
+  for (std::string line; std::getline(rooms, line);) {
+    line.erase(std::remove_if(line.begin(), line.end(), [](char c) { return std::isspace(uint8_t(c)); }), line.end());
+    if (!line.empty() && !line.starts_with('#')) v.room_types.insert(line);
+  }
+  v.unknown_synset = [kb = std::move(kb)](const std::string& synset) { return kb->unknown(synset); };
+  return v;
+}
+
+}  // namespace chore

@@ -1,0 +1,29 @@
+// libFuzzer target: BDDL text -> parse (with the shipped vocabulary, and with
+// the grammar alone, which lets more reach grounding) -> ground the goal.
+// Bad input must end in chore::Error; anything else is a finding: a crash, a
+// sanitizer report, another exception, an input slower than -timeout or
+// heavier than -rss_limit_mb (scripts/fuzz).
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "base/error.hpp"
+#include "tasks/goal.hpp"
+#include "tasks/vocabulary.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const auto kb = chore::KnowledgeBase::load();
+  static const chore::Vocabulary vocabulary = chore::load_vocabulary(kb);
+  const auto is_a = [](std::string_view instance, std::string_view type) {
+    const std::string i(instance), t(type);
+    return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
+  };
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  for (const chore::Vocabulary* v : {&vocabulary, static_cast<const chore::Vocabulary*>(nullptr)}) {
+    try {
+      chore::ground_goal(chore::parse_bddl(text, "fuzz", {.vocabulary = v}), is_a);
+    } catch (const chore::Error&) {
+    }
+  }
+  return 0;
+}
