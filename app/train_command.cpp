@@ -47,8 +47,7 @@ std::optional<int64_t> row_steps(const std::string& line) {
 // it made it, else the files it wrote there.
 class RunFolder {
  public:
-  RunFolder() = default;
-  explicit RunFolder(const fs::path& dir) : dir_(dir), kept_(false) {
+  explicit RunFolder(const fs::path& dir) : dir_(dir) {
     std::error_code error;
     made_dir_ = !fs::exists(dir, error);
     if (!fs::create_directories(dir, error) && error) {
@@ -56,17 +55,10 @@ class RunFolder {
     }
     if (!fs::is_directory(dir)) throw Error("train: --out " + dir.string() + ": not a folder");
   }
-  RunFolder(RunFolder&& o) noexcept : dir_(std::move(o.dir_)), made_dir_(o.made_dir_), kept_(o.kept_) {
-    o.kept_ = true;
-  }
-  RunFolder& operator=(RunFolder&& o) noexcept {
-    std::swap(dir_, o.dir_);
-    std::swap(made_dir_, o.made_dir_);
-    std::swap(kept_, o.kept_);
-    return *this;
-  }
+  RunFolder(const RunFolder&) = delete;
+  RunFolder& operator=(const RunFolder&) = delete;
   ~RunFolder() {
-    if (kept_ || dir_.empty()) return;
+    if (kept_) return;
     std::error_code ignored;
     if (made_dir_) {
       fs::remove_all(dir_, ignored);
@@ -78,7 +70,7 @@ class RunFolder {
 
  private:
   fs::path dir_;
-  bool made_dir_ = false, kept_ = true;
+  bool made_dir_ = false, kept_ = false;
 };
 
 // Keeps metrics.csv's header and the rows up to `steps` (a resumed run redoes
@@ -138,7 +130,7 @@ void run_train(const TrainOptions& o, std::ostream& log) {
   const fs::path checkpoint = fs::path(dir) / "checkpoint.pt";
 
   std::unique_ptr<Trainer> trainer;
-  RunFolder made;  // what a new run made, removed if it fails before its first checkpoint
+  std::optional<RunFolder> made;  // what a new run made, removed if it fails before its first checkpoint
   if (!o.resume.empty()) {
     if (!o.out.empty() && fs::path(o.out) != fs::path(o.resume)) {
       throw Error("train: --resume continues in its own folder; drop --out or make it the same");
@@ -163,7 +155,7 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     // The trainer (its envs, the activity) first: a bad setting leaves no folder behind.
     const TrainConfig config = new_run_config(o);
     trainer = make_trainer(config);
-    made = RunFolder(dir);
+    made.emplace(dir);
     // The run's settings, readable without the checkpoint (the names --set takes).
     std::ofstream config_file(fs::path(dir) / "config.json");
     config_file << to_json(config).dump(2) << "\n";
@@ -208,7 +200,7 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     const int64_t next = std::min(total, (trainer->env_steps() / every + 1) * every);
     trainer->train(next, report);
     trainer->save(checkpoint.string());
-    made.keep();
+    if (made) made->keep();
     trainer->save((fs::path(dir) / ("checkpoint_" + std::to_string(trainer->env_steps()) + ".pt")).string());
   }
   if (tty) log << "\n";

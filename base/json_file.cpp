@@ -80,17 +80,21 @@ nlohmann::json parse_json(const std::string& text, const std::string& where) {
   }
 }
 
-nlohmann::json read_json_file(const std::string& path) {
+std::string read_text_file(const std::string& path, size_t max_bytes, const std::string& what) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw Error(path + ": cannot open file");
   const std::streamoff bytes = in.tellg();
-  if (bytes < 0 || static_cast<size_t>(bytes) > kMaxJsonBytes) {
-    throw Error(path + ": larger than " + std::to_string(kMaxJsonBytes >> 20) + " MB, the limit for a JSON file");
+  if (bytes < 0 || static_cast<size_t>(bytes) > max_bytes) {
+    throw Error(path + ": larger than " + std::to_string(max_bytes >> 20) + " MB, the limit for " + what);
   }
   in.seekg(0);
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_json(buffer.str(), path);
+  return buffer.str();
+}
+
+nlohmann::json read_json_file(const std::string& path) {
+  return parse_json(read_text_file(path, kMaxJsonBytes, "a JSON file"), path);
 }
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string where) : value_(value), where_(std::move(where)) {}

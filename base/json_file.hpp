@@ -15,6 +15,10 @@ namespace chore {
 inline constexpr size_t kMaxJsonBytes = 256u << 20;
 inline constexpr int kMaxJsonDepth = 64;
 
+// A text file's bytes; a missing file, or one larger than max_bytes, throws
+// chore::Error naming the path (`what` names the kind: "a BDDL file").
+std::string read_text_file(const std::string& path, size_t max_bytes, const std::string& what);
+
 // Parses JSON text; a syntax error, nesting past kMaxJsonDepth or a number
 // out of double's range throws chore::Error naming `where` and line:column.
 nlohmann::json parse_json(const std::string& text, const std::string& where);

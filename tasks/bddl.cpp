@@ -1,13 +1,13 @@
 #include "tasks/bddl.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 
 namespace chore {
 
@@ -30,6 +30,7 @@ std::optional<Op> operator_named(std::string_view name) {
 // Deeper nesting than any activity needs is refused, so that hostile input
 // cannot exhaust the stack of the recursive parser and printer.
 constexpr size_t kMaxNesting = 100;
+constexpr size_t kMaxBddlBytes = 16u << 20;  // BEHAVIOR's largest activity is ~10 KB
 constexpr int kMaxCount = 1000000;
 
 // kitchen_0 -> kitchen: a scene's room names are its types numbered.
@@ -501,11 +502,7 @@ Predicates parse_domain(std::string_view text, std::string_view file_name) {
 }
 
 Problem load_bddl(const std::string& path, const ParseOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_bddl(buffer.str(), path, options);
+  return parse_bddl(read_text_file(path, kMaxBddlBytes, "a BDDL file"), path, options);
 }
 
 std::string to_bddl(const Literal& literal) {

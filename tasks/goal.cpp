@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -36,21 +37,25 @@ class Budget {
       exceeded(std::to_string(kMaxGroundWork) + " steps (option tuples visited plus literals copied)");
   }
   // The construct at file line:column, described by `what`, is being ground.
-  void at(int line, int column, std::string what) {
+  // No string is built here: it is called for every node.
+  void at(int line, int column, std::optional<Op> op) {
     line_ = line;
     column_ = column;
-    what_ = std::move(what);
+    op_ = op;
   }
 
  private:
   [[noreturn]] void exceeded(const std::string& limit) const {
-    throw Error(where(problem_, line_, column_) + ": grounding " + what_ + " takes more than " + limit + ", the limit");
+    const std::string what = !op_                  ? "the goal's options"
+                             : *op_ == Op::literal ? "a literal"
+                                                   : "(" + std::string(keyword(*op_)) + " ...)";
+    throw Error(where(problem_, line_, column_) + ": grounding " + what + " takes more than " + limit + ", the limit");
   }
 
   const Problem& problem_;
   size_t nodes_ = 0, work_ = 0;
   int line_ = 0, column_ = 0;
-  std::string what_ = "the goal";
+  std::optional<Op> op_;  // none: the goal's options
 };
 
 // Visits elements of the product of sequences of the given sizes, as index
@@ -202,7 +207,7 @@ class Grounder {
       : problem_(problem), is_a_(is_a), goal_(goal), budget_(budget) {}
 
   GroundCondition condition(const Formula& f) {
-    budget_.at(f.line, f.column, f.op == Op::literal ? "a literal" : "(" + std::string(keyword(f.op)) + " ...)");
+    budget_.at(f.line, f.column, f.op);
     GroundCondition c;
     c.formula = expand(f);
     c.options = options(c.formula);
@@ -291,7 +296,7 @@ class Grounder {
   Options options(const GroundFormula& g) {
     std::vector<Options> children;
     for (const GroundFormula& c : g.children) children.push_back(options(c));
-    budget_.at(g.line, g.column, g.op == Op::literal ? "a literal" : "(" + std::string(keyword(g.op)) + " ...)");
+    budget_.at(g.line, g.column, g.op);
     switch (g.op) {
       case Op::literal:
         return {{g.literal}};
@@ -480,7 +485,7 @@ GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
   for (const GroundCondition& c : goal.conditions) sizes.push_back(c.options.size());
   std::vector<bool> in_option(goal.literals.size(), false);
   Options options;
-  budget.at(problem.goal.line, problem.goal.column, "the goal's options");
+  budget.at(problem.goal.line, problem.goal.column, std::nullopt);
   bounded_product(sizes, kMaxGoalOptions, budget, [&](const std::vector<size_t>& index) {
     GroundOption option;
     for (size_t j = 0; j < index.size(); ++j) {

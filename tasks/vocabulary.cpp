@@ -2,22 +2,17 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <sstream>
 #include <utility>
 
-#include "base/error.hpp"
+#include "base/json_file.hpp"
 
 namespace chore {
 
 Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb, const std::string& dir) {
   const auto read = [&](const std::string& name) {
     const std::string path = dir + "/" + name;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return std::pair{path, text.str()};
+    return std::pair{path, read_text_file(path, 1u << 20, "a vocabulary file")};
   };
   Vocabulary v;
   const auto [igibson, igibson_text] = read("igibson.bddl");
