@@ -37,6 +37,8 @@ const char* dtype_name(DType dtype) {
   return "?";
 }
 
+Space::Space() = default;
+
 Space Space::box(std::vector<int> shape, DType dtype, double low, double high) {
   Space s;
   s.kind = Kind::box;

@@ -15,6 +15,9 @@ size_t dtype_size(DType dtype);
 const char* dtype_name(DType dtype);
 
 struct Space {
+  // Declared, not implicit: clang would check that it exists while
+  // std::pair<std::string, Space> below is still being defined.
+  Space();
   enum class Kind { box, discrete, dict };
   Kind kind = Kind::box;
   // box

@@ -44,7 +44,7 @@ std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
   std::sort(density.begin(), density.end());
   std::vector<Eigen::Vector3d> patches, passed;
   for (const auto& [count, i] : density) {
-    const bool near_kept = std::any_of(patches.begin(), patches.end(), [&](const Eigen::Vector3d& kept) {
+    const bool near_kept = std::any_of(patches.begin(), patches.end(), [&, i = i](const Eigen::Vector3d& kept) {
       return (kept - particles[i]).head<2>().norm() < kPatchSpacing;
     });
     (near_kept ? passed : patches).push_back(particles[i]);

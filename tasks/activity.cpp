@@ -220,7 +220,7 @@ void Activity::configure(World& world) const {
       if (!kb.has_property(s, property)) continue;
       ThermalSource t;
       if (std::string(property) == "coldSource") t.temperature = -18;
-      auto flag = [&](const char* name, bool fallback) {
+      auto flag = [&, property = property](const char* name, bool fallback) {
         return kb.parameter(s, property, name).value_or(fallback) != 0;
       };
       t.temperature = kb.parameter(s, property, "temperature").value_or(t.temperature);

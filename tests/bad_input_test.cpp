@@ -8,9 +8,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
+#include "app/command_line.hpp"
 #include "test_util.hpp"
+#include "training/checkpoint.hpp"
 
 namespace chore {
 namespace {
@@ -93,6 +97,43 @@ TEST(BadInput, ResumeKeepsEverySettingOfTheRun) {
   EXPECT_EQ(text.find("garbage"), std::string::npos);
   expect_error("train --resume " + dir.string() + " --checkpoint-every 100",
                "checkpointed every 600 steps; --resume continues it as it was");
+}
+
+// The hand-made seeds of the checkpoint and command-line fuzz targets
+// (tests/fuzz/corpus/*/seed_*) must be valid, or the campaigns would start
+// from nothing but errors.
+std::vector<std::string> fuzz_seeds(const std::string& target) {
+  std::vector<std::string> seeds;
+  for (const auto& entry : fs::directory_iterator(test::data_path("../fuzz/corpus/" + target))) {
+    if (entry.path().filename().string().starts_with("seed_")) {
+      std::ifstream in(entry.path(), std::ios::binary);
+      seeds.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+  }
+  return seeds;
+}
+
+TEST(BadInput, TheFuzzSeedsOfCheckpointsAndCommandLinesAreValid) {
+  for (std::string bytes : fuzz_seeds("checkpoint")) {
+    const uint64_t checksum = checkpoint_checksum(bytes);
+    bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);  // as checkpoint_fuzz.cpp does
+    const LoadedPolicy loaded = load_policy(parse_checkpoint(bytes, "seed"));
+    EXPECT_TRUE(loaded.policy);
+    EXPECT_EQ(loaded.env.activity, "clean_table");
+  }
+  int commands = 0;
+  for (const std::string& text : fuzz_seeds("cli")) {
+    std::vector<std::string> args = {"chore"};
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) args.push_back(line);
+    std::vector<const char*> argv;
+    for (const std::string& a : args) argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    const ParsedCommandLine parsed = parse_command_line(static_cast<int>(argv.size()), argv.data(), out, err);
+    commands += parsed.command.has_value();
+    EXPECT_TRUE(parsed.command) << text << err.str();
+  }
+  EXPECT_GE(commands, 10);
 }
 
 }  // namespace

@@ -201,7 +201,22 @@ TEST(Scene, MissingRobotFileNamesThePath) {
   SceneOptions options;
   options.assets_dir = dir.string();
   const std::string e = test::error_of([&] { Scene::load(test::box_room(), options); });
-  EXPECT_NE(e.find("robots/tiago.xml: cannot open robot file"), std::string::npos) << e;
+  EXPECT_NE(e.find("robots/tiago.xml: cannot open file"), std::string::npos) << e;
+}
+
+// A robot MuJoCo accepts but chore cannot drive is refused before the scene is
+// compiled, naming the file and what it lacks.
+TEST(Scene, RobotWithoutTheJointsChoreDrivesNamesWhatIsMissing) {
+  const auto dir = test::scratch_dir("robot_without_joints");
+  std::filesystem::create_directories(dir / "robots");
+  std::filesystem::create_directory_symlink(default_assets_dir() + "/objects", dir / "objects");
+  test::write_file(
+      dir / "robots" / "tiago.xml",
+      "<mujoco>\n<worldbody>\n<body name=\"robot\"><geom size=\"0.1\"/></body>\n</worldbody>\n</mujoco>\n");
+  SceneOptions options;
+  options.assets_dir = dir.string();
+  const std::string e = test::error_of([&] { Scene::load(test::box_room(), options); });
+  EXPECT_NE(e.find("robots/tiago.xml: robot model: missing joint 'base_x'"), std::string::npos) << e;
 }
 
 TEST(Scene, WithoutRobotAFixedCameraStandsIn) {

@@ -20,12 +20,6 @@ namespace {
 
 constexpr char kMagic[8] = {'C', 'H', 'O', 'R', 'E', 'C', 'K', 'P'};
 
-uint64_t fnv1a(const std::string& bytes) {
-  uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
-}
-
 template <class T>
 void put(std::string& out, T value) {
   out.append(reinterpret_cast<const char*>(&value), sizeof value);
@@ -60,6 +54,12 @@ void write_all(int fd, const std::string& bytes, const std::string& path) {
 
 }  // namespace
 
+uint64_t checkpoint_checksum(std::string_view bytes) {
+  uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  return hash;
+}
+
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint) {
   std::string bytes(kMagic, sizeof kMagic);
   put(bytes, kCheckpointVersion);
@@ -68,7 +68,7 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
   bytes += meta;
   put(bytes, static_cast<uint64_t>(checkpoint.tensors.size()));
   bytes += checkpoint.tensors;
-  put(bytes, fnv1a(bytes));
+  put(bytes, checkpoint_checksum(bytes));
 
   // Write beside the target, flush to disk, then rename over it: the old file
   // stays whole until the new one is.
@@ -100,7 +100,10 @@ CheckpointFile read_checkpoint(const std::string& path) {
   if (!in) throw Error("checkpoint " + path + ": cannot open");
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
+  return parse_checkpoint(buffer.str(), path);
+}
+
+CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& path) {
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
     throw Error("checkpoint " + path + ": not a chore checkpoint (bad magic)");
   }
@@ -117,7 +120,7 @@ CheckpointFile read_checkpoint(const std::string& path) {
   const size_t body = offset;
   const uint64_t checksum = take<uint64_t>(bytes, offset, path);
   if (offset != bytes.size()) throw Error("checkpoint " + path + ": trailing bytes after the checksum");
-  if (checksum != fnv1a(bytes.substr(0, body))) {
+  if (checksum != checkpoint_checksum(std::string_view(bytes).substr(0, body))) {
     throw Error("checkpoint " + path + ": corrupt (checksum mismatch)");
   }
   checkpoint.meta = parse_json(meta, "checkpoint " + path + ": metadata");
@@ -201,8 +204,11 @@ NetworkSpec read_network(const CheckpointFile& file, torch::serialize::InputArch
 }
 
 LoadedPolicy load_policy(const std::string& checkpoint_path, bool sample) {
-  const CheckpointFile file = read_checkpoint(checkpoint_path);
-  const std::string what = "checkpoint " + checkpoint_path;
+  return load_policy(read_checkpoint(checkpoint_path), sample);
+}
+
+LoadedPolicy load_policy(const CheckpointFile& file, bool sample) {
+  const std::string what = "checkpoint " + file.path;
   LoadedPolicy loaded;
   const Algorithm* algorithm = nullptr;
   try {

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "env/env.hpp"
 #include "policies/policy.hpp"
@@ -35,6 +36,10 @@ struct CheckpointFile {
 
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint);
 CheckpointFile read_checkpoint(const std::string& path);
+// The same for a file's bytes; `path` names it in messages.
+CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& path);
+// The checksum a file ends with: FNV-1a of its bytes before it.
+uint64_t checkpoint_checksum(std::string_view bytes);
 
 // A trained policy for chore eval/video: PPO acts by argmax, SAC by tanh(mean),
 // or, with `sample`, both draw from their distributions as in training (seeded
@@ -47,6 +52,7 @@ struct LoadedPolicy {
   int64_t steps = 0;
 };
 LoadedPolicy load_policy(const std::string& checkpoint_path, bool sample = false);  // throws chore::Error
+LoadedPolicy load_policy(const CheckpointFile& checkpoint, bool sample = false);
 // Pins torch's intra-op threads (process-wide) for loaded policies: its OpenMP
 // pool competes with the VectorEnv's workers and the renderer for the cores.
 void set_policy_threads(int threads);

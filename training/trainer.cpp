@@ -11,39 +11,13 @@ namespace chore {
 
 const char* const kMetricsHeader = "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length";
 
-// The algorithms (one file each) and the baselines: a new one is a line here.
+// The algorithms (one file each; the baselines are in training/baselines.cpp):
+// a new one is a line here.
 Algorithm ppo_algorithm();  // training/ppo.cpp
 Algorithm sac_algorithm();  // training/sac.cpp
 
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> list = {ppo_algorithm(), sac_algorithm()};
-  return list;
-}
-
-const std::vector<Baseline>& baselines() {
-  static const std::vector<Baseline> list = {
-      // Figure A.11 (a): egocentric RGB and proprioception, joint-level control.
-      {"rl-vmc", "sac",
-       [](TrainConfig& c) {
-         c.env.observations = {"rgb", "proprio", "is_grasping"};
-         c.env.action_space = "low_level";
-       }},
-      // Figure A.11 (b), appendix F.1: RGB and is-grasping, physical primitives;
-      // with history, the policy also sees the last K steps.
-      {"rl-prim", "ppo",
-       [](TrainConfig& c) {
-         c.env.observations = {"rgb", "is_grasping"};
-         c.env.action_space = "primitives";
-         c.env.primitive_mode = ExecutionMode::physical;
-         c.ppo.history = 0;
-       }},
-      {"rl-prim-hist", "ppo",
-       [](TrainConfig& c) {
-         c.env.observations = {"rgb", "is_grasping"};
-         c.env.action_space = "primitives";
-         c.env.primitive_mode = ExecutionMode::physical;
-       }},
-  };
   return list;
 }
 

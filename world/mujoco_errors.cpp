@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <cstring>
 #include <mutex>
 
 #include "base/error.hpp"
@@ -27,6 +28,22 @@ void install_mujoco_handlers() {
     mju_user_error = on_error;
     mju_user_warning = on_warning;
   });
+}
+
+mjModel* load_mjcf(const std::string& xml, const std::string& what) {
+  install_mujoco_handlers();
+  mjVFS vfs;
+  mj_defaultVFS(&vfs);
+  const char* file = "chore.xml";
+  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(xml.size())) != 0) {
+    throw Error(what + ": cannot allocate the model in MuJoCo's VFS");
+  }
+  std::memcpy(vfs.filedata[mj_findFileVFS(&vfs, file)], xml.data(), xml.size());
+  char error[2048] = "";
+  mjModel* model = mj_loadXML(file, &vfs, error, sizeof error);
+  mj_deleteVFS(&vfs);
+  if (!model) throw Error(what + ": " + error);
+  return model;
 }
 
 const std::string& last_mujoco_warning() {

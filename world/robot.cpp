@@ -2,9 +2,11 @@
 
 #include <mujoco/mujoco.h>
 
+#include <memory>
 #include <string>
 
 #include "base/error.hpp"
+#include "world/mujoco_errors.hpp"
 
 namespace chore {
 namespace {
@@ -54,6 +56,24 @@ Robot Robot::bind(const mjModel* m) {
   r.lidar_site = require(m, mjOBJ_SITE, "base_lidar", "site");
   r.camera = require(m, mjOBJ_CAMERA, "head_camera", "camera");
   return r;
+}
+
+std::string robot_mjcf_children(const std::string& text, const std::string& path) {
+  // Alone, MuJoCo's errors and the missing elements name this file's lines.
+  const std::unique_ptr<mjModel, void (*)(mjModel*)> alone(load_mjcf(text, path + ": invalid robot MJCF"),
+                                                           mj_deleteModel);
+  try {
+    Robot::bind(alone.get());
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+  const auto open = text.find("<mujoco");
+  const auto open_end = open == std::string::npos ? open : text.find('>', open);
+  const auto close = text.rfind("</mujoco>");
+  if (open_end == std::string::npos || close == std::string::npos || close < open_end) {
+    throw Error(path + ": expected a <mujoco> ... </mujoco> document");
+  }
+  return text.substr(open_end + 1, close - open_end - 1);
 }
 
 }  // namespace chore

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 struct mjModel_;
 
@@ -42,5 +43,14 @@ struct Robot {
   static const std::array<double, kArmJoints> kTuckedArm;
   static constexpr double kGripperOpen = 0.045;  // per finger (m)
 };
+
+// Robot MJCF files are read up to this size.
+constexpr size_t kMaxMjcfBytes = 16u << 20;
+
+// The robot's MJCF document (assets/robots/tiago.xml), checked alone (MuJoCo's
+// syntax and schema, then every element Robot::bind needs, errors naming
+// `path`), as the children of its <mujoco> element: what Scene::build splices
+// into the scene document.
+std::string robot_mjcf_children(const std::string& text, const std::string& path);
 
 }  // namespace chore

@@ -17,6 +17,7 @@
 #include "base/error.hpp"
 #include "base/json_file.hpp"
 #include "world/mujoco_errors.hpp"
+#include "world/robot.hpp"
 #include "world/static_mesh.hpp"
 
 #ifndef CHORE_ASSETS_DIR
@@ -42,151 +43,9 @@ constexpr double kZFar = 5.0;          // far plane = 50 m
 constexpr double kCameraHeight = 1.1;  // the robot-less stand-in camera, like Tiago's head
 const Rgb kWallColor = {0.86, 0.84, 0.80};
 
-// What scene and object files may say (JsonReader errors past these): a
-// house fits in 200 m, its parts in 20 m; BEHAVIOR's largest scenes span ~40 m.
-constexpr Bounds kSceneCoordinate{-100, 100};  // m, in the scene's frame
-constexpr Bounds kPartCoordinate{-10, 10};     // m, in an object's or link's frame
-constexpr Bounds kSize{0, 10};                 // m, half-sizes of geoms
-constexpr Bounds kDegrees{-360, 360};
-constexpr Bounds kColor{0, 1};
-constexpr Bounds kMass{0, 1e4};  // kg
-constexpr Bounds kDamping{0, 1e6};
-constexpr Bounds kUnitScale{0, 1};  // m, cloth spacing and radius
 const Rgb kCeilingColor = {0.95, 0.95, 0.93};
 
-struct Geom {
-  std::string type;
-  std::vector<double> size;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // in the link frame
-  Rgb rgb = {0.7, 0.7, 0.7};
-};
-
-struct Link {
-  std::string name;
-  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
-  std::string joint_type;  // "" for the root
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-  double range[2] = {0, 0};
-  double damping = 1.0;
-  double mass = 1.0;
-  std::vector<Geom> geoms;
-  std::vector<Link> links;
-};
-
-struct Light {
-  Eigen::Vector3d pos;
-  Rgb rgb;
-};
-
-// A cloth: MuJoCo's composite grid of small bodies joined by hinges, drawn as
-// one skin, rooted at its centre body (which carries the free joint).
-struct Cloth {
-  int count = 5;          // bodies per side (odd: a centre body)
-  double spacing = 0.06;  // m between neighbours
-  double radius = 0.006;  // of the capsules that collide
-  Rgb rgb = {0.45, 0.65, 0.85};
-};
-
-struct ObjectModel {
-  std::string category, synset;
-  Link root;
-  std::optional<Light> light;
-  std::optional<Cloth> cloth;
-};
-
-Eigen::Matrix3d rotation_xyz_degrees(const std::vector<double>& euler) {
-  // MuJoCo's default eulerseq "xyz": intrinsic rotations about x, then y, then z.
-  const double k = M_PI / 180.0;
-  return (Eigen::AngleAxisd(euler[0] * k, Eigen::Vector3d::UnitX()) *
-          Eigen::AngleAxisd(euler[1] * k, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(euler[2] * k, Eigen::Vector3d::UnitZ()))
-      .toRotationMatrix();
-}
-
-Rgb to_rgb(const std::vector<double>& v) {
-  return {v[0], v[1], v[2]};
-}
-
-Geom read_geom(const JsonReader& j) {
-  Geom g;
-  g.type = j.string("type");
-  const std::map<std::string, size_t> sizes = {{"box", 3}, {"cylinder", 2}, {"sphere", 1}, {"capsule", 2}};
-  const auto it = sizes.find(g.type);
-  if (it == sizes.end()) j.fail("type '" + g.type + "' is not one of box, cylinder, sphere, capsule");
-  g.size = j.numbers("size", it->second, kSize);
-  for (double s : g.size) {
-    if (!(s > 0)) j.fail("size must be positive");
-  }
-  const auto pos = j.numbers("pos", 3, {0, 0, 0}, kPartCoordinate);
-  g.pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-  g.pose.linear() = rotation_xyz_degrees(j.numbers("euler", 3, {0, 0, 0}, kDegrees));
-  g.rgb = to_rgb(j.numbers("rgb", 3, {0.7, 0.7, 0.7}, kColor));
-  return g;
-}
-
-Link read_link(const JsonReader& j, bool root) {
-  Link link;
-  if (!root) {
-    link.name = j.string("name");
-    const auto pos = j.numbers("pos", 3, kPartCoordinate);
-    link.pos = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    const JsonReader joint = j.at("joint");
-    link.joint_type = joint.string("type");
-    if (link.joint_type != "slide" && link.joint_type != "hinge") {
-      joint.fail("type '" + link.joint_type + "' is not slide or hinge");
-    }
-    const auto axis = joint.numbers("axis", 3, Bounds{-1, 1});
-    link.axis = Eigen::Vector3d(axis[0], axis[1], axis[2]);
-    if (link.axis.norm() < 1e-9) joint.fail("axis is zero");
-    const auto range = joint.numbers("range", 2, link.joint_type == "hinge" ? kDegrees : kPartCoordinate);
-    const double scale = link.joint_type == "hinge" ? M_PI / 180.0 : 1.0;
-    link.range[0] = range[0] * scale;
-    link.range[1] = range[1] * scale;
-    if (!(link.range[0] < link.range[1])) joint.fail("range must be [low, high] with low < high");
-    link.damping = joint.number("damping", 1.0, kDamping);
-  }
-  link.mass = j.number("mass", kMass);
-  if (!(link.mass > 0)) j.fail("mass must be positive");
-  const JsonReader geoms = j.at("geoms");
-  for (size_t i = 0; i < geoms.size(); ++i) link.geoms.push_back(read_geom(geoms.at(i)));
-  if (link.geoms.empty()) j.fail("a link needs at least one geom");
-  if (j.has("links")) {
-    const JsonReader links = j.at("links");
-    for (size_t i = 0; i < links.size(); ++i) link.links.push_back(read_link(links.at(i), false));
-  }
-  return link;
-}
-
-ObjectModel read_object_model(const std::string& path) {
-  const nlohmann::json json = read_json_file(path);
-  const JsonReader j(json, path);
-  ObjectModel m;
-  m.category = j.string("category");
-  m.synset = j.string("synset");
-  if (j.has("cloth")) {
-    const JsonReader c = j.at("cloth");
-    Cloth cloth;
-    cloth.count = static_cast<int>(c.number("count", 5, Bounds{3, 15}));
-    cloth.spacing = c.number("spacing", 0.06, kUnitScale);
-    cloth.radius = c.number("radius", 0.006, kUnitScale);
-    cloth.rgb = to_rgb(c.numbers("rgb", 3, {0.45, 0.65, 0.85}, kColor));
-    if (cloth.count < 3 || cloth.count > 15 || cloth.count % 2 == 0) c.fail("count must be odd, 3..15");
-    if (!(cloth.spacing > 2 * cloth.radius) || !(cloth.radius > 0)) c.fail("need spacing > 2 x radius > 0");
-    m.cloth = cloth;
-    m.root.mass = j.number("mass", kMass);
-    if (!(m.root.mass > 0)) j.fail("mass must be positive");
-    return m;
-  }
-  m.root = read_link(j, true);
-  if (j.has("light")) {
-    const JsonReader light = j.at("light");
-    const auto pos = light.numbers("pos", 3, kPartCoordinate);
-    m.light = Light{Eigen::Vector3d(pos[0], pos[1], pos[2]), to_rgb(light.numbers("rgb", 3, {1, 0.9, 0.75}, kColor))};
-  }
-  return m;
-}
-
-double geom_volume(const Geom& g) {
+double geom_volume(const GeomSpec& g) {
   const auto& s = g.size;
   if (g.type == "box") return 8 * s[0] * s[1] * s[2];
   if (g.type == "cylinder") return M_PI * s[0] * s[0] * 2 * s[1];
@@ -213,7 +72,7 @@ std::string pose_attributes(const Eigen::Isometry3d& pose) {
   return "pos=\"" + fmt(Eigen::Vector3d(pose.translation())) + "\" quat=\"" + fmt_quat(pose.linear()) + "\"";
 }
 
-void add_to_static_mesh(StaticMesh& mesh, const Eigen::Isometry3d& world, const Geom& g) {
+void add_to_static_mesh(StaticMesh& mesh, const Eigen::Isometry3d& world, const GeomSpec& g) {
   const Eigen::Isometry3d pose = world * g.pose;
   if (g.type == "box")
     mesh.add_box(pose, {g.size[0], g.size[1], g.size[2]}, g.rgb);
@@ -225,7 +84,7 @@ void add_to_static_mesh(StaticMesh& mesh, const Eigen::Isometry3d& world, const 
     mesh.add_capsule(pose, g.size[0], g.size[1], g.rgb);
 }
 
-std::string size_attribute(const Geom& g) {
+std::string size_attribute(const GeomSpec& g) {
   std::string s;
   for (size_t i = 0; i < g.size.size(); ++i) s += (i ? " " : "") + fmt(g.size[i]);
   return s;
@@ -233,7 +92,7 @@ std::string size_attribute(const Geom& g) {
 
 // A geom element. `drawn`: the camera sees it (group 0); otherwise it is a
 // collision-only geom of a static part whose look lives in the static mesh.
-std::string geom_xml(const std::string& name, const Geom& g, bool drawn, double mass) {
+std::string geom_xml(const std::string& name, const GeomSpec& g, bool drawn, double mass) {
   std::string xml = "<geom name=\"" + name + "\" type=\"" + g.type + "\" size=\"" + size_attribute(g) + "\" " +
                     pose_attributes(g.pose);
   if (drawn) {
@@ -244,12 +103,12 @@ std::string geom_xml(const std::string& name, const Geom& g, bool drawn, double 
 }
 
 // Emits a link's geoms; those of a fixed object's root go to the static mesh.
-void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& prefix, const Link& link, bool static_link,
-                     const Eigen::Isometry3d& world, const std::string& indent) {
+void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& prefix, const LinkSpec& link,
+                     bool static_link, const Eigen::Isometry3d& world, const std::string& indent) {
   double volume = 0;
-  for (const Geom& g : link.geoms) volume += geom_volume(g);
+  for (const GeomSpec& g : link.geoms) volume += geom_volume(g);
   for (size_t i = 0; i < link.geoms.size(); ++i) {
-    const Geom& g = link.geoms[i];
+    const GeomSpec& g = link.geoms[i];
     const std::string name = prefix + "/" + std::to_string(i);
     if (static_link) add_to_static_mesh(mesh, world, g);
     const double mass = static_link ? 0.0 : link.mass * geom_volume(g) / volume;
@@ -258,8 +117,8 @@ void emit_link_geoms(std::string& xml, StaticMesh& mesh, const std::string& pref
 }
 
 void emit_child_links(std::string& xml, std::string& welds, StaticMesh& mesh, const std::string& object,
-                      const Link& parent, const Eigen::Isometry3d& parent_world, const std::string& indent) {
-  for (const Link& link : parent.links) {
+                      const LinkSpec& parent, const Eigen::Isometry3d& parent_world, const std::string& indent) {
+  for (const LinkSpec& link : parent.links) {
     const std::string name = object + "/" + link.name;
     Eigen::Isometry3d world = parent_world;
     world.translation() += parent_world.linear() * link.pos;
@@ -287,7 +146,7 @@ std::string root_body_name(const std::string& object, const ObjectModel& model, 
 // body is a capsule, drawn and colliding: MuJoCo 2.2.2's skins cost ~2 ms per
 // frame on llvmpipe (skin update and draw), a geom ~30 us and is culled out of
 // view; flat ellipsoids went through MPR contacts that threw the cloth about.
-std::string cloth_xml(const std::string& name, const Cloth& c, double mass) {
+std::string cloth_xml(const std::string& name, const ClothSpec& c, double mass) {
   const double per_body = mass / (c.count * c.count);
   return "      <composite type=\"cloth\" count=\"" + std::to_string(c.count) + " " + std::to_string(c.count) +
          " 1\" spacing=\"" + fmt(c.spacing) + "\" prefix=\"" + name +
@@ -300,27 +159,6 @@ std::string cloth_xml(const std::string& name, const Cloth& c, double mass) {
          "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " + fmt(c.rgb[2]) +
          " 1\" friction=\"0.8 0.02 0.001\"/>\n"
          "      </composite>\n";
-}
-
-// The robot file's children, spliced into the scene document.
-std::string robot_mjcf_children(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open robot file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  // Loading it alone reports syntax and schema errors with this file's lines.
-  char error[1024] = "";
-  mjModel* alone = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
-  if (!alone) throw Error(path + ": invalid robot MJCF: " + error);
-  mj_deleteModel(alone);
-  const auto open = text.find("<mujoco");
-  const auto open_end = open == std::string::npos ? open : text.find('>', open);
-  const auto close = text.rfind("</mujoco>");
-  if (open_end == std::string::npos || close == std::string::npos || close < open_end) {
-    throw Error(path + ": expected a <mujoco> ... </mujoco> document");
-  }
-  return text.substr(open_end + 1, close - open_end - 1);
 }
 
 std::string resolve_scene_path(const std::string& name, const std::string& assets) {
@@ -353,39 +191,25 @@ std::string static_body_name(const std::pair<long, long>& cell) {
   return "static_" + std::to_string(cell.first) + "_" + std::to_string(cell.second);
 }
 
-// Parses an MJCF document from memory through MuJoCo's virtual file system.
-mjModel* compile_mjcf(const std::string& xml, const std::string& what) {
-  mjVFS vfs;
-  mj_defaultVFS(&vfs);
-  const char* file = "chore_scene.xml";
-  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(xml.size())) != 0) {
-    throw Error(what + ": cannot allocate the model in MuJoCo's VFS");
-  }
-  const int index = mj_findFileVFS(&vfs, file);
-  std::memcpy(vfs.filedata[index], xml.data(), xml.size());
-  char error[2048] = "";
-  mjModel* model = mj_loadXML(file, &vfs, error, sizeof error);
-  mj_deleteVFS(&vfs);
-  if (!model) throw Error(what + ": MuJoCo rejected the compiled scene: " + error);
-  return model;
-}
-
 }  // namespace
 
 std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOptions& options) {
+  const std::string assets = options.assets_dir.empty() ? default_assets_dir() : options.assets_dir;
+  return build(read_scene_file(resolve_scene_path(name, assets), assets), options);
+}
+
+std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOptions& options) {
   install_mujoco_handlers();
   const std::string assets = options.assets_dir.empty() ? default_assets_dir() : options.assets_dir;
-  const std::string path = resolve_scene_path(name, assets);
-  const nlohmann::json json = read_json_file(path);
-  const JsonReader j(json, path);
-
+  const std::string& path = file.path;
   std::shared_ptr<Scene> scene(new Scene());
-  scene->name_ = j.string("name", fs::path(path).stem().string());
+  scene->name_ = file.name;
   scene->path_ = path;
   scene->has_robot_ = options.robot;
+  scene->rooms_ = file.rooms;
+  scene->robot_start_ = file.robot_start;
 
-  const double wall_height = j.number("wall_height", 2.6, Bounds{0.5, 20});
-  const double wall_thickness = j.number("wall_thickness", 0.1, Bounds{0.01, 2});
+  const double wall_height = file.wall_height, wall_thickness = file.wall_thickness;
   StaticMesh mesh("static_visual", kMergedGroup);
   // Ceilings in their own group, so that views from above can leave them out.
   StaticMesh ceilings("ceiling_visual", kCeilingGroup);
@@ -395,41 +219,27 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
 
   // Rooms: floor slabs (collision + static look) and ceilings (look only).
-  const JsonReader rooms = j.at("rooms");
-  for (size_t i = 0; i < rooms.size(); ++i) {
-    const JsonReader r = rooms.at(i);
-    Room room{r.string("name"), r.string("type"), {}};
-    for (const Room& other : scene->rooms_) {
-      if (other.name == room.name) r.fail("duplicate room name '" + room.name + "'");
-    }
-    const Rgb floor_rgb = to_rgb(r.numbers("floor_rgb", 3, {0.6, 0.6, 0.6}, kColor));
-    const JsonReader rects = r.at("rects");
-    for (size_t k = 0; k < rects.size(); ++k) {
-      const auto v = rects.at(k).as_numbers(4, kSceneCoordinate);
-      if (!(v[0] < v[2] && v[1] < v[3])) rects.at(k).fail("expected [xmin, ymin, xmax, ymax]");
-      room.rects.push_back({v[0], v[1], v[2], v[3]});
+  for (const Room& room : file.rooms) {
+    for (size_t k = 0; k < room.rects.size(); ++k) {
+      const auto& v = room.rects[k];
       lo = lo.cwiseMin(Eigen::Vector2d(v[0], v[1]));
       hi = hi.cwiseMax(Eigen::Vector2d(v[2], v[3]));
       Eigen::Isometry3d floor = Eigen::Isometry3d::Identity();
       const Eigen::Vector3d half((v[2] - v[0]) / 2, (v[3] - v[1]) / 2, 0.05);
       floor.translation() = Eigen::Vector3d((v[0] + v[2]) / 2, (v[1] + v[3]) / 2, -0.05);
-      mesh.add_box(floor, half, floor_rgb);
+      mesh.add_box(floor, half, room.floor_rgb);
       world += "    <geom name=\"floor_" + room.name + "_" + std::to_string(k) + "\" type=\"box\" size=\"" + fmt(half) +
                "\" pos=\"" + fmt(Eigen::Vector3d(floor.translation())) + "\"/>\n";
       Eigen::Isometry3d ceiling = floor;
       ceiling.translation().z() = wall_height + 0.05;
       ceilings.add_box(ceiling, half, kCeilingColor);
     }
-    if (room.rects.empty()) r.fail("a room needs at least one rect");
-    scene->rooms_.push_back(std::move(room));
   }
 
-  const JsonReader walls = j.at("walls");
-  for (size_t i = 0; i < walls.size(); ++i) {
-    const auto w = walls.at(i).as_numbers(4, kSceneCoordinate);
+  for (size_t i = 0; i < file.walls.size(); ++i) {
+    const auto& w = file.walls[i];
     const Eigen::Vector2d a(w[0], w[1]), b(w[2], w[3]);
     const double length = (b - a).norm();
-    if (length < 1e-6) walls.at(i).fail("wall has zero length");
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = Eigen::Vector3d((a.x() + b.x()) / 2, (a.y() + b.y()) / 2, wall_height / 2);
     pose.linear() =
@@ -441,54 +251,35 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
              pose_attributes(pose) + "/>\n";
   }
 
-  if (j.has("ceiling_lights")) {
-    const JsonReader cl = j.at("ceiling_lights");
-    for (size_t i = 0; i < cl.size(); ++i) {
-      const auto pos = cl.at(i).numbers("pos", 3, kSceneCoordinate);
-      const Rgb rgb = to_rgb(cl.at(i).numbers("rgb", 3, {0.5, 0.5, 0.5}, kColor));
-      lights += "    <light name=\"ceiling_" + std::to_string(i) + "\" pos=\"" +
-                fmt(Eigen::Vector3d(pos[0], pos[1], pos[2])) +
-                "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"85\" "
-                "exponent=\"1\" attenuation=\"1 0 0\" diffuse=\"" +
-                fmt(rgb[0]) + " " + fmt(rgb[1]) + " " + fmt(rgb[2]) + "\" specular=\"0.1 0.1 0.1\"/>\n";
-    }
+  for (size_t i = 0; i < file.ceiling_lights.size(); ++i) {
+    const Rgb& rgb = file.ceiling_lights[i].rgb;
+    lights += "    <light name=\"ceiling_" + std::to_string(i) + "\" pos=\"" + fmt(file.ceiling_lights[i].pos) +
+              "\" dir=\"0 0 -1\" directional=\"false\" castshadow=\"false\" cutoff=\"85\" "
+              "exponent=\"1\" attenuation=\"1 0 0\" diffuse=\"" +
+              fmt(rgb[0]) + " " + fmt(rgb[1]) + " " + fmt(rgb[2]) + "\" specular=\"0.1 0.1 0.1\"/>\n";
   }
 
   // Objects.
-  std::map<std::string, ObjectModel> models;
   std::vector<std::string> holder_bodies;                     // per object: its root body's name, or its static body's
   std::vector<char> in_static_body;                           // per object: its geoms are in a static body
-  std::vector<std::optional<Cloth>> cloths;                   // per object: its cloth, if simulated
+  std::vector<std::optional<ClothSpec>> cloths;               // per object: its cloth, if simulated
   std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
   std::vector<std::string> static_roots;                      // fixed objects with moving parts: their static roots
-  const JsonReader objects = j.at("objects");
-  for (size_t i = 0; i < objects.size(); ++i) {
-    const JsonReader o = objects.at(i);
-    SceneObject object;
-    object.name = o.string("name");
-    if (object.name.find('/') != std::string::npos) o.fail("object names may not contain '/'");
-    if (scene->find_object(object.name)) o.fail("duplicate object name '" + object.name + "'");
-    object.model = o.string("model");
-    auto found = models.find(object.model);
-    if (found == models.end()) {
-      // A model is a name in <assets>/objects, or a .json path relative to the scene file.
-      const fs::path model_path = object.model.ends_with(".json")
-                                      ? fs::path(path).parent_path() / object.model
-                                      : fs::path(assets) / "objects" / (object.model + ".json");
-      if (!fs::exists(model_path)) {
-        o.fail("unknown object model '" + object.model + "' (no " + model_path.string() + ")");
-      }
-      found = models.emplace(object.model, read_object_model(model_path.string())).first;
+  for (const ObjectPlacement& placement : file.objects) {
+    const auto found = file.models.find(placement.model);
+    if (found == file.models.end()) {
+      throw Error(path + ": object '" + placement.name + "': no model '" + placement.model + "'");
     }
     const ObjectModel& model = found->second;
+    SceneObject object;
+    object.name = placement.name;
+    object.model = placement.model;
     object.category = model.category;
-    object.synset = o.string("synset", model.synset);
-    object.fixed = o.boolean("fixed", false);
-    const auto pos = o.numbers("pos", 3, kSceneCoordinate);
+    object.synset = placement.synset;
+    object.fixed = placement.fixed;
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.translation() = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    pose.linear() =
-        Eigen::AngleAxisd(o.number("yaw", 0.0, kDegrees) * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pose.translation() = placement.pos;
+    pose.linear() = Eigen::AngleAxisd(placement.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 
     if (model.cloth) pose.translation().z() += model.cloth->radius;  // capsules rest on the support
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(object.mat.data()) = pose.linear();
@@ -500,14 +291,13 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
                 fmt(model.light->rgb[0]) + " " + fmt(model.light->rgb[1]) + " " + fmt(model.light->rgb[2]) +
                 "\" specular=\"0.1 0.1 0.1\"/>\n";
     }
-    if (model.cloth && object.fixed) o.fail("a cloth cannot be fixed");
     if (object.fixed && !model.cloth && model.root.links.empty()) {
       // Furniture without moving parts: its geoms, posed in the world, join
       // the static body of the cell it stands in.
       const auto key = static_cell(pose.translation());
       std::string& cell = static_cells[key];
       for (size_t g = 0; g < model.root.geoms.size(); ++g) {
-        Geom placed = model.root.geoms[g];
+        GeomSpec placed = model.root.geoms[g];
         placed.pose = pose * placed.pose;
         add_to_static_mesh(mesh, Eigen::Isometry3d::Identity(), placed);
         cell += "      " + geom_xml(object.name + "/" + std::to_string(g), placed, false, 0) + "\n";
@@ -534,8 +324,8 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       world += cloth_xml(object.name, *model.cloth, model.root.mass);
     } else if (model.cloth) {
       // Cloth simulation off: one rigid tile of the cloth's size.
-      const Cloth& c = *model.cloth;
-      Geom tile;
+      const ClothSpec& c = *model.cloth;
+      GeomSpec tile;
       tile.type = "box";
       tile.size = {c.count * c.spacing / 2, c.count * c.spacing / 2, c.radius};
       tile.rgb = c.rgb;
@@ -574,10 +364,6 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
       excludes += "    <exclude body1=\"" + unmoving[a] + "\" body2=\"" + unmoving[b] + "\"/>\n";
     }
   }
-
-  const JsonReader robot = j.at("robot");
-  const auto start = robot.numbers("pos", 2, kSceneCoordinate);
-  scene->robot_start_ = {start[0], start[1], robot.number("yaw", 0.0, kDegrees) * M_PI / 180.0};
 
   // Cameras: a top-down overview, and a stand-in for the head camera when the
   // robot is left out.
@@ -638,13 +424,13 @@ std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOpt
   if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
-    xml += robot_mjcf_children(robot_path);
+    xml += robot_mjcf_children(read_text_file(robot_path, kMaxMjcfBytes, "a robot file"), robot_path);
     if (!welds.empty()) xml += "  <equality>\n" + welds + "  </equality>\n";
   }
   xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";
   scene->mjcf_ = xml;
 
-  mjModel* model = compile_mjcf(xml, path);
+  mjModel* model = load_mjcf(xml, path + ": MuJoCo rejected the compiled scene");
   scene->model_ = model;  // owned from here: ~Scene frees it on any later error
   mesh.paint_palette(model);
   ceilings.paint_palette(model);

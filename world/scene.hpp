@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "world/scene_file.hpp"
+
 struct mjModel_;
 
 namespace chore {
@@ -26,12 +28,6 @@ constexpr int kStaticGroup = 0;
 constexpr int kCeilingGroup = 1;
 constexpr int kMergedGroup = 2;
 constexpr int kCollisionGroup = 3;
-
-struct Room {
-  std::string name;  // "<type>_<index>", the name BDDL's (inroom obj room) uses
-  std::string type;
-  std::vector<std::array<double, 4>> rects;  // xmin, ymin, xmax, ymax
-};
 
 struct SceneObject {
   std::string name;   // instance name, unique in the scene
@@ -57,10 +53,6 @@ struct SceneObject {
   double flat_diagonal = 0;
 };
 
-struct Pose2 {
-  double x = 0, y = 0, yaw = 0;
-};
-
 struct SceneOptions {
   bool robot = true;       // false: no robot, a fixed camera stands in (Table A.10 "- Robot")
   bool cloth = true;       // false: cloths become rigid flat boxes (Table A.10 "- Fluid and Cloth")
@@ -71,6 +63,8 @@ class Scene {
  public:
   // `name` is a scene in <assets>/scenes/<name>.json, or a path to a .json file.
   static std::shared_ptr<const Scene> load(const std::string& name, const SceneOptions& options = {});
+  // A scene read or made in memory (the robot comes from options.assets_dir).
+  static std::shared_ptr<const Scene> build(const SceneFile& file, const SceneOptions& options = {});
   ~Scene();
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;

@@ -154,7 +154,7 @@ void draw_states(const World& w, mjvScene* scene) {
   std::map<int, const TextureChange*> changes;
   for (const auto& [object, state] : state_of) {
     const bool wet = std::any_of(state.soaked.begin(), state.soaked.end(),
-                                 [&](const auto& liquid) { return soaked(w, object, liquid.first); });
+                                 [&, id = object](const auto& liquid) { return soaked(w, id, liquid.first); });
     const TextureChange* change = frozen(w, object)   ? &kFrozen
                                   : burnt(w, object)  ? &kBurnt
                                   : cooked(w, object) ? &kCooked

@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
+#include "world/scene_file.hpp"  // Rgb
+
 struct mjModel_;
 
 namespace chore {
-
-using Rgb = std::array<double, 3>;
 
 class StaticMesh {
  public:
