@@ -14,23 +14,30 @@
 
 namespace chore {
 
-void check_activities(const std::vector<std::string>& files, std::ostream& out) {
-  const auto kb = KnowledgeBase::load();
-  const Vocabulary vocabulary = load_vocabulary(kb);
+int check_activities(const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
+  const Vocabulary vocabulary = load_vocabulary();
+  int failed = 0;
   for (const std::string& file : files) {
-    // Predicates and arities, room types and synsets checked where they are written.
-    const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
-    const GroundGoal goal = ground_goal(p, [&](std::string_view instance, std::string_view type) {
-      const std::string i(instance), t(type);
-      return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
-    });
-    size_t literals = 0;
-    for (const GroundOption& o : goal.options) literals = std::max(literals, o.size());
-    out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size() << " objects, "
-        << p.init.size() << " initial literals, " << goal.conditions.size() << " goal conditions, "
-        << goal.options.size() << " ground options of up to " << literals << " literals (" << goal.literals.size()
-        << " distinct)\n";
+    try {
+      // Predicates and arities, room types and synsets checked where they are written.
+      const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
+      const auto kb = dialect_knowledge_base(p.domain);
+      const GroundGoal goal = ground_goal(p, [&](std::string_view instance, std::string_view type) {
+        const std::string i(instance), t(type);
+        return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
+      });
+      size_t literals = 0;
+      for (const GroundOption& o : goal.options) literals = std::max(literals, o.size());
+      out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size() << " objects, "
+          << p.init.size() << " initial literals, " << goal.conditions.size() << " goal conditions, "
+          << goal.options.size() << " ground options of up to " << literals << " literals (" << goal.literals.size()
+          << " distinct)\n";
+    } catch (const Error& e) {
+      err << "chore: error: " << e.what() << std::endl;
+      ++failed;
+    }
   }
+  return failed;
 }
 
 namespace {

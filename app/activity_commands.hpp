@@ -8,9 +8,10 @@
 
 namespace chore {
 
-// Parses and grounds each file; prints objects, goal options and literals.
-// Throws chore::Error (with file:line:col) at the first invalid file.
-void check_activities(const std::vector<std::string>& files, std::ostream& out);
+// Parses and grounds each file, each against its dialect; prints objects, goal
+// options and literals to `out`, or the file's error (with file:line:col) to
+// `err`. Returns how many files failed.
+int check_activities(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
 
 // Instantiates `activity` with `seed` and writes a PNG: the robot's head
 // camera beside a top-down view of the scene.

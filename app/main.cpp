@@ -70,7 +70,10 @@ int main(int argc, char** argv) {
   try {
     switch (c.command) {
       case chore::Command::activity_check:
-        chore::check_activities(c.check_files, std::cout);
+        if (const int failed = chore::check_activities(c.check_files, std::cout, std::cerr)) {
+          std::cerr << "chore: error: " << failed << " of " << c.check_files.size() << " files failed" << std::endl;
+          return 2;
+        }
         break;
       case chore::Command::activity_sample:
         if (c.sample.seeds) {

@@ -33,7 +33,7 @@ EnvAssets load_assets(const EnvConfig& config) {
   EnvAssets assets;
   assets.scene = Scene::load(scene, options);
   if (!config.activity.empty()) {
-    assets.activity = Activity::load(config.activity, *assets.scene, KnowledgeBase::load());
+    assets.activity = Activity::load(config.activity, *assets.scene);
   }
   return assets;
 }

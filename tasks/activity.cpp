@@ -101,7 +101,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   const Vocabulary vocabulary = load_vocabulary(kb);
   a->problem_ = load_bddl(path, {.vocabulary = &vocabulary});
   a->name_ = fs::path(path).stem().string();
-  a->kb_ = std::move(kb);
+  a->kb_ = kb ? std::move(kb) : dialect_knowledge_base(a->problem_.domain);
   const std::string where = "activity '" + a->name_ + "' in scene '" + scene.name() + "'";
 
   std::map<std::string, std::string> rooms;  // instance -> BDDL room

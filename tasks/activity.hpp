@@ -45,9 +45,10 @@ std::string resolve_activity_path(const std::string& name);
 class Activity {
  public:
   // `name` is an activity in <tasks>/activities/<name>.bddl, or a path to a
-  // .bddl file. Throws chore::Error naming what cannot be bound and why.
+  // .bddl file; without `kb`, its dialect's knowledge base (tasks/vocabulary.hpp).
+  // Throws chore::Error naming what cannot be bound and why.
   static std::shared_ptr<const Activity> load(const std::string& name, const Scene& scene,
-                                              std::shared_ptr<const KnowledgeBase> kb);
+                                              std::shared_ptr<const KnowledgeBase> kb = nullptr);
 
   const std::string& name() const { return name_; }
   const Problem& problem() const { return problem_; }

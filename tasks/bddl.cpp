@@ -170,9 +170,15 @@ class Parser {
  public:
   Parser(std::string_view file, const ParseOptions& options) : file_(file), options_(options) {}
 
-  Problem problem(const Sexp& define) {
+  Problem problem(const Sexp& file) {
     Problem p;
-    if (!define.is_list) fail_at(define, "'(define'");
+    if (!file.is_list) fail_at(file, "'(define'");
+    // Atoms between the sections are skipped, as BEHAVIOR's parser skips them
+    // (BEHAVIOR-1K's wash_a_baseball_cap has a stray '\' after :init).
+    Sexp define{.is_list = true, .pos = file.pos, .end = file.end};
+    for (size_t i = 0; i < file.items.size(); ++i) {
+      if (i == 0 || file.items[i].is_list) define.items.push_back(file.items[i]);
+    }
     keyword(define, 0, "define");
     const Sexp& header = list(item(define, 1, "(problem NAME)"), "(problem NAME)");
     keyword(header, 0, "problem");
@@ -188,6 +194,7 @@ class Parser {
     else
       fail_at(domain_name, "igibson or omnigibson");
     expect_size(domain, 2);
+    domain_ = p.domain;
     if (options_.vocabulary) {
       predicates_ = p.domain == Domain::igibson ? &options_.vocabulary->igibson : &options_.vocabulary->omnigibson;
     }
@@ -197,7 +204,14 @@ class Parser {
     for (size_t i = 1; i < init.items.size(); ++i) p.init.push_back(ground_literal(init.items[i]));
     const Sexp& goal = section(define, 5, ":goal");
     p.goal = formula(item(goal, 1, "a formula"));
-    expect_size(goal, 2);
+    if (goal.items.size() > 2) {
+      // Several formulas: their conjunction, as in BEHAVIOR's parser
+      // (BEHAVIOR-1K's loading_the_car).
+      Formula all{.op = Op::conjunction, .line = goal.pos.line, .column = goal.pos.column};
+      all.children.push_back(std::move(p.goal));
+      for (size_t i = 2; i < goal.items.size(); ++i) all.children.push_back(formula(goal.items[i]));
+      p.goal = std::move(all);
+    }
     expect_size(define, 6);
     return p;
   }
@@ -256,6 +270,10 @@ class Parser {
         continue;
       }
       if (word.starts_with('?') || word.starts_with(':')) fail_at(e, "an object name");
+      // A name repeated before its type is one object, as in BEHAVIOR's object
+      // scope (BEHAVIOR-1K's passing_out_drinks lists one bottle twice).
+      if (std::any_of(decls.end() - untyped, decls.end(), [&](const ObjectDecl& d) { return d.name == word; }))
+        continue;
       if (const auto it = declared_.find(word); it != declared_.end())
         fail(file_, e.pos, "an object name not declared before",
              quote(word) + " (declared at " + to_string(it->second) + ")");
@@ -300,7 +318,7 @@ class Parser {
   void check_synset(const Sexp& type) const {
     if (!options_.vocabulary || !options_.vocabulary->unknown_synset) return;
     if (type.atom == "agent.n.01" || type.atom == "floor.n.01") return;
-    const std::string why = options_.vocabulary->unknown_synset(type.atom);
+    const std::string why = options_.vocabulary->unknown_synset(domain_, type.atom);
     if (!why.empty()) throw Error(std::string(file_) + ":" + to_string(type.pos) + ": " + why);
   }
 
@@ -378,8 +396,6 @@ class Parser {
     list(e, "a variable declaration (?x - TYPE)");
     const Sexp& var = item(e, 0, "a variable such as ?x");
     if (var.is_list || !var.atom.starts_with('?') || var.atom.size() == 1) fail_at(var, "a variable such as ?x");
-    if (std::find(scope_.begin(), scope_.end(), var.atom) != scope_.end())
-      fail_at(var, "a variable not bound by an enclosing quantifier");
     const Sexp& dash = item(e, 1, "'-'");
     if (dash.is_list || dash.atom != "-") fail_at(dash, "'-'");
     const Sexp& type = item(e, 2, "a type");
@@ -405,6 +421,7 @@ class Parser {
   std::map<std::string, Pos, std::less<>> declared_;  // :objects, with where each is declared
   std::vector<std::string> scope_;                    // goal variables in scope, innermost last
   const Predicates* predicates_ = nullptr;            // the vocabulary's, for the problem's dialect
+  Domain domain_ = Domain::igibson;                   // the problem's dialect, once read
 };
 
 void print(std::string& out, const Formula& f, int depth) {

@@ -112,7 +112,7 @@ Predicates parse_domain(std::string_view text, std::string_view file_name);
 struct Vocabulary {
   Predicates igibson, omnigibson;
   std::set<std::string, std::less<>> room_types;
-  std::function<std::string(const std::string& synset)> unknown_synset;
+  std::function<std::string(Domain domain, const std::string& synset)> unknown_synset;
 };
 
 struct ParseOptions {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 
 #include "base/error.hpp"
@@ -36,8 +37,15 @@ const char* to_string(ExtendedState state) {
 
 namespace {
 
-constexpr const char* kHierarchyFile = "hierarchy_owned.json";
-constexpr const char* kPropertiesFile = "synsets_to_filtered_properties.json";
+// The releases' file names: BEHAVIOR-100's, then BEHAVIOR-1K's. The rules are
+// the same: the 1K properties file lists every synset, its non-leaf entries
+// already the intersection of their leaves' (checked over all 927 of them).
+struct Release {
+  const char* hierarchy;
+  const char* properties;
+};
+constexpr Release kReleases[] = {{"hierarchy_owned.json", "synsets_to_filtered_properties.json"},
+                                 {"output_hierarchy.json", "propagated_annots_params.json"}};
 constexpr int kStateCount = static_cast<int>(ExtendedState::broken_state) + 1;
 
 constexpr unsigned bit(ExtendedState state) {
@@ -93,24 +101,41 @@ void read_hierarchy_node(const JsonReader& node, Tree& tree) {
   }
 }
 
-std::map<std::string, Properties> read_properties(const std::string& path) {
+struct Annotations {
+  Properties properties;
+  TextParameters texts;
+};
+
+// BEHAVIOR-1K's parameters that are not numbers (kb/prop_param_description.md
+// of its release): derivative synsets (*_synset), a particle method, and
+// particle conditions (conditions, default_*_conditions), kept as JSON text.
+bool is_text_parameter(const std::string& name) {
+  return name.ends_with("_synset") || name == "method" || name.ends_with("conditions");
+}
+
+// Numbers and true/false are parameters; the text ones above text parameters;
+// anything else an error.
+std::map<std::string, Annotations> read_properties(const std::string& path) {
   const nlohmann::json json = read_json_file(path);
   if (!json.is_object()) throw Error(path + ": expected an object of synsets");
-  std::map<std::string, Properties> out;
+  std::map<std::string, Annotations> out;
   for (const auto& synset : json.items()) {
     const std::string where = path + ": " + synset.key();
     if (!synset.value().is_object()) throw Error(where + ": expected an object of properties");
-    Properties& properties = out[synset.key()];
+    Annotations& annotations = out[synset.key()];
     for (const auto& property : synset.value().items()) {
       const std::string property_where = where + "." + property.key();
       if (!property.value().is_object()) throw Error(property_where + ": expected an object of parameters");
-      auto& parameters = properties[property.key()];
+      auto& parameters = annotations.properties[property.key()];
       for (const auto& parameter : property.value().items()) {
         const nlohmann::json& value = parameter.value();
         if (value.is_boolean()) {
           parameters[parameter.key()] = value.get<bool>() ? 1.0 : 0.0;
         } else if (value.is_number()) {
           parameters[parameter.key()] = value.get<double>();
+        } else if (is_text_parameter(parameter.key())) {
+          annotations.texts[property.key()][parameter.key()] =
+              value.is_string() ? value.get<std::string>() : value.dump();
         } else {
           throw Error(property_where + "." + parameter.key() + ": expected a number or true/false");
         }
@@ -144,7 +169,8 @@ std::vector<std::string> parents_first(const Tree& tree, const std::string& hier
 }
 
 // Keeps the properties both have, and of their parameters those with equal values.
-void intersect(Properties& into, const Properties& other) {
+template <class Map>
+void intersect(Map& into, const Map& other) {
   for (auto it = into.begin(); it != into.end();) {
     const auto found = other.find(it->first);
     if (found == other.end()) {
@@ -162,12 +188,18 @@ void intersect(Properties& into, const Properties& other) {
 }  // namespace
 
 std::shared_ptr<const KnowledgeBase> KnowledgeBase::load(const std::string& dir) {
-  const std::string hierarchy_path = dir + "/" + kHierarchyFile;
-  const std::string properties_path = dir + "/" + kPropertiesFile;
+  const auto release = std::find_if(std::begin(kReleases), std::end(kReleases),
+                                    [&](const Release& r) { return std::filesystem::exists(dir + "/" + r.hierarchy); });
+  if (release == std::end(kReleases)) {
+    throw Error(dir + ": no knowledge base (expected " + kReleases[0].hierarchy + " or " + kReleases[1].hierarchy +
+                ")");
+  }
+  const std::string hierarchy_path = dir + "/" + release->hierarchy;
+  const std::string properties_path = dir + "/" + release->properties;
   Tree tree;
   const nlohmann::json hierarchy = read_json_file(hierarchy_path);
   read_hierarchy_node(JsonReader(hierarchy, hierarchy_path), tree);
-  std::map<std::string, Properties> annotations = read_properties(properties_path);
+  std::map<std::string, Annotations> annotations = read_properties(properties_path);
 
   std::map<std::string, Synset> synsets;
   for (auto& [name, children] : tree) {
@@ -179,7 +211,10 @@ std::shared_ptr<const KnowledgeBase> KnowledgeBase::load(const std::string& dir)
     for (const std::string& child : children) synsets[child].parents.push_back(name);
     synsets[name].children = children;
   }
-  for (auto& [name, properties] : annotations) synsets[name].properties = std::move(properties);
+  for (auto& [name, a] : annotations) {
+    synsets[name].properties = std::move(a.properties);
+    synsets[name].texts = std::move(a.texts);
+  }
 
   // Synsets outside the tree have no parents and no children: nothing to derive.
   const std::vector<std::string> order = parents_first(tree, hierarchy_path);
@@ -197,8 +232,10 @@ std::shared_ptr<const KnowledgeBase> KnowledgeBase::load(const std::string& dir)
     Synset& synset = synsets.at(*it);
     if (synset.children.empty()) continue;
     synset.properties = synsets.at(synset.children.front()).properties;
+    synset.texts = synsets.at(synset.children.front()).texts;
     for (const std::string& child : synset.children) {
       intersect(synset.properties, synsets.at(child).properties);
+      intersect(synset.texts, synsets.at(child).texts);
     }
   }
   for (auto& [name, synset] : synsets) {
@@ -274,6 +311,16 @@ bool KnowledgeBase::has_property(const std::string& synset, const std::string& p
 std::optional<double> KnowledgeBase::parameter(const std::string& synset, const std::string& property,
                                                const std::string& name) const {
   const Properties& all = properties(synset);
+  const auto found = all.find(property);
+  if (found == all.end()) return std::nullopt;
+  const auto value = found->second.find(name);
+  if (value == found->second.end()) return std::nullopt;
+  return value->second;
+}
+
+std::optional<std::string> KnowledgeBase::text_parameter(const std::string& synset, const std::string& property,
+                                                         const std::string& name) const {
+  const TextParameters& all = find(synset).texts;
   const auto found = all.find(property);
   if (found == all.end()) return std::nullopt;
   const auto value = found->second.find(name);

@@ -1,7 +1,8 @@
 // The synset knowledge base: the WordNet hierarchy of object categories and
 // each category's properties (BEHAVIOR-1K appendix, section B), read from
-// tasks/kb/ (StanfordVL/bddl data, MIT; see tasks/kb/LICENSE-bddl). Loaded once
-// and shared read-only by every environment.
+// tasks/kb/behavior-100/ (the igibson dialect's) or tasks/kb/behavior-1k/ (the
+// omnigibson dialect's); StanfordVL/bddl data, MIT, see each folder's
+// LICENSE-bddl. Loaded once and shared read-only by every environment.
 //
 // Data rules:
 // - The hierarchy file is a tree in which a synset with several parents is
@@ -43,11 +44,16 @@ const char* to_string(ExtendedState state);
 
 // property -> {parameter -> value}; true/false parameters read as 1/0.
 using Properties = std::map<std::string, std::map<std::string, double>>;
+// property -> {parameter -> text}: BEHAVIOR-1K's synset names (what slicing or
+// cooking makes), methods, and particle conditions as JSON text.
+using TextParameters = std::map<std::string, std::map<std::string, std::string>>;
 
 class KnowledgeBase {
  public:
-  // Reads <dir>/hierarchy_owned.json and <dir>/synsets_to_filtered_properties.json.
-  static std::shared_ptr<const KnowledgeBase> load(const std::string& dir = default_tasks_dir() + "/kb");
+  // Reads <dir>/hierarchy_owned.json and <dir>/synsets_to_filtered_properties.json
+  // (BEHAVIOR-100), or <dir>/output_hierarchy.json and
+  // <dir>/propagated_annots_params.json (BEHAVIOR-1K).
+  static std::shared_ptr<const KnowledgeBase> load(const std::string& dir = default_tasks_dir() + "/kb/behavior-100");
   KnowledgeBase(const KnowledgeBase&) = delete;
   KnowledgeBase& operator=(const KnowledgeBase&) = delete;
 
@@ -71,6 +77,8 @@ class KnowledgeBase {
   bool has_property(const std::string& synset, const std::string& property) const;
   std::optional<double> parameter(const std::string& synset, const std::string& property,
                                   const std::string& name) const;
+  std::optional<std::string> text_parameter(const std::string& synset, const std::string& property,
+                                            const std::string& name) const;
 
   // States the simulation keeps for an object of this synset, in enum order.
   std::vector<ExtendedState> extended_states(const std::string& synset) const;
@@ -86,6 +94,7 @@ class KnowledgeBase {
   struct Synset {
     std::vector<std::string> parents, children, ancestors;
     Properties properties;
+    TextParameters texts;
     unsigned states = 0;  // bit i: ExtendedState i
   };
   KnowledgeBase() = default;

@@ -2,12 +2,26 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <utility>
 
 #include "base/json_file.hpp"
 
 namespace chore {
+
+std::shared_ptr<const KnowledgeBase> dialect_knowledge_base(Domain domain) {
+  static std::mutex mutex;
+  static std::map<Domain, std::shared_ptr<const KnowledgeBase>> loaded;
+  const std::lock_guard lock(mutex);
+  std::shared_ptr<const KnowledgeBase>& kb = loaded[domain];
+  if (!kb) {
+    kb =
+        KnowledgeBase::load(default_tasks_dir() + (domain == Domain::igibson ? "/kb/behavior-100" : "/kb/behavior-1k"));
+  }
+  return kb;
+}
 
 Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb, const std::string& dir) {
   const auto read = [&](const std::string& name) {
@@ -24,7 +38,9 @@ Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb, const std::s
     line.erase(std::remove_if(line.begin(), line.end(), [](char c) { return std::isspace(uint8_t(c)); }), line.end());
     if (!line.empty() && !line.starts_with('#')) v.room_types.insert(line);
   }
-  v.unknown_synset = [kb = std::move(kb)](const std::string& synset) { return kb->unknown(synset); };
+  v.unknown_synset = [kb = std::move(kb)](Domain domain, const std::string& synset) {
+    return (kb ? kb : dialect_knowledge_base(domain))->unknown(synset);
+  };
   return v;
 }
 

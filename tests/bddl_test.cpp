@@ -262,11 +262,40 @@ TEST(BddlParser, QuantifiersBindEachVariableOnce) {
   const Problem p =
       parse_bddl(with_goal("(forall (?x - apple.n.01) (exists (?y - table.n.02) (ontop ?x ?y)))"), "inline");
   EXPECT_EQ(p.goal.children[0].children[0], atom("ontop", {"?x", "?y"}));
-  // A variable cannot be bound twice in one scope.
-  EXPECT_EQ(test::error_of([] {
-              parse_bddl(with_goal("(forall (?x - apple.n.01) (forall (?x - apple.n.01) (cooked ?x)))"), "f");
-            }),
-            "f:4:43: expected a variable not bound by an enclosing quantifier got '?x'");
+  // An inner quantifier may bind a name an outer one binds: inside, the name
+  // is the inner variable (as in BEHAVIOR, whose clean_snap_peas does it).
+  const Problem shadowed =
+      parse_bddl(with_goal("(forall (?x - apple.n.01) (exists (?x - table.n.02) (cooked ?x)))"), "shadowed");
+  EXPECT_EQ(shadowed.goal.children[0].variables[0], (Variable{"?x", "table.n.02"}));
+  EXPECT_EQ(shadowed.goal.children[0].children[0], atom("cooked", {"?x"}));
+}
+
+// Where BEHAVIOR's own parser is lenient, so is chore's: several formulas in
+// :goal are their conjunction, a name repeated before its type is one object,
+// and atoms between sections are skipped (BEHAVIOR-1K's loading_the_car,
+// passing_out_drinks and wash_a_baseball_cap).
+TEST(BddlParser, AcceptsWhatBehaviorsParserAccepts) {
+  const Problem p = parse_bddl(
+      "(define (problem p) (:domain omnigibson)\n"
+      "  (:objects a.n.01_1 a.n.01_1 a.n.01_2 - apple.n.01 t.n.01_1 - table.n.02)\n"
+      "  (:init (ontop a.n.01_1 t.n.01_1))\\\n"
+      "  (:goal (cooked ?a.n.01_1) (not (cooked ?a.n.01_2))))",
+      "lenient");
+  EXPECT_EQ(p.objects, (std::vector<ObjectDecl>{
+                           {"a.n.01_1", "apple.n.01"}, {"a.n.01_2", "apple.n.01"}, {"t.n.01_1", "table.n.02"}}));
+  const Problem conjunction = parse_bddl(
+      "(define (problem p) (:domain omnigibson) (:objects a.n.01_1 a.n.01_2 - apple.n.01 t.n.01_1 - table.n.02) "
+      "(:init (ontop a.n.01_1 t.n.01_1)) (:goal (and (cooked ?a.n.01_1) (not (cooked ?a.n.01_2)))))",
+      "conjunction");
+  EXPECT_EQ(p, conjunction);
+  // Repeated with another type, or after its type, a name is still an error.
+  EXPECT_NE(test::error_of([] {
+              parse_bddl(
+                  "(define (problem p) (:domain omnigibson) (:objects a.n.01_1 - apple.n.01 a.n.01_1 - "
+                  "apple.n.01) (:init) (:goal (cooked ?a.n.01_1)))",
+                  "again");
+            }).find("again:1:74: expected an object name not declared before got 'a.n.01_1'"),
+            std::string::npos);
 }
 
 struct BadInput {
@@ -353,7 +382,7 @@ TEST(BddlParser, AVocabularyChecksPredicatesArityRoomsAndSynsetsWhereWritten) {
       "d.bddl");
   EXPECT_EQ(v.omnigibson, (Predicates{{"ontop", 2}, {"cooked", 1}, {"inroom", 2}, {"grasped", 2}}));
   v.room_types = {"kitchen", "garden"};
-  v.unknown_synset = [](const std::string& s) {
+  v.unknown_synset = [](Domain, const std::string& s) {
     return s == "apple.n.01" || s == "table.n.02" ? "" : "unknown synset '" + s + "'";
   };
   const ParseOptions checked{.vocabulary = &v};

@@ -62,6 +62,14 @@ TEST(GoalConnectives, AndOrNotImplyFollowTheirTruthTables) {
   }
 }
 
+// An inner variable shadows an outer one of the same name (BEHAVIOR binds the
+// innermost first): the outer forall repeats the inner one's conditions.
+TEST(GoalConnectives, AnInnerVariableShadowsAnOuterOne) {
+  const GroundGoal g =
+      ground_goal(problem("a1 a2 - apple b - basket", "(forall (?x - apple) (forall (?x - basket) (p ?x)))"));
+  EXPECT_EQ(texts(g, g.options), (Texts{{"(p b)"}}));
+}
+
 TEST(GoalConnectives, OptionsAreTheProductWithoutContradictions) {
   const GroundGoal g = ground_goal(problem("x z - t", "(and (or (p x) (q x)) (not (and (p x) (p z))))"));
   EXPECT_EQ(texts(g, g.conditions[0].options), (Texts{{"(p x)"}, {"(q x)"}}));

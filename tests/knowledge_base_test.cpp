@@ -7,6 +7,7 @@
 
 #include "base/error.hpp"
 #include "tasks/knowledge_base.hpp"
+#include "tasks/vocabulary.hpp"
 #include "test_util.hpp"
 
 namespace chore {
@@ -41,6 +42,23 @@ std::string write_kb(const std::string& name, const std::string& hierarchy, cons
   test::write_file(dir / "hierarchy_owned.json", hierarchy);
   test::write_file(dir / "synsets_to_filtered_properties.json", properties);
   return dir.string();
+}
+
+// Each dialect names synsets of its own release: BEHAVIOR-1K's knowledge base
+// (3,481 synsets, substances such as stain.n.01, text parameters such as what
+// slicing makes) for omnigibson files, BEHAVIOR-100's for igibson ones.
+TEST(KnowledgeBase, EachDialectHasItsRelease) {
+  const auto b1k = dialect_knowledge_base(Domain::omnigibson);
+  const auto b100 = dialect_knowledge_base(Domain::igibson);
+  EXPECT_EQ(b1k->synsets().size(), 3481u);
+  EXPECT_TRUE(b1k->contains("stain.n.01"));
+  EXPECT_FALSE(b100->contains("stain.n.01"));
+  EXPECT_EQ(b1k->text_parameter("apple.n.01", "sliceable", "sliceable_derivative_synset"), "half__apple.n.01");
+  EXPECT_EQ(b1k->text_parameter("sink.n.01", "particleSource", "conditions"),
+            R"({"water.n.06":[["toggled_on",true]]})");
+  EXPECT_EQ(b1k->parameter("apple.n.01", "cookable", "cook_temperature"), 58.0);
+  EXPECT_TRUE(b1k->is_a("apple.n.01", "edible_fruit.n.01"));
+  EXPECT_EQ(dialect_knowledge_base(Domain::omnigibson), b1k);  // loaded once
 }
 
 TEST(KnowledgeBase, CountsSynsetsOfBothFiles) {

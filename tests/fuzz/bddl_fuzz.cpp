@@ -12,16 +12,16 @@
 #include "tasks/vocabulary.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const auto kb = chore::KnowledgeBase::load();
-  static const chore::Vocabulary vocabulary = chore::load_vocabulary(kb);
-  const auto is_a = [](std::string_view instance, std::string_view type) {
-    const std::string i(instance), t(type);
-    return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
-  };
+  static const chore::Vocabulary vocabulary = chore::load_vocabulary();
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   for (const chore::Vocabulary* v : {&vocabulary, static_cast<const chore::Vocabulary*>(nullptr)}) {
     try {
-      chore::ground_goal(chore::parse_bddl(text, "fuzz", {.vocabulary = v}), is_a);
+      const chore::Problem problem = chore::parse_bddl(text, "fuzz", {.vocabulary = v});
+      const auto kb = chore::dialect_knowledge_base(problem.domain);
+      chore::ground_goal(problem, [&](std::string_view instance, std::string_view type) {
+        const std::string i(instance), t(type);
+        return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
+      });
     } catch (const chore::Error&) {
     }
   }
