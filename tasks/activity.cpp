@@ -240,8 +240,13 @@ void Activity::configure(World& world) const {
 bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   const Binding& first = binding(l.args.at(0));
   if (first.kind == Binding::Kind::agent) {
-    if (l.predicate != "onfloor" || l.negated) return holds(w, l);
-    const int room = binding(l.args.at(1)).index;
+    // The start: (onfloor agent floor) in BEHAVIOR-100, (ontop agent floor) in
+    // every BEHAVIOR-1K file. Anything else about the agent must simply hold.
+    const Binding& second = binding(l.args.at(1));
+    if ((l.predicate != "onfloor" && l.predicate != "ontop") || second.kind != Binding::Kind::floor || l.negated) {
+      return holds(w, l);
+    }
+    const int room = second.index;
     const Pose2 base = w.base_pose();
     const Room* now = w.scene().room_at(base.x, base.y);
     return now == &w.scene().rooms()[room] || sample_robot_in_room(w, room, rng);

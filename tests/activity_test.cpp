@@ -85,6 +85,31 @@ struct Instance {
   }
 };
 
+// BEHAVIOR-1K writes the agent's start (ontop agent.n.01_1 floor.n.01_1), with
+// the floor's room in :init: the robot starts in that room, whichever it is.
+TEST(Activity, TheAgentStartsOnTheFloorOfItsRoomInEitherDialect) {
+  auto apartment = Scene::load("apartment");
+  const auto dir = test::scratch_dir("agent_start");
+  test::write_file(dir / "start.bddl",
+                   "(define (problem start) (:domain omnigibson)\n"
+                   "  (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)\n"
+                   "  (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 bedroom))\n"
+                   "  (:goal (ontop ?agent.n.01_1 ?floor.n.01_1)))\n");
+  const auto activity = Activity::load((dir / "start.bddl").string(), *apartment);
+  EXPECT_EQ(activity->problem().domain, Domain::omnigibson);
+  World world(apartment);
+  activity->configure(world);
+  for (uint64_t seed = 0; seed < 3; ++seed) {
+    world.reset(apartment->robot_start());  // in the living room
+    Rng rng(seed);
+    activity->instantiate(world, rng);
+    const Pose2 base = world.base_pose();
+    ASSERT_NE(apartment->room_at(base.x, base.y), nullptr);
+    EXPECT_EQ(apartment->room_at(base.x, base.y)->name, "bedroom_0") << seed;
+    EXPECT_TRUE(activity->score(world).success);
+  }
+}
+
 TEST(Activity, GoalIsScoredFromTheWorld) {
   Instance instance("store_decoration", "apartment", 3);
   const auto& activity = instance.activity;
