@@ -101,6 +101,18 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
   sample_cmd->add_option("--seed", c.sample.seed, "Seed")->check(seed_number())->capture_default_str();
   std::string sample_seeds;
   auto* out_option = sample_cmd->add_option("--out", c.sample.out, "PNG to write");
+  CLI::App* coverage_cmd = activity_cmd->add_subcommand(
+      "coverage", "Parse, ground and instantiate every .bddl file under a folder; failures grouped by cause");
+  coverage_cmd->add_option("dir", c.coverage.dir, "Folder of BDDL files (searched recursively)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  coverage_cmd->add_option("--seed", c.coverage.seed, "Seed of each instance")
+      ->check(seed_number())
+      ->capture_default_str();
+  coverage_cmd->add_option("--threads", c.coverage.threads, "Files at once")
+      ->check(integer_in(1, 64))
+      ->capture_default_str();
+  coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");
   sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")->excludes(out_option);
 
   std::string expert_mode = "physical";
@@ -277,6 +289,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
   // What CLI11 cannot check alone.
   try {
     if (*check_cmd) c.command = Command::activity_check;
+    if (*coverage_cmd) c.command = Command::activity_coverage;
     if (*sample_cmd) {
       c.command = Command::activity_sample;
       if (!sample_seeds.empty()) c.sample.seeds = seed_range(sample_seeds, "--seeds");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/activity_coverage.hpp"
 #include "app/bench.hpp"
 #include "app/expert_command.hpp"
 #include "app/observe_command.hpp"
@@ -21,7 +22,19 @@
 
 namespace chore {
 
-enum class Command { bench, activity_check, activity_sample, expert, eval, video, observe, plot, train, reproduce };
+enum class Command {
+  bench,
+  activity_check,
+  activity_sample,
+  activity_coverage,
+  expert,
+  eval,
+  video,
+  observe,
+  plot,
+  train,
+  reproduce
+};
 
 // Where eval and video get their policy and its env.
 struct PolicyArgs {
@@ -42,10 +55,11 @@ struct SampleArgs {
 // The command and its options; only those of `command` are set.
 struct CommandLine {
   Command command = Command::bench;
-  bool json = false;  // bench, expert, eval: print JSON
+  bool json = false;  // bench, expert, eval, activity coverage: print JSON
   BenchOptions bench;
   std::vector<std::string> check_files;
   SampleArgs sample;
+  CoverageOptions coverage;
   ExpertOptions expert;
   EvalOptions eval;
   PolicyArgs policy;  // eval, video

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/activity_commands.hpp"
+#include "app/activity_coverage.hpp"
 #include "app/command_line.hpp"
 #include "base/error.hpp"
 #include "policies/evaluate.hpp"
@@ -83,6 +84,11 @@ int main(int argc, char** argv) {
           chore::sample_activity(c.sample.name, c.sample.scene, c.sample.seed, c.sample.out, std::cout);
         }
         break;
+      case chore::Command::activity_coverage: {
+        const nlohmann::json results = chore::activity_coverage(c.coverage, std::cerr);
+        std::cout << (c.json ? results.dump(2) + "\n" : chore::format_coverage(results));
+        break;
+      }
       case chore::Command::expert: {
         const nlohmann::json results = chore::run_expert(c.expert, std::cerr);
         std::cout << (c.json ? results.dump(2) + "\n" : chore::format_expert(results));

@@ -52,6 +52,7 @@ tasks="$(cd "$(dirname "${BASH_SOURCE[0]}")/../tasks/activities" && pwd)"
 expect 0 "store_decoration_0 (igibson): 5 objects" -- "$chore" activity check "$tasks/store_decoration.bddl" "$tasks/collect_trash.bddl" "$tasks/clean_table.bddl"
 expect 2 "error_unbalanced.bddl:3:1: expected ')'" -- "$chore" activity check "$data/bddl/error_unbalanced.bddl"
 expect 2 "1 of 2 files failed" -- "$chore" activity check "$data/bddl/error_unbalanced.bddl" "$tasks/clean_table.bddl"
+expect 0 "3 activities; parsed and grounded 3 (100.0%), instantiated 3 (100.0%)" -- "$chore" activity coverage "$tasks" --threads 2
 expect 2 "unknown activity 'nope'" -- "$chore" activity sample nope --out /tmp/chore_cli_nope.png
 out_png="$(mktemp -d)/sample.png"
 expect 0 "picture: $out_png" -- "$chore" activity sample store_decoration --seed 1 --out "$out_png"

@@ -1,0 +1,31 @@
+// `chore activity coverage DIR`: how much of an activity corpus chore runs.
+// Each .bddl problem file under DIR (domain files skipped) is parsed and
+// grounded against its dialect, then instantiated at one seed in an Env (its
+// scene: tasks/activities/scenes.json, else the apartment); the report gives
+// the share at each stage, the seconds each took, and the failures grouped by
+// cause (the error with its names and numbers blanked), each with an example.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+namespace chore {
+
+struct CoverageOptions {
+  std::string dir;
+  uint64_t seed = 0;
+  int threads = 1;  // files instantiated at once
+};
+
+nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& log);
+std::string format_coverage(const nlohmann::json& coverage);
+
+// An error message with its location, synsets, names with a '.' or '/', and
+// numbers blanked, so that failures of one cause read alike:
+// "f.bddl:3:4: unknown synset 'x.n.01'" -> "unknown synset '_'".
+std::string failure_cause(const std::string& error);
+
+}  // namespace chore

@@ -1,0 +1,51 @@
+// `chore activity coverage`: the stages each file reaches and the failures
+// grouped by cause.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "app/activity_coverage.hpp"
+#include "tasks/knowledge_base.hpp"
+#include "test_util.hpp"
+
+namespace chore {
+namespace {
+
+TEST(ActivityCoverage, FailuresOfOneCauseReadAlike) {
+  EXPECT_EQ(failure_cause("/a/b/x.bddl:3:14: unknown synset 'stain.n.01'; did you mean stain.n.02?"),
+            "unknown synset '_'; did you mean _?");
+  EXPECT_EQ(failure_cause("activity 'problem0' in scene 'apartment': no scene object for broom.n.01_1 (broom.n.01) "
+                          "that is free"),
+            "no scene object for _ (_) that is free");
+  EXPECT_EQ(failure_cause("unsupported predicate 'insource' in (insource sink.n.01_1 water.n.06_1)"),
+            "unsupported predicate 'insource' in (insource _ _)");
+}
+
+TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
+  const auto dir = test::scratch_dir("coverage");
+  std::filesystem::copy_file(default_tasks_dir() + "/activities/collect_trash.bddl", dir / "collect_trash.bddl");
+  const std::string unknown_room =
+      "(define (problem r) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)"
+      " (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 garage)) (:goal (ontop ?agent.n.01_1 "
+      "?floor.n.01_1)))";
+  test::write_file(dir / "a" / "problem0.bddl", unknown_room);
+  test::write_file(dir / "b" / "problem0.bddl", unknown_room);
+  test::write_file(dir / "bad.bddl", "(define (problem x)");
+  test::write_file(dir / "domain_x.bddl", "(define (domain x) (:predicates (p ?a)))");
+  std::ostringstream log;
+  const nlohmann::json c = activity_coverage({.dir = dir.string(), .threads = 2}, log);
+  EXPECT_EQ(c["total"], 4);  // the domain file is not an activity
+  EXPECT_EQ(c["parsed"], 3);
+  EXPECT_EQ(c["instantiated"], 1);
+  ASSERT_EQ(c["causes"].size(), 2u);
+  EXPECT_EQ(c["causes"][0]["count"], 2);
+  EXPECT_EQ(c["causes"][0]["cause"], "instantiate: no room 'garage' for _");
+  EXPECT_EQ(c["causes"][0]["example"], "a");  // a folder's problem0.bddl is named by its folder
+  EXPECT_EQ(c["causes"][1]["cause"].get<std::string>().substr(0, 7), "parse: ");
+  EXPECT_NE(format_coverage(c).find("4 activities; parsed and grounded 3 (75.0%), instantiated 1 (25.0%)"),
+            std::string::npos)
+      << format_coverage(c);
+}
+
+}  // namespace
+}  // namespace chore
