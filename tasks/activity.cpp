@@ -30,11 +30,11 @@ constexpr int kInstantiationAttempts = 10;
 const std::set<std::string> kKinematic = {"ontop", "inside", "under", "onfloor", "nextto", "touching"};
 const std::set<std::string> kUnaryStates = {"cooked", "burnt",      "frozen", "hot",   "on_fire",
                                             "soaked", "toggled_on", "sliced", "broken"};
-const std::set<std::string> kOther = {"inroom",  "open",       "saturated", "covered",  "filled",
-                                      "dusty",   "stained",    "grasped",   "inhand",   "infov",
-                                      "inreach", "insameroom", "folded",    "unfolded", "attached"};
+const std::set<std::string> kOther = {"inroom",  "open",     "saturated", "covered", "filled",  "dusty",
+                                      "stained", "grasped",  "inhand",    "infov",   "inreach", "insameroom",
+                                      "folded",  "unfolded", "attached",  "insource"};
 // Second arguments that name a substance rather than an object.
-const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated"};
+const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated", "insource"};
 
 // "stain.n.01" -> "stain": the name dirt and liquids are kept under.
 std::string lemma(const std::string& synset) {
@@ -338,6 +338,9 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     value = p == "soaked" ? soaked(w, a, liquid) : p == "saturated" ? saturated(w, a, liquid) : filled(w, a, liquid);
   } else if (p == "dusty" || p == "stained") {
     value = dirty(w, object_arg(0), p == "dusty" ? "dust" : "stain");
+  } else if (p == "insource") {
+    // What the object is (a sink is a source of water), not a state: sampled by holding.
+    value = kb_->is_source_of(scene.objects()[object_arg(0)].synset, type_of(l.args.at(1)));
   } else {
     static const std::map<std::string, bool (*)(const World&, int)> unary = {
         {"open", is_open},    {"cooked", cooked},         {"burnt", burnt},      {"frozen", frozen}, {"hot", hot},

@@ -360,4 +360,13 @@ bool KnowledgeBase::is_openable(const std::string& synset) const {
   return has_any(synset, {"openable"});
 }
 
+bool KnowledgeBase::is_source_of(const std::string& synset, const std::string& substance) const {
+  if (!contains(synset)) return false;
+  if (const auto conditions = text_parameter(synset, "particleSource", "conditions")) {
+    const nlohmann::json systems = nlohmann::json::parse(*conditions, nullptr, false);
+    return systems.is_object() && systems.contains(substance);
+  }
+  return substance.starts_with("water.") && has_property(synset, "waterSource");
+}
+
 }  // namespace chore

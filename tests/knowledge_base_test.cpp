@@ -59,6 +59,12 @@ TEST(KnowledgeBase, EachDialectHasItsRelease) {
   EXPECT_EQ(b1k->parameter("apple.n.01", "cookable", "cook_temperature"), 58.0);
   EXPECT_TRUE(b1k->is_a("apple.n.01", "edible_fruit.n.01"));
   EXPECT_EQ(dialect_knowledge_base(Domain::omnigibson), b1k);  // loaded once
+  // insource: a sink is a source of water in both releases, an apple of nothing.
+  EXPECT_TRUE(b1k->is_source_of("sink.n.01", "water.n.06"));
+  EXPECT_FALSE(b1k->is_source_of("sink.n.01", "stain.n.01"));
+  EXPECT_FALSE(b1k->is_source_of("apple.n.01", "water.n.06"));
+  EXPECT_TRUE(b100->is_source_of("sink.n.01", "water.n.06"));
+  EXPECT_FALSE(b100->is_source_of("nonsense.n.01", "water.n.06"));
 }
 
 TEST(KnowledgeBase, CountsSynsetsOfBothFiles) {
