@@ -21,11 +21,7 @@ int check_activities(const std::vector<std::string>& files, std::ostream& out, s
     try {
       // Predicates and arities, room types and synsets checked where they are written.
       const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
-      const auto kb = dialect_knowledge_base(p.domain);
-      const GroundGoal goal = ground_goal(p, [&](std::string_view instance, std::string_view type) {
-        const std::string i(instance), t(type);
-        return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
-      });
+      const GroundGoal goal = ground_goal(p, synset_type_test(dialect_knowledge_base(p.domain)));
       size_t literals = 0;
       for (const GroundOption& o : goal.options) literals = std::max(literals, o.size());
       out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size() << " objects, "

@@ -50,11 +50,7 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t s
   try {
     r.stage = "parse";
     const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
-    const auto kb = dialect_knowledge_base(p.domain);
-    ground_goal(p, [&](std::string_view instance, std::string_view type) {
-      const std::string i(instance), t(type);
-      return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
-    });
+    ground_goal(p, synset_type_test(dialect_knowledge_base(p.domain)));
     r.stage = "instantiate";
     EnvConfig config;
     config.activity = file;

@@ -116,10 +116,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
     check_predicate(l);
     if (l.predicate == "inroom" && l.args.size() == 2) rooms[l.args[0]] = l.args[1];
   }
-  a->goal_ = ground_goal(a->problem_, [&](std::string_view instance, std::string_view type) {
-    const std::string i(instance), t(type);
-    return i == t || (a->kb_->contains(i) && a->kb_->contains(t) && a->kb_->is_a(i, t));
-  });
+  a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
 
   std::vector<bool> taken(scene.objects().size(), false);

@@ -17,11 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (const chore::Vocabulary* v : {&vocabulary, static_cast<const chore::Vocabulary*>(nullptr)}) {
     try {
       const chore::Problem problem = chore::parse_bddl(text, "fuzz", {.vocabulary = v});
-      const auto kb = chore::dialect_knowledge_base(problem.domain);
-      chore::ground_goal(problem, [&](std::string_view instance, std::string_view type) {
-        const std::string i(instance), t(type);
-        return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
-      });
+      chore::ground_goal(problem, chore::synset_type_test(chore::dialect_knowledge_base(problem.domain)));
     } catch (const chore::Error&) {
     }
   }
