@@ -26,6 +26,7 @@ std::string failure_cause(const std::string& error) {
   // activity and scene an Activity error starts with.
   cause = std::regex_replace(cause, std::regex(R"(^\S+\.(bddl|json):(\d+:\d+:)?\s*)"), "");
   cause = std::regex_replace(cause, std::regex(R"(^activity '[^']*' in scene '[^']*': )"), "");
+  cause = std::regex_replace(cause, std::regex(R"(activity '[^']*')"), "activity '_'");
   // Synsets and instances, quoted names and paths, numbers.
   cause = std::regex_replace(cause, std::regex(R"([A-Za-z_]+\.n\.\d+(_\d+)?)"), "_");
   cause = std::regex_replace(cause, std::regex(R"('[^'\s]*[./][^'\s]*')"), "'_'");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -100,7 +101,10 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   std::shared_ptr<Activity> a(new Activity());
   const Vocabulary vocabulary = load_vocabulary(kb);
   a->problem_ = load_bddl(path, {.vocabulary = &vocabulary});
-  a->name_ = fs::path(path).stem().string();
+  // BEHAVIOR-1K keeps an activity's instances as NAME/problemN.bddl: its name is the folder's.
+  const fs::path file(path);
+  const bool instance = std::regex_match(file.stem().string(), std::regex(R"(problem\d+)"));
+  a->name_ = instance && file.has_parent_path() ? file.parent_path().filename().string() : file.stem().string();
   a->kb_ = kb ? std::move(kb) : dialect_knowledge_base(a->problem_.domain);
   const std::string where = "activity '" + a->name_ + "' in scene '" + scene.name() + "'";
 

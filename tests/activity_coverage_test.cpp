@@ -17,6 +17,8 @@ TEST(ActivityCoverage, FailuresOfOneCauseReadAlike) {
   EXPECT_EQ(failure_cause("activity 'problem0' in scene 'apartment': no scene object for broom.n.01_1 (broom.n.01) "
                           "that is free"),
             "no scene object for _ (_) that is free");
+  EXPECT_EQ(failure_cause("env: no instance of activity 'polishing_shoes' in 100 samples"),
+            "env: no instance of activity '_' in N samples");
   EXPECT_EQ(failure_cause("unsupported predicate 'insource' in (insource sink.n.01_1 water.n.06_1)"),
             "unsupported predicate 'insource' in (insource _ _)");
 }

@@ -90,13 +90,14 @@ struct Instance {
 TEST(Activity, TheAgentStartsOnTheFloorOfItsRoomInEitherDialect) {
   auto apartment = Scene::load("apartment");
   const auto dir = test::scratch_dir("agent_start");
-  test::write_file(dir / "start.bddl",
+  test::write_file(dir / "start" / "problem0.bddl",
                    "(define (problem start) (:domain omnigibson)\n"
                    "  (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)\n"
                    "  (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 bedroom))\n"
                    "  (:goal (ontop ?agent.n.01_1 ?floor.n.01_1)))\n");
-  const auto activity = Activity::load((dir / "start.bddl").string(), *apartment);
+  const auto activity = Activity::load((dir / "start" / "problem0.bddl").string(), *apartment);
   EXPECT_EQ(activity->problem().domain, Domain::omnigibson);
+  EXPECT_EQ(activity->name(), "start");  // BEHAVIOR-1K's NAME/problem0.bddl
   World world(apartment);
   activity->configure(world);
   for (uint64_t seed = 0; seed < 3; ++seed) {
