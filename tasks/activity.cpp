@@ -31,9 +31,9 @@ constexpr int kInstantiationAttempts = 10;
 const std::set<std::string> kKinematic = {"ontop", "inside", "under", "onfloor", "nextto", "touching"};
 const std::set<std::string> kUnaryStates = {"cooked", "burnt",      "frozen", "hot",   "on_fire",
                                             "soaked", "toggled_on", "sliced", "broken"};
-const std::set<std::string> kOther = {"inroom",  "open",     "saturated", "covered", "filled",  "dusty",
-                                      "stained", "grasped",  "inhand",    "infov",   "inreach", "insameroom",
-                                      "folded",  "unfolded", "attached",  "insource"};
+const std::set<std::string> kOther = {"inroom",  "open",     "saturated", "covered",  "filled",  "dusty",
+                                      "stained", "grasped",  "inhand",    "infov",    "inreach", "insameroom",
+                                      "folded",  "unfolded", "attached",  "insource", "future",  "real"};
 // Second arguments that name a substance rather than an object.
 const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated", "insource"};
 
@@ -123,11 +123,17 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
 
+  std::set<std::string> future;
+  for (const Literal& l : a->problem_.init) {
+    if (l.predicate == "future" && !l.negated && l.args.size() == 1) future.insert(l.args[0]);
+  }
   std::vector<bool> taken(scene.objects().size(), false);
   for (const ObjectDecl& decl : a->problem_.objects) {
     Binding b;
     const auto room = rooms.find(decl.name);
-    if (decl.type == "agent.n.01") {
+    if (future.count(decl.name)) {
+      b.kind = Binding::Kind::future;
+    } else if (decl.type == "agent.n.01") {
       if (!scene.has_robot()) throw Error(where + ": " + decl.name + " needs the robot");
       b.kind = Binding::Kind::agent;
     } else if (decl.type == "floor.n.01") {
@@ -240,6 +246,7 @@ void Activity::configure(World& world) const {
 
 bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   const Binding& first = binding(l.args.at(0));
+  if (first.kind == Binding::Kind::future) return holds(w, l);
   if (first.kind == Binding::Kind::agent) {
     // The start: (onfloor agent floor) in BEHAVIOR-100, (ontop agent floor) in
     // every BEHAVIOR-1K file. Anything else about the agent must simply hold.
@@ -304,7 +311,17 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   };
   const std::string& p = l.predicate;
   bool value = false;
-  if (p == "onfloor" || ((p == "ontop") && arg(1).kind == Binding::Kind::floor)) {
+  const auto is_future = [&](const std::string& arg) {
+    return std::any_of(bindings_.begin(), bindings_.end(),
+                       [&](const auto& b) { return b.first == arg && b.second.kind == Binding::Kind::future; });
+  };
+  if (std::any_of(l.args.begin(), l.args.end(), is_future)) {
+    // Not yet created: only (future X) holds. chore has no transition that
+    // creates objects yet, so (real X) stays false.
+    value = p == "future";
+  } else if (p == "future" || p == "real") {
+    value = p == "real";  // a scene object is real
+  } else if (p == "onfloor" || ((p == "ontop") && arg(1).kind == Binding::Kind::floor)) {
     const int room = arg(1).index;
     if (arg(0).kind == Binding::Kind::agent) {
       const Pose2 base = w.base_pose();

@@ -29,7 +29,9 @@
 namespace chore {
 
 struct Binding {
-  enum class Kind { object, floor, agent, substance };
+  // future: an object a transition will create, (future X) in :init; no scene
+  // object stands for it, and every literal on it is false but (future X).
+  enum class Kind { object, floor, agent, substance, future };
   Kind kind = Kind::object;
   int index = -1;  // object: index in scene().objects(); floor: index in scene().rooms()
 };

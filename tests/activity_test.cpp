@@ -111,6 +111,29 @@ TEST(Activity, TheAgentStartsOnTheFloorOfItsRoomInEitherDialect) {
   }
 }
 
+// (future X): an object a transition will create. No scene object stands for
+// it; (future X) holds, (real X) and every other literal on it do not.
+TEST(Activity, FutureObjectsAreAbsentUntilCreated) {
+  auto apartment = Scene::load("apartment");
+  const auto dir = test::scratch_dir("future_object");
+  test::write_file(dir / "future.bddl",
+                   "(define (problem future) (:domain omnigibson)\n"
+                   "  (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01 apple.n.01_1 - apple.n.01)\n"
+                   "  (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 kitchen) (future apple.n.01_1))\n"
+                   "  (:goal (and (real ?apple.n.01_1) (cooked ?apple.n.01_1))))\n");
+  const auto activity = Activity::load((dir / "future.bddl").string(), *apartment);
+  EXPECT_EQ(activity->binding("apple.n.01_1").kind, Binding::Kind::future);
+  World world(apartment);
+  activity->configure(world);
+  world.reset(apartment->robot_start());
+  Rng rng(0);
+  activity->instantiate(world, rng);
+  EXPECT_TRUE(activity->holds(world, activity->problem().init.back()));  // (future apple.n.01_1)
+  const Score s = activity->score(world);
+  EXPECT_FALSE(s.success);
+  EXPECT_EQ(s.q, 0.0);
+}
+
 TEST(Activity, GoalIsScoredFromTheWorld) {
   Instance instance("store_decoration", "apartment", 3);
   const auto& activity = instance.activity;
