@@ -123,15 +123,14 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
 
-  std::set<std::string> future;
   for (const Literal& l : a->problem_.init) {
-    if (l.predicate == "future" && !l.negated && l.args.size() == 1) future.insert(l.args[0]);
+    if (l.predicate == "future" && !l.negated && l.args.size() == 1) a->future_.insert(l.args[0]);
   }
   std::vector<bool> taken(scene.objects().size(), false);
   for (const ObjectDecl& decl : a->problem_.objects) {
     Binding b;
     const auto room = rooms.find(decl.name);
-    if (future.count(decl.name)) {
+    if (a->future_.count(decl.name)) {
       b.kind = Binding::Kind::future;
     } else if (decl.type == "agent.n.01") {
       if (!scene.has_robot()) throw Error(where + ": " + decl.name + " needs the robot");
@@ -311,11 +310,8 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   };
   const std::string& p = l.predicate;
   bool value = false;
-  const auto is_future = [&](const std::string& arg) {
-    return std::any_of(bindings_.begin(), bindings_.end(),
-                       [&](const auto& b) { return b.first == arg && b.second.kind == Binding::Kind::future; });
-  };
-  if (std::any_of(l.args.begin(), l.args.end(), is_future)) {
+  if (!future_.empty() &&
+      std::any_of(l.args.begin(), l.args.end(), [&](const std::string& a) { return future_.count(a) > 0; })) {
     // Not yet created: only (future X) holds. chore has no transition that
     // creates objects yet, so (real X) stays false.
     value = p == "future";

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,7 @@ class Activity {
   GroundGoal goal_;
   std::shared_ptr<const KnowledgeBase> kb_;
   std::vector<std::pair<std::string, Binding>> bindings_;  // in :objects order
+  std::set<std::string> future_;                           // the objects bound as Kind::future
   std::vector<Literal> init_order_;                        // :init without inroom, in sampling order
 };
 
