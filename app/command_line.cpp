@@ -188,7 +188,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       ->check(integer_in(240, 4096))
       ->capture_default_str();
 
-  // The baselines' registry (training/trainer.cpp): "rl-vmc (sac), rl-prim (ppo), ...".
+  // The baselines' registry (training/baselines.cpp): "rl-vmc (sac), rl-prim (ppo), ...".
   std::vector<std::string> baseline_names;
   std::string baselines_trained_by;
   for (const Baseline& b : baselines()) {

@@ -1,6 +1,6 @@
 // The baselines' networks (BEHAVIOR-1K appendix F.1, Figure A.11), in LibTorch.
 // Only torch translation units include this header (policies/networks.cpp,
-// training/ppo.cpp, training/sac.cpp, training/checkpoint.cpp): <torch/torch.h>
+// training/ppo.cpp, training/sac.cpp, training/checkpoint_tensors.cpp): <torch/torch.h>
 // costs ~20 s and 1 GB per file to compile.
 //
 //   Encoder      128x128x3 RGB, normalised by a per-channel running mean/std,
@@ -21,25 +21,10 @@
 #include <span>
 
 #include "env/spaces.hpp"
+#include "policies/network_spec.hpp"
 #include "policies/policy.hpp"
 
 namespace chore {
-
-// What the networks are built for; saved in checkpoints to rebuild them.
-struct NetworkSpec {
-  int height = 0, width = 0;  // image size; 0: no image observed
-  int state_size = 0;         // is_grasping (1) then proprio (30), as observed
-  int feature_size = 128;     // the MLP's output (Figure A.11)
-  int history = 0;            // RL-Prim.Hist.: past steps the policy sees (K)
-  int64_t num_actions = 0;    // PPO: Discrete size
-  int action_size = 0;        // SAC: Box size
-  int hidden = 256;           // SAC actor/critic MLP width
-  bool has_rgb() const { return height > 0; }
-};
-nlohmann::json to_json(const NetworkSpec& spec);
-NetworkSpec network_spec_from_json(const nlohmann::json& j);  // throws chore::Error
-// From an env's spaces: rgb and the state fields it observes (depth is unused).
-NetworkSpec network_spec(const Space& observation, const Space& action, int history);
 
 // A batch of observations as tensors: rgb (B, 3, H, W) uint8 (undefined when
 // not observed), state (B, S) float32 (S may be 0).

@@ -121,6 +121,16 @@ TEST(BadInput, TheFuzzSeedsOfCheckpointsAndCommandLinesAreValid) {
     EXPECT_TRUE(loaded.policy);
     EXPECT_EQ(loaded.env.activity, "clean_table");
   }
+  int metas = 0;
+  for (std::string bytes : fuzz_seeds("checkpoint_meta")) {  // the same files with no tensors
+    const uint64_t checksum = checkpoint_checksum(bytes);
+    bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    const CheckpointMeta meta = read_checkpoint_meta(parse_checkpoint(bytes, "seed"));
+    EXPECT_EQ(meta.config.env.activity, "clean_table");
+    EXPECT_EQ(meta.network.state_size, 1);  // is_grasping alone
+    metas += 1;
+  }
+  EXPECT_EQ(metas, 2);
   int commands = 0;
   for (const std::string& text : fuzz_seeds("cli")) {
     std::vector<std::string> args = {"chore"};

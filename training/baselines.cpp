@@ -1,5 +1,5 @@
 // The baselines (Figure A.11): a new one is a line here. Apart from the
-// algorithms (trainer.cpp) because it needs no LibTorch: the command line's
+// algorithms (algorithms.cpp) because it needs no LibTorch: the command line's
 // parser names them, and its fuzz target is built by clang, which cannot
 // compile LibTorch's headers in C++20.
 #include "training/trainer.hpp"

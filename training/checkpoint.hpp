@@ -12,6 +12,9 @@
 //                           the torch RNG state; SAC's replay buffer
 //   checksum                uint64 FNV-1a of all bytes before it
 // A corrupt, truncated or incompatible file is a chore::Error naming the file.
+//
+// The framing and the metadata are read and checked without LibTorch
+// (checkpoint.cpp, fuzzed by clang); the tensors by checkpoint_tensors.cpp.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -22,7 +25,9 @@
 #include <string_view>
 
 #include "env/env.hpp"
+#include "policies/network_spec.hpp"
 #include "policies/policy.hpp"
+#include "training/trainer.hpp"
 
 namespace chore {
 
@@ -40,6 +45,16 @@ CheckpointFile read_checkpoint(const std::string& path);
 CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& path);
 // The checksum a file ends with: FNV-1a of its bytes before it.
 uint64_t checkpoint_checksum(std::string_view bytes);
+
+// A checkpoint's metadata, every field read and checked (the episode
+// statistics too): what resuming and loading a policy start from. Throws
+// chore::Error naming the file and the field.
+struct CheckpointMeta {
+  TrainConfig config;
+  NetworkSpec network;
+  RunProgress progress;
+};
+CheckpointMeta read_checkpoint_meta(const CheckpointFile& checkpoint);
 
 // A trained policy for chore eval/video: PPO acts by argmax, SAC by tanh(mean),
 // or, with `sample`, both draw from their distributions as in training (seeded

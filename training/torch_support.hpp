@@ -1,5 +1,5 @@
 // Torch helpers shared by the torch translation units of training/ (ppo.cpp,
-// sac.cpp, checkpoint.cpp): archives as checkpoint bytes, generators. Includes
+// sac.cpp, checkpoint_tensors.cpp): archives as checkpoint bytes, generators. Includes
 // <torch/torch.h>: never include it from torch-free code.
 #pragma once
 

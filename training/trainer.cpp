@@ -5,21 +5,10 @@
 #include "base/error.hpp"
 #include "base/random.hpp"
 #include "base/registry.hpp"
-#include "training/checkpoint.hpp"
 
 namespace chore {
 
 const char* const kMetricsHeader = "env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length";
-
-// The algorithms (one file each; the baselines are in training/baselines.cpp):
-// a new one is a line here.
-Algorithm ppo_algorithm();  // training/ppo.cpp
-Algorithm sac_algorithm();  // training/sac.cpp
-
-const std::vector<Algorithm>& algorithms() {
-  static const std::vector<Algorithm> list = {ppo_algorithm(), sac_algorithm()};
-  return list;
-}
 
 namespace {
 
@@ -28,14 +17,6 @@ const Baseline& find_baseline(const std::string& name) {
 }
 
 }  // namespace
-
-const Algorithm& algorithm_of(const std::string& baseline) {
-  const std::string& name = find_baseline(baseline).algorithm;
-  for (const Algorithm& a : algorithms()) {
-    if (a.name == name) return a;
-  }
-  throw Error("baseline '" + baseline + "': no algorithm '" + name + "'");
-}
 
 TrainConfig baseline_config(const std::string& baseline, const std::string& activity) {
   TrainConfig c;
@@ -184,6 +165,7 @@ void check_read_back(const nlohmann::json& given, const nlohmann::json& read, co
 void validate(const TrainConfig& c) {
   const PpoConfig& p = c.ppo;
   const SacConfig& s = c.sac;
+  find_baseline(c.baseline);
   within("num_envs", c.num_envs, 1, 256);
   within("threads", c.threads, 1, 64);
   within<uint64_t>("seed", c.seed, 0, kMaxSeed);
@@ -344,30 +326,6 @@ nlohmann::json run_meta(const TrainConfig& config, const nlohmann::json& network
 RunProgress load_run_meta(const nlohmann::json& meta, EpisodeStats& stats) {
   stats.load(meta.at("episodes"));
   return {meta.at("steps").get<int64_t>(), meta.at("wall_s").get<double>()};
-}
-
-std::unique_ptr<Trainer> make_trainer(const TrainConfig& config) {
-  if (config.num_envs < 1) throw Error("train: --envs must be at least 1");
-  if (config.threads < 1) throw Error("train: --threads must be at least 1");
-  return algorithm_of(config.baseline).make(config, nullptr);  // names an unknown baseline
-}
-
-std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint) {
-  const CheckpointFile file = read_checkpoint(checkpoint);
-  TrainConfig config;
-  try {
-    config = train_config_from_json(file.meta.at("config"));
-    algorithm_of(config.baseline);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
-  } catch (const Error& e) {
-    throw Error("checkpoint " + checkpoint + ": " + e.what());
-  }
-  try {
-    return algorithm_of(config.baseline).make(config, &file);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error("checkpoint " + checkpoint + ": bad metadata: " + e.what());
-  }
 }
 
 }  // namespace chore

@@ -1,7 +1,7 @@
 // The baselines' trainers behind one torch-free interface (training/ppo.cpp and
 // training/sac.cpp hold the algorithms, each readable top to bottom), and the
-// two registries (trainer.cpp, one line each): the algorithms, and the
-// baselines of the paper that they train:
+// two registries, one line each: the algorithms (algorithms.cpp), and the
+// baselines of the paper that they train (baselines.cpp):
 //
 //   rl-vmc        SAC on the 14-d low-level control, RGB + proprio + is-grasping
 //   rl-prim       PPO over the primitive action space, RGB + is-grasping

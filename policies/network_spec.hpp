@@ -1,0 +1,29 @@
+// What the baselines' networks are built for (policies/networks.hpp builds
+// them): saved in checkpoints to rebuild them. Torch-free, so checkpoint
+// metadata is read and checked without LibTorch (and fuzzed by clang).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+
+#include "env/spaces.hpp"
+
+namespace chore {
+
+struct NetworkSpec {
+  int height = 0, width = 0;  // image size; 0: no image observed
+  int state_size = 0;         // is_grasping (1) then proprio (30), as observed
+  int feature_size = 128;     // the MLP's output (Figure A.11)
+  int history = 0;            // RL-Prim.Hist.: past steps the policy sees (K)
+  int64_t num_actions = 0;    // PPO: Discrete size
+  int action_size = 0;        // SAC: Box size
+  int hidden = 256;           // SAC actor/critic MLP width
+  bool has_rgb() const { return height > 0; }
+};
+nlohmann::json to_json(const NetworkSpec& spec);
+NetworkSpec network_spec_from_json(const nlohmann::json& j);  // throws chore::Error
+// From an env's spaces: rgb and the state fields it observes (depth is unused).
+NetworkSpec network_spec(const Space& observation, const Space& action, int history);
+
+}  // namespace chore
