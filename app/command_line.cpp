@@ -60,12 +60,29 @@ void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
 
 }  // namespace
 
-ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-  CommandLine c;
+// CLI11's app, built once: its options write into `values`, which each parse
+// starts from afresh.
+struct CommandLineParser::Impl {
+  // What the options write to, with the defaults each parse starts from.
+  struct Values {
+    CommandLine c;
+    std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119";
+    int64_t train_steps = 0;
+  } values;
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
+  CLI::App *bench_cmd, *check_cmd, *sample_cmd, *coverage_cmd, *expert_cmd, *eval_cmd, *video_cmd, *observe_cmd,
+      *plot_cmd, *train_cmd, *reproduce_cmd;
+  CLI::Option* train_steps_option;
+
+  Impl();
+  ParsedCommandLine parse(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
+};
+
+CommandLineParser::Impl::Impl() {
+  CommandLine& c = values.c;
   app.require_subcommand(1);
 
-  CLI::App* bench_cmd = app.add_subcommand("bench", "Idle benchmark (seed Table A.10 protocol)");
+  bench_cmd = app.add_subcommand("bench", "Idle benchmark (seed Table A.10 protocol)");
   bench_cmd->add_option("--scenes", c.bench.scenes, "Scenes to benchmark")->capture_default_str();
   bench_cmd->add_option("--steps", c.bench.steps, "Steps per repetition")
       ->check(integer_in(1, 1000000000))
@@ -93,15 +110,14 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
 
   CLI::App* activity_cmd = app.add_subcommand("activity", "BDDL activities");
   activity_cmd->require_subcommand(1);
-  CLI::App* check_cmd = activity_cmd->add_subcommand("check", "Parse and ground BDDL files");
+  check_cmd = activity_cmd->add_subcommand("check", "Parse and ground BDDL files");
   check_cmd->add_option("files", c.check_files, "BDDL problem files")->required()->check(CLI::ExistingFile);
-  CLI::App* sample_cmd = activity_cmd->add_subcommand("sample", "Instantiate an activity and picture it");
+  sample_cmd = activity_cmd->add_subcommand("sample", "Instantiate an activity and picture it");
   sample_cmd->add_option("name", c.sample.name, "Activity name or .bddl path")->required();
   sample_cmd->add_option("--scene", c.sample.scene, "Scene (default: the activity's)");
   sample_cmd->add_option("--seed", c.sample.seed, "Seed")->check(seed_number())->capture_default_str();
-  std::string sample_seeds;
   auto* out_option = sample_cmd->add_option("--out", c.sample.out, "PNG to write");
-  CLI::App* coverage_cmd = activity_cmd->add_subcommand(
+  coverage_cmd = activity_cmd->add_subcommand(
       "coverage", "Parse, ground and instantiate every .bddl file under a folder; failures grouped by cause");
   coverage_cmd->add_option("dir", c.coverage.dir, "Folder of BDDL files (searched recursively)")
       ->required()
@@ -113,10 +129,10 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       ->check(integer_in(1, 64))
       ->capture_default_str();
   coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");
-  sample_cmd->add_option("--seeds", sample_seeds, "A range A-B: instantiate each, no picture")->excludes(out_option);
+  sample_cmd->add_option("--seeds", values.sample_seeds, "A range A-B: instantiate each, no picture")
+      ->excludes(out_option);
 
-  std::string expert_mode = "physical";
-  CLI::App* expert_cmd = app.add_subcommand("expert", "Run the scripted expert on an activity (primitive actions)");
+  expert_cmd = app.add_subcommand("expert", "Run the scripted expert on an activity (primitive actions)");
   expert_cmd->add_option("--activity", c.expert.activity, "Activity name or .bddl path")->required();
   expert_cmd->add_option("--episodes", c.expert.episodes, "Episodes")
       ->check(integer_in(1, 1000000))
@@ -124,7 +140,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
   expert_cmd->add_option("--seed", c.expert.seed, "Seed of the first episode (episode i: seed + i)")
       ->check(seed_number())
       ->capture_default_str();
-  expert_cmd->add_option("--mode", expert_mode, "Primitive execution: physical or symbolic")
+  expert_cmd->add_option("--mode", values.expert_mode, "Primitive execution: physical or symbolic")
       ->check(CLI::IsMember({"physical", "symbolic"}))
       ->capture_default_str();
   expert_cmd->add_option("--max-steps", c.expert.max_steps, "Primitive steps per episode")
@@ -135,10 +151,9 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       ->capture_default_str();
   expert_cmd->add_flag("--json", c.json, "Print the results as JSON");
 
-  std::string eval_seeds = "0-0";
-  CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");
+  eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");
   add_policy_options(eval_cmd, c.policy);
-  eval_cmd->add_option("--seeds", eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
+  eval_cmd->add_option("--seeds", values.eval_seeds, "Evaluation seeds A-B; episode j of seed s: env seed s*1000000+j")
       ->capture_default_str();
   eval_cmd->add_option("--episodes", c.eval.episodes, "Episodes per seed")
       ->check(integer_in(1, 999999))
@@ -148,7 +163,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       ->capture_default_str();
   eval_cmd->add_flag("--json", c.json, "Print the results as JSON (per seed and episode too)");
 
-  CLI::App* video_cmd = app.add_subcommand("video", "Record an episode: robot camera and top-down view, to MP4");
+  video_cmd = app.add_subcommand("video", "Record an episode: robot camera and top-down view, to MP4");
   add_policy_options(video_cmd, c.policy);
   video_cmd->add_option("--seed", c.video.seed, "The episode's env seed")->check(seed_number())->capture_default_str();
   video_cmd->add_option("--out", c.video.out, "MP4 file to write")->required();
@@ -158,7 +173,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
   video_cmd->add_option("--fps", c.video.fps, "Frames per second (default: 2 for primitives, 30 low-level)")
       ->check(real_in(0.1, 240));
 
-  CLI::App* observe_cmd = app.add_subcommand("observe", "Every observation modality of one frame, as a PNG panel");
+  observe_cmd = app.add_subcommand("observe", "Every observation modality of one frame, as a PNG panel");
   observe_cmd->add_option("--activity", c.observe.activity, "Activity name or .bddl path (its scene)");
   observe_cmd->add_option("--scene", c.observe.scene, "Scene (default: the activity's, else the apartment)");
   observe_cmd->add_option("--seed", c.observe.seed, "The episode's env seed")
@@ -172,7 +187,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       ->capture_default_str();
   observe_cmd->add_option("--out", c.observe.out, "PNG to write")->required();
 
-  CLI::App* plot_cmd = app.add_subcommand("plot", "Learning curves from metrics.csv files to PNG");
+  plot_cmd = app.add_subcommand("plot", "Learning curves from metrics.csv files to PNG");
   plot_cmd
       ->add_option("runs", c.plot.runs,
                    "metrics.csv files, each optionally LABEL=path (default label: "
@@ -195,15 +210,14 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
     baseline_names.push_back(b.name);
     baselines_trained_by += (baselines_trained_by.empty() ? "" : ", ") + b.name + " (" + b.algorithm + ")";
   }
-  int64_t train_steps = 0;
-  CLI::App* train_cmd = app.add_subcommand("train", "Train a baseline on an activity: " + baselines_trained_by);
+  train_cmd = app.add_subcommand("train", "Train a baseline on an activity: " + baselines_trained_by);
   train_cmd->add_option("--activity", c.train.activity, "Activity name or .bddl path");
   train_cmd->add_option("--baseline", c.train.baseline, "The baseline")->check(CLI::IsMember(baseline_names));
   train_cmd->add_option("--seed", c.train.seed, "Seed (env i of the vector env: seed + i)")
       ->check(seed_number())
       ->capture_default_str();
-  auto* train_steps_option =
-      train_cmd->add_option("--steps", train_steps, "Total env steps (default 30000, or the resumed run's)")
+  train_steps_option =
+      train_cmd->add_option("--steps", values.train_steps, "Total env steps (default 30000, or the resumed run's)")
           ->check(integer_in(1, 10000000000));
   train_cmd->add_option("--envs", c.train.envs, "Envs of the vector env")
       ->check(integer_in(1, 256))
@@ -232,8 +246,7 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       "--set", c.train.settings,
       "KEY=VALUE: a config field of the new run, as named in the run folder's config.json, e.g. ppo.entropy_coef=0.01");
 
-  std::string generalisation_seeds = "100-119";
-  CLI::App* reproduce_cmd = app.add_subcommand(
+  reproduce_cmd = app.add_subcommand(
       "reproduce", "The paper's baseline table (A.13) through train and eval: resumable, to OUT/baselines.{json,md}");
   reproduce_cmd->add_option("--activities", c.reproduce.activities, "Activities")->capture_default_str();
   reproduce_cmd->add_option("--methods", c.reproduce.methods, "Methods (baselines)")
@@ -255,7 +268,8 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
       ->check(integer_in(1, 999999))
       ->capture_default_str();
   reproduce_cmd
-      ->add_option("--generalisation-seeds", generalisation_seeds, "Seeds A-B of fresh instances, one episode each")
+      ->add_option("--generalisation-seeds", values.generalisation_seeds,
+                   "Seeds A-B of fresh instances, one episode each")
       ->capture_default_str();
   reproduce_cmd->add_option("--out", c.reproduce.out, "Results folder (runs/ inside)")->capture_default_str();
   reproduce_cmd->add_flag("!--no-videos", c.reproduce.videos, "Skip the best policies' videos");
@@ -263,7 +277,13 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
   reproduce_cmd->add_option(
       "--set", c.reproduce.settings,
       "KEY=VALUE for every new run's chore train --set (ppo.* for the PPO methods, sac.* for SAC)");
+}
 
+ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* argv, std::ostream& out,
+                                                 std::ostream& err) {
+  values = Values{};
+  app.clear();
+  CommandLine& c = values.c;
   // CLI11 would only say "a subcommand is required": name the unknown one.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;
@@ -292,28 +312,28 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
     if (*coverage_cmd) c.command = Command::activity_coverage;
     if (*sample_cmd) {
       c.command = Command::activity_sample;
-      if (!sample_seeds.empty()) c.sample.seeds = seed_range(sample_seeds, "--seeds");
+      if (!values.sample_seeds.empty()) c.sample.seeds = seed_range(values.sample_seeds, "--seeds");
       if (!c.sample.seeds && c.sample.out.empty()) throw Error("activity sample: give --out FILE.png or --seeds A-B");
     }
     if (*expert_cmd) {
       c.command = Command::expert;
-      c.expert.mode = parse_execution_mode(expert_mode);
+      c.expert.mode = parse_execution_mode(values.expert_mode);
     }
     if (*eval_cmd) {
       c.command = Command::eval;
-      std::tie(c.eval.first_seed, c.eval.last_seed) = seed_range(eval_seeds, "--seeds");
+      std::tie(c.eval.first_seed, c.eval.last_seed) = seed_range(values.eval_seeds, "--seeds");
     }
     if (*video_cmd) c.command = Command::video;
     if (*observe_cmd) c.command = Command::observe;
     if (*plot_cmd) c.command = Command::plot;
     if (*train_cmd) {
       c.command = Command::train;
-      if (*train_steps_option) c.train.steps = train_steps;
+      if (*train_steps_option) c.train.steps = values.train_steps;
     }
     if (*reproduce_cmd) {
       c.command = Command::reproduce;
       std::tie(c.reproduce.generalisation_first, c.reproduce.generalisation_last) =
-          seed_range(generalisation_seeds, "--generalisation-seeds");
+          seed_range(values.generalisation_seeds, "--generalisation-seeds");
       c.reproduce.command_line = "scripts/reproduce";
       for (int i = 2; i < argc; ++i) c.reproduce.command_line += std::string(" ") + argv[i];
     }
@@ -323,6 +343,17 @@ ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ost
     return {std::nullopt, 2};
   }
   return {std::move(c), 0};
+}
+
+CommandLineParser::CommandLineParser() : impl_(std::make_unique<Impl>()) {}
+CommandLineParser::~CommandLineParser() = default;
+
+ParsedCommandLine CommandLineParser::parse(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  return impl_->parse(argc, argv, out, err);
+}
+
+ParsedCommandLine parse_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  return CommandLineParser().parse(argc, argv, out, err);
 }
 
 }  // namespace chore

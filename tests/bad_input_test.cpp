@@ -113,6 +113,56 @@ std::vector<std::string> fuzz_seeds(const std::string& target) {
   return seeds;
 }
 
+// One command line, words split at spaces.
+ParsedCommandLine parse_words(CommandLineParser& parser, const std::string& line) {
+  std::vector<std::string> args = {"chore"};
+  std::istringstream words(line);
+  for (std::string w; words >> w;) args.push_back(w);
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  return parser.parse(static_cast<int>(argv.size()), argv.data(), out, err);
+}
+
+// The fuzz target parses every input with one parser: each parse must start
+// from the defaults, whatever the one before it set or failed on.
+TEST(BadInput, AParserReusedStartsEachParseFromTheDefaults) {
+  CommandLineParser reused;
+  ParsedCommandLine p = parse_words(reused, "train --activity a --steps 5 --seed 7 --set ppo.lr=0.1");
+  ASSERT_TRUE(p.command);
+  EXPECT_EQ(p.command->train.steps, 5);
+  EXPECT_EQ(p.command->train.seed, 7u);
+  EXPECT_EQ(p.command->train.settings.size(), 1u);
+  p = parse_words(reused, "train --activity b");
+  ASSERT_TRUE(p.command);
+  EXPECT_EQ(p.command->command, Command::train);
+  EXPECT_FALSE(p.command->train.steps);
+  EXPECT_EQ(p.command->train.seed, 0u);
+  EXPECT_TRUE(p.command->train.settings.empty());
+  EXPECT_EQ(p.command->train.activity, "b");
+
+  p = parse_words(reused, "eval --expert --activity a --seeds 3-4 --json");
+  ASSERT_TRUE(p.command);
+  EXPECT_EQ(p.command->eval.first_seed, 3u);
+  EXPECT_TRUE(p.command->json);
+  EXPECT_EQ(parse_words(reused, "eval --expert --seeds x").exit_status, 2);
+  p = parse_words(reused, "eval --expert --activity a");
+  ASSERT_TRUE(p.command);
+  EXPECT_EQ(p.command->eval.first_seed, 0u);
+  EXPECT_EQ(p.command->eval.last_seed, 0u);
+  EXPECT_FALSE(p.command->json);
+  EXPECT_TRUE(p.command->policy.expert);
+
+  p = parse_words(reused, "expert --activity a --mode symbolic");
+  ASSERT_TRUE(p.command);
+  EXPECT_EQ(p.command->expert.mode, ExecutionMode::symbolic);
+  EXPECT_EQ(parse_words(reused, "--help").exit_status, 0);
+  p = parse_words(reused, "expert --activity a");
+  ASSERT_TRUE(p.command);
+  EXPECT_EQ(p.command->command, Command::expert);  // not the earlier eval's, nor --help's
+  EXPECT_EQ(p.command->expert.mode, ExecutionMode::physical);
+}
+
 TEST(BadInput, TheFuzzSeedsOfCheckpointsAndCommandLinesAreValid) {
   for (std::string bytes : fuzz_seeds("checkpoint")) {
     const uint64_t checksum = checkpoint_checksum(bytes);

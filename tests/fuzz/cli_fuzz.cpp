@@ -1,6 +1,8 @@
 // libFuzzer target: a command line, one argument per line -> the parser of
-// app/command_line.hpp. It must return a command or an exit status with a
-// message, never throw; anything else is a finding (scripts/fuzz).
+// app/command_line.hpp, one parser for every input (as CommandLineParser
+// allows; building CLI11's options would cost more than the parse). It must
+// return a command or an exit status with a message, never throw; anything
+// else is a finding (scripts/fuzz).
 #include <cstdint>
 #include <sstream>
 #include <string>
@@ -14,7 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   for (std::string line; std::getline(lines, line) && args.size() < 64;) args.push_back(line);
   std::vector<const char*> argv;
   for (const std::string& a : args) argv.push_back(a.c_str());
+  static chore::CommandLineParser parser;
   std::ostringstream out, err;
-  chore::parse_command_line(static_cast<int>(argv.size()), argv.data(), out, err);
+  parser.parse(static_cast<int>(argv.size()), argv.data(), out, err);
   return 0;
 }

@@ -6,6 +6,7 @@
 set(chore_fuzz_targets)
 set(chore_root "${CMAKE_CURRENT_LIST_DIR}/../..")
 file(STRINGS "${CMAKE_CURRENT_LIST_DIR}/targets.txt" lines REGEX "^[a-z]")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${CMAKE_CURRENT_LIST_DIR}/targets.txt")
 foreach(line IN LISTS lines)
   string(REPLACE " " ";" fields "${line}")
   list(POP_FRONT fields target links)
