@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "env/env_impl.hpp"
 
 namespace chore {
@@ -97,14 +98,22 @@ struct VectorEnv::Impl {
                                                                        : 1;
     tile_count = std::max(1, std::min({wanted, num_envs, 8192 / std::max(1, c.env.width)}));
     const EnvAssets assets = load_assets(c.env);
-    for (int i = 0; i < num_envs; ++i) envs.push_back(std::make_unique<Env>(c.env, assets));
+    envs.push_back(std::make_unique<Env>(c.env, assets));
+    // Rows not yet returned span at most ceil(N/B) + 1 blocks; one more is held.
+    const int blocks = (num_envs + batch - 1) / batch + 2;
+    double row_bytes = 0;
+    for (const auto& [name, field] : envs[0]->observation_space().fields) {
+      row_bytes += static_cast<double>(field.element_count() * dtype_size(field.dtype));
+    }
+    check_fits_in_memory(row_bytes * (static_cast<double>(blocks) * batch * (same_step ? 2 : 1) + num_envs),
+                         "vector env of " + std::to_string(num_envs) + " envs at " + std::to_string(c.env.width) + "x" +
+                             std::to_string(c.env.height) + ": the buffer of its batched observations");
+    while (static_cast<int>(envs.size()) < num_envs) envs.push_back(std::make_unique<Env>(c.env, assets));
     action_size = static_cast<int>(envs[0]->action_space().element_count());
     actions.assign(num_envs, std::vector<float>(action_size, 0.f));
     seeds.resize(num_envs);
     in_flight.assign(num_envs, 0);
     needs_reset.assign(num_envs, 0);
-    // Rows not yet returned span at most ceil(N/B) + 1 blocks; one more is held.
-    const int blocks = (num_envs + batch - 1) / batch + 2;
     for (int b = 0; b < blocks; ++b) {
       ring.push_back(std::make_unique<Block>(envs[0]->observation_space(), batch, same_step));
     }

@@ -20,6 +20,8 @@ struct NetworkSpec {
   int action_size = 0;        // SAC: Box size
   int hidden = 256;           // SAC actor/critic MLP width
   bool has_rgb() const { return height > 0; }
+  // Bytes of one observation as the networks' buffers hold it: uint8 RGB, float32 state.
+  double observation_bytes() const { return 3.0 * height * width + 4.0 * state_size; }
 };
 nlohmann::json to_json(const NetworkSpec& spec);
 NetworkSpec network_spec_from_json(const nlohmann::json& j);  // throws chore::Error

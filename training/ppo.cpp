@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
 #include "training/torch_support.hpp"
@@ -50,6 +51,8 @@ class PpoTrainer : public Trainer {
       throw Error("ppo: needs the primitive (Discrete) action space, got " + env_.single_action_space().to_string());
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
+    check_fits_in_memory(p.buffer * spec_.observation_bytes(),
+                         "ppo.buffer = " + std::to_string(p.buffer) + ": a rollout of its observations");
     if (!(p.target_kl >= 0))
       throw Error("ppo: target_kl must be 0 (off) or positive, got " + std::to_string(p.target_kl));
     generator_ = seed_torch(config_.seed, config_.threads);

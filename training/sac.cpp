@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "base/error.hpp"
+#include "base/memory.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
 #include "training/torch_support.hpp"
@@ -105,7 +106,7 @@ class SacTrainer : public Trainer {
         spec_(with_hidden(network_spec(env_.single_observation_space(), env_.single_action_space(), 0),
                           config.sac.hidden)),
         stats_(config.num_envs),
-        replay_(spec_, std::max(config.sac.buffer, 1)) {
+        replay_(checked_capacity(spec_, config.sac.buffer)) {
     const SacConfig& s = config_.sac;
     if (env_.single_action_space().kind != Space::Kind::box || spec_.action_size == 0) {
       throw Error("sac: needs the low-level (Box) action space, got " + env_.single_action_space().to_string());
@@ -190,6 +191,13 @@ class SacTrainer : public Trainer {
   }
 
  private:
+  // The replay buffer's rows, checked to fit in memory before they are allocated.
+  static ReplayBuffer checked_capacity(const NetworkSpec& spec, int buffer) {
+    const double bytes = buffer * (2 * spec.observation_bytes() + 4.0 * (spec.action_size + 2));
+    check_fits_in_memory(bytes, "sac.buffer = " + std::to_string(buffer) + ": its replay buffer");
+    return ReplayBuffer(spec, std::max(buffer, 1));
+  }
+
   static NetworkSpec with_hidden(NetworkSpec spec, int hidden) {
     spec.hidden = hidden;
     return spec;
