@@ -79,6 +79,30 @@ std::string format(const Stat& s) {
 
 }  // namespace
 
+nlohmann::json read_cell_summary(const fs::path& path) {
+  nlohmann::json summary = read_json_file(path.string());
+  const JsonReader cell(summary, path.string());
+  cell.at("spec");
+  cell.number("train_wall_s", {0, 1e9});
+  cell.number("eval_wall_s", {0, 1e9});
+  for (const char* key : {"seed0", "generalisation"}) {
+    const JsonReader eval = cell.at(key);
+    eval.at("q").number("mean", {0, 1});
+    eval.at("success_rate").number("mean", {0, 1});
+    for (const char* counts : {"failed_primitives", "episodes_ended_by"}) {
+      const JsonReader reader = eval.at(counts);
+      const nlohmann::json& value = summary[key][counts];
+      if (!value.is_object()) reader.fail("expected an object of counts");
+      for (const auto& [name, count] : value.items()) {
+        if (!count.is_number_integer() || count.get<int64_t>() < 0 || count.get<int64_t>() > 1000000000) {
+          reader.fail("'" + name + "' = " + count.dump() + " is not a count");
+        }
+      }
+    }
+  }
+  return summary;
+}
+
 nlohmann::json baselines_report(const std::vector<TableCell>& cells, const ReproduceOptions& o, std::ostream& log) {
   const fs::path out(o.out);
   nlohmann::json rows = nlohmann::json::array(), runs = nlohmann::json::array(), missing = nlohmann::json::array();
@@ -89,7 +113,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
       missing.push_back(c.label());
       continue;
     }
-    nlohmann::json summary = read_json_file((c.dir / "cell.json").string());
+    nlohmann::json summary = read_cell_summary(c.dir / "cell.json");
     summary["dir"] = c.dir.string();
     train_s += summary["train_wall_s"].get<double>();
     eval_s += summary["eval_wall_s"].get<double>();

@@ -46,6 +46,9 @@ std::string activity_title(const std::string& activity);
 
 // "12.5 min", "2.35 h".
 std::string format_hours(double seconds);
+// A done run's OUT/runs/.../cell.json, every field the report reads checked
+// (a damaged file is a chore::Error naming it and the field).
+nlohmann::json read_cell_summary(const std::filesystem::path& path);
 // The last row's value of `column` in a metrics.csv, or `fallback`.
 double last_metric(const std::filesystem::path& path, const std::string& column, double fallback);
 

@@ -124,7 +124,8 @@ bool cell_done(const Cell& c, const ReproduceOptions& o) {
   const fs::path path = c.dir / "cell.json";
   if (!fs::exists(path)) return false;
   try {
-    return read_json_file(path.string())["spec"] == cell_spec(c, o);
+    const nlohmann::json cell = read_json_file(path.string());
+    return cell.is_object() && cell.contains("spec") && cell["spec"] == cell_spec(c, o);  // its fields: the report's
   } catch (const Error&) {
     return false;  // unreadable: run it again
   }

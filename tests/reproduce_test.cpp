@@ -145,6 +145,16 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   EXPECT_FALSE(videos.contains("clean_table")) << videos;
   EXPECT_EQ(videos["collect_trash"]["run"], seed0.string());
   EXPECT_GT(fs::file_size(out / "videos" / "collect_trash.mp4"), 1000u);
+
+  // A done run's cell.json damaged by hand: an error naming the file and the
+  // field (it was a JSON type error reaching "internal error"), and the file
+  // is left as it was.
+  nlohmann::json damaged = read_json(seed0 / "cell.json");
+  damaged["seed0"]["q"]["mean"] = "high";
+  std::ofstream(seed0 / "cell.json", std::ios::trunc) << damaged.dump();
+  EXPECT_EQ(reproduce_small_table(out, log), 2) << log;
+  EXPECT_NE(log.find("chore: error: " + (seed0 / "cell.json").string() + ".seed0.q.mean"), std::string::npos) << log;
+  EXPECT_EQ(read_json(seed0 / "cell.json"), damaged);
   fs::remove_all(out);
 }
 
