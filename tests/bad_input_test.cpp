@@ -193,12 +193,13 @@ TEST(BadInput, TheFuzzSeedsOfCheckpointsAndCommandLinesAreValid) {
     EXPECT_EQ(loaded.env.activity, "clean_table");
   }
   int metas = 0;
-  for (std::string bytes : fuzz_seeds("checkpoint_meta")) {  // the same files with no tensors
+  for (std::string bytes : fuzz_seeds("checkpoint_file")) {  // the same files with three of their tensors
     const uint64_t checksum = checkpoint_checksum(bytes);
     bytes.append(reinterpret_cast<const char*>(&checksum), sizeof checksum);
     const CheckpointMeta meta = read_checkpoint_meta(parse_checkpoint(bytes, "seed"));
     EXPECT_EQ(meta.config.env.activity, "clean_table");
     EXPECT_EQ(meta.network.state_size, 1);  // is_grasping alone
+    EXPECT_EQ(parse_checkpoint(bytes, "seed").tensors.size(), 3u);
     metas += 1;
   }
   EXPECT_EQ(metas, 2);

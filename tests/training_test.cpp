@@ -476,7 +476,7 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
 
   std::string future = bytes;
   future[8] = 99;  // the version field
-  EXPECT_NE(load_error(write("future.pt", future)).find("format version 99, this chore reads version 1"),
+  EXPECT_NE(load_error(write("future.pt", future)).find("format version 99, this chore reads version 2"),
             std::string::npos);
 
   // Well-formed files whose contents do not fit: a network spec that does not
@@ -507,10 +507,34 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   deep.meta["nest"] = nest;
   write_checkpoint((dir / "deep.pt").string(), deep);
   EXPECT_NE(load_error((dir / "deep.pt").string()).find(": metadata:1:"), std::string::npos);
-  CheckpointFile bad_tensors = file;
-  bad_tensors.tensors = "not a torch archive";
-  write_checkpoint((dir / "tensors.pt").string(), bad_tensors);
-  EXPECT_NE(load_error((dir / "tensors.pt").string()).find("checkpoint"), std::string::npos);
+  // Tensors: each record's bytes must be its shape's, and each tensor the
+  // network's own name, type and shape.
+  const std::string first = file.tensors.begin()->first;  // a network tensor, "net...."
+  ASSERT_EQ(first.rfind("net.", 0), 0u) << first;
+  CheckpointFile missing = file;
+  missing.tensors.erase(first);
+  write_checkpoint((dir / "missing_tensor.pt").string(), missing);
+  EXPECT_NE(load_error((dir / "missing_tensor.pt").string()).find("no tensor '" + first + "'"), std::string::npos);
+  CheckpointFile wrong_type = file;
+  TensorRecord& record = wrong_type.tensors[first];
+  record.type = ElementType::float64;
+  record.bytes += record.bytes;
+  write_checkpoint((dir / "type.pt").string(), wrong_type);
+  EXPECT_NE(load_error((dir / "type.pt").string()).find("tensor '" + first + "' is float64, the network expects float32"),
+            std::string::npos);
+  auto framing_error = [&](const std::string& name, TensorRecord t) {
+    CheckpointFile bad = file;
+    bad.tensors = {{"x", std::move(t)}};
+    write_checkpoint((dir / name).string(), bad);
+    return load_error((dir / name).string());
+  };
+  EXPECT_NE(framing_error("short.pt", {ElementType::float32, {2}, "1234"}).find("tensor 'x': 4 bytes for 2 elements"),
+            std::string::npos);
+  EXPECT_NE(framing_error("rank.pt", {ElementType::uint8, std::vector<int64_t>(9, 1), "1"}).find("rank 9 is over 8"),
+            std::string::npos);
+  EXPECT_NE(framing_error("huge.pt", {ElementType::uint8, {int64_t{1} << 40, int64_t{1} << 40}, ""})
+                .find("tensor 'x': dimension 1099511627776"),
+            std::string::npos);
   // The good file still loads.
   EXPECT_EQ(load_policy(good.string()).steps, 0);
 }

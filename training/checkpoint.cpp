@@ -32,12 +32,74 @@ T take(const std::string& bytes, size_t& offset, const std::string& path) {
   return value;
 }
 
-std::string take_block(const std::string& bytes, size_t& offset, const std::string& path) {
-  const uint64_t length = take<uint64_t>(bytes, offset, path);
+std::string take_block(const std::string& bytes, size_t& offset, const std::string& path, uint64_t length) {
   if (bytes.size() - offset < length) throw Error("checkpoint " + path + ": truncated");
   std::string block = bytes.substr(offset, length);
   offset += length;
   return block;
+}
+
+std::string take_block(const std::string& bytes, size_t& offset, const std::string& path) {
+  return take_block(bytes, offset, path, take<uint64_t>(bytes, offset, path));
+}
+
+constexpr uint64_t kMaxTensors = 100000;
+constexpr uint32_t kMaxTensorName = 1024;
+
+void put_tensors(std::string& out, const TensorRecords& tensors) {
+  put(out, static_cast<uint64_t>(tensors.size()));
+  for (const auto& [name, t] : tensors) {
+    put(out, static_cast<uint32_t>(name.size()));
+    out += name;
+    put(out, static_cast<uint8_t>(t.type));
+    put(out, static_cast<uint8_t>(t.shape.size()));
+    for (int64_t d : t.shape) put(out, d);
+    put(out, static_cast<uint64_t>(t.bytes.size()));
+    out += t.bytes;
+  }
+}
+
+// The tensors block, each record checked: a name, a known type, a shape whose
+// elements are exactly the bytes that follow.
+TensorRecords take_tensors(const std::string& bytes, size_t& offset, const std::string& path) {
+  const std::string what = "checkpoint " + path + ": ";
+  const uint64_t count = take<uint64_t>(bytes, offset, path);
+  if (count > kMaxTensors)
+    throw Error(what + std::to_string(count) + " tensors, more than " + std::to_string(kMaxTensors));
+  TensorRecords tensors;
+  for (uint64_t i = 0; i < count; ++i) {
+    const uint32_t name_length = take<uint32_t>(bytes, offset, path);
+    if (name_length == 0 || name_length > kMaxTensorName) {
+      throw Error(what + "tensor " + std::to_string(i) + ": a name of " + std::to_string(name_length) + " bytes");
+    }
+    const std::string name = take_block(bytes, offset, path, name_length);
+    const std::string where = what + "tensor '" + name + "': ";
+    TensorRecord t;
+    const uint8_t type = take<uint8_t>(bytes, offset, path);
+    if (type > static_cast<uint8_t>(ElementType::float64))
+      throw Error(where + "unknown element type " + std::to_string(type));
+    t.type = static_cast<ElementType>(type);
+    const uint8_t rank = take<uint8_t>(bytes, offset, path);
+    if (rank > kMaxTensorRank)
+      throw Error(where + "rank " + std::to_string(rank) + " is over " + std::to_string(kMaxTensorRank));
+    // Elements counted against the bytes left, so that no product overflows.
+    uint64_t elements = 1;
+    const uint64_t left = bytes.size() - offset;
+    for (int d = 0; d < rank; ++d) {
+      const int64_t size = take<int64_t>(bytes, offset, path);
+      if (size < 0 || static_cast<uint64_t>(size) > left) throw Error(where + "dimension " + std::to_string(size));
+      t.shape.push_back(size);
+      elements = size == 0 || elements == 0 ? 0 : elements * static_cast<uint64_t>(size);
+      if (elements > left) throw Error(where + "more elements than the file holds");
+    }
+    const uint64_t length = take<uint64_t>(bytes, offset, path);
+    if (length != elements * element_size(t.type)) {
+      throw Error(where + std::to_string(length) + " bytes for " + std::to_string(elements) + " elements");
+    }
+    t.bytes = take_block(bytes, offset, path, length);
+    if (!tensors.emplace(name, std::move(t)).second) throw Error(where + "twice");
+  }
+  return tensors;
 }
 
 void write_all(int fd, const std::string& bytes, const std::string& path) {
@@ -51,6 +113,25 @@ void write_all(int fd, const std::string& bytes, const std::string& path) {
 
 }  // namespace
 
+size_t element_size(ElementType type) {
+  switch (type) {
+    case ElementType::uint8:
+      return 1;
+    case ElementType::float32:
+      return 4;
+    case ElementType::int64:
+    case ElementType::float64:
+      return 8;
+  }
+  return 0;
+}
+
+const TensorRecord& CheckpointFile::tensor(const std::string& name) const {
+  const auto it = tensors.find(name);
+  if (it == tensors.end()) throw Error("checkpoint " + path + ": no tensor '" + name + "'");
+  return it->second;
+}
+
 uint64_t checkpoint_checksum(std::string_view bytes) {
   uint64_t hash = 14695981039346656037ull;
   for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
@@ -63,8 +144,7 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
   const std::string meta = checkpoint.meta.dump();
   put(bytes, static_cast<uint64_t>(meta.size()));
   bytes += meta;
-  put(bytes, static_cast<uint64_t>(checkpoint.tensors.size()));
-  bytes += checkpoint.tensors;
+  put_tensors(bytes, checkpoint.tensors);
   put(bytes, checkpoint_checksum(bytes));
 
   // Write beside the target, flush to disk, then rename over it: the old file
@@ -113,7 +193,7 @@ CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& pat
   CheckpointFile checkpoint;
   checkpoint.path = path;
   const std::string meta = take_block(bytes, offset, path);
-  checkpoint.tensors = take_block(bytes, offset, path);
+  checkpoint.tensors = take_tensors(bytes, offset, path);
   const size_t body = offset;
   const uint64_t checksum = take<uint64_t>(bytes, offset, path);
   if (offset != bytes.size()) throw Error("checkpoint " + path + ": trailing bytes after the checksum");

@@ -6,23 +6,30 @@
 //   version                 uint32 (kCheckpointVersion)
 //   meta length, meta       uint64 + JSON: baseline, train config (env config
 //                           included), network spec, step count, episode statistics
-//   tensors length, tensors uint64 + a torch archive: "net" (PPO) or "critic",
-//                           "critic_target", "actor", "log_alpha" (SAC) with the
-//                           normalisers' statistics as buffers; optimizer states;
-//                           the torch RNG state; SAC's replay buffer
+//   tensor count            uint64, then per tensor, in name order:
+//     name                  uint32 length + bytes ("net.encoder.mlp.0.weight")
+//     element type, rank    uint8 (ElementType), uint8 (at most kMaxTensorRank)
+//     shape                 int64 x rank
+//     data                  uint64 length + the elements, row-major
 //   checksum                uint64 FNV-1a of all bytes before it
+// The tensors: "net" (PPO) or "critic", "critic_target", "actor", "log_alpha"
+// (SAC) with the normalisers' statistics as buffers; the optimizers' states;
+// the trainer's RNG state; SAC's replay buffer (checkpoint_tensors.cpp).
 // A corrupt, truncated or incompatible file is a chore::Error naming the file.
 //
-// The framing and the metadata are read and checked without LibTorch
-// (checkpoint.cpp, fuzzed by clang); the tensors by checkpoint_tensors.cpp.
+// All of it is read and checked by chore's own code without LibTorch
+// (checkpoint.cpp, fuzzed by clang): no TorchScript archive is parsed, as
+// torch's reader of those crashes on crafted input (tests/fuzz/corpus).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "env/env.hpp"
 #include "policies/network_spec.hpp"
@@ -31,12 +38,25 @@
 
 namespace chore {
 
-constexpr uint32_t kCheckpointVersion = 1;
+constexpr uint32_t kCheckpointVersion = 2;  // 1: the tensors were a TorchScript archive
+constexpr int kMaxTensorRank = 8;
+
+// One array of a checkpoint: its element type, shape and little-endian bytes.
+enum class ElementType : uint8_t { uint8, int64, float32, float64 };
+size_t element_size(ElementType type);
+struct TensorRecord {
+  ElementType type = ElementType::float32;
+  std::vector<int64_t> shape;
+  std::string bytes;
+};
+using TensorRecords = std::map<std::string, TensorRecord>;
 
 struct CheckpointFile {
   nlohmann::json meta;
-  std::string tensors;  // a serialised torch archive
-  std::string path;     // where it was read from (for messages)
+  TensorRecords tensors;
+  std::string path;  // where it was read from (for messages)
+  // The tensor `name`, or chore::Error naming the file and the name.
+  const TensorRecord& tensor(const std::string& name) const;
 };
 
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint);

@@ -92,27 +92,18 @@ class PpoTrainer : public Trainer {
   std::vector<float> parameters() const override { return flat_parameters(*net_); }
 
   void save(const std::string& path) const override {
-    torch::serialize::OutputArchive archive, net, optimizer;
-    net_->save(net);
-    optimizer_->save(optimizer);
-    archive.write("net", net);
-    archive.write("optimizer", optimizer);
-    save_rng(archive, generator_);
-    write_checkpoint(path,
-                     {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
+    TensorRecords tensors;
+    save_module(tensors, "net", *net_);
+    save_adam(tensors, "optimizer", *optimizer_);
+    save_rng(tensors, generator_);
+    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), std::move(tensors), path});
   }
 
  private:
   void load(const CheckpointFile& file) {
-    torch::serialize::InputArchive archive, optimizer;
-    const std::string what = "checkpoint " + file.path;
-    read_archive(archive, file.tensors, what);
-    load_module(*net_, archive, "net", what);
-    load_or_throw(what, [&] {
-      archive.read("optimizer", optimizer);
-      optimizer_->load(optimizer);
-      load_rng(archive, generator_);
-    });
+    load_module(*net_, file, "net");
+    load_adam(*optimizer_, file, "optimizer");
+    load_rng(generator_, file);
     const RunProgress progress = load_run_meta(file.meta, stats_);
     steps_ = progress.steps;
     wall_s_ = progress.wall_s;
@@ -286,10 +277,9 @@ class PpoTrainer : public Trainer {
 };
 
 std::unique_ptr<Policy> load_ppo_policy(const CheckpointFile& file, bool sample) {
-  torch::serialize::InputArchive archive;
-  const NetworkSpec spec = read_network(file, archive);
+  const NetworkSpec spec = read_checkpoint_meta(file).network;
   ActorCritic net(spec);
-  load_module(*net, archive, "net", "checkpoint " + file.path);
+  load_module(*net, file, "net");
   return make_ppo_policy(net, spec, {.sample = sample});
 }
 

@@ -62,28 +62,20 @@ struct ReplayBuffer {
     }
   }
 
-  void save(torch::serialize::OutputArchive& archive) const {
-    torch::serialize::OutputArchive replay;
+  void save(TensorRecords& tensors) const {
     for (const auto& [name, t] : named())
-      if (t.defined()) replay.write(name, t, true);
-    replay.write("cursor", torch::tensor({size, next}), true);
-    archive.write("replay", replay);
+      if (t.defined()) put_tensor(tensors, "replay." + name, t);
+    put_tensor(tensors, "replay.cursor", torch::tensor({size, next}));
   }
 
-  void load(torch::serialize::InputArchive& archive) {
-    torch::serialize::InputArchive replay;
-    archive.read("replay", replay);
-    for (const auto& [name, t] : named()) {
-      if (!t.defined()) continue;
-      torch::Tensor stored;
-      replay.read(name, stored, true);
-      if (!stored.sizes().equals(t.sizes())) throw Error("replay buffer '" + name + "' has the wrong shape");
-      t.copy_(stored);
-    }
-    torch::Tensor cursor;
-    replay.read("cursor", cursor, true);
+  void load(const CheckpointFile& file) {
+    for (const auto& [name, t] : named())
+      if (t.defined()) t.copy_(get_tensor(file, "replay." + name, t));
+    const torch::Tensor cursor = get_tensor(file, "replay.cursor", torch::tensor({size, next}));
     size = cursor[0].item<int64_t>(), next = cursor[1].item<int64_t>();
-    if (size < 0 || size > capacity || next < 0 || next >= capacity) throw Error("replay buffer cursor out of range");
+    if (size < 0 || size > capacity || next < 0 || next >= capacity) {
+      throw Error("checkpoint " + file.path + ": replay buffer cursor out of range");
+    }
   }
 
  private:
@@ -171,23 +163,17 @@ class SacTrainer : public Trainer {
   }
 
   void save(const std::string& path) const override {
-    torch::serialize::OutputArchive archive;
-    auto put = [&](const char* name, const auto& saveable) {
-      torch::serialize::OutputArchive sub;
-      saveable.save(sub);
-      archive.write(name, sub);
-    };
-    put("critic", *critic_);
-    put("critic_target", *target_);
-    put("actor", *actor_);
-    put("critic_optimizer", *critic_opt_);
-    put("actor_optimizer", *actor_opt_);
-    put("alpha_optimizer", *alpha_opt_);
-    archive.write("log_alpha", log_alpha_.detach(), true);
-    replay_.save(archive);
-    save_rng(archive, generator_);
-    write_checkpoint(path,
-                     {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), archive_bytes(archive), path});
+    TensorRecords tensors;
+    save_module(tensors, "critic", *critic_);
+    save_module(tensors, "critic_target", *target_);
+    save_module(tensors, "actor", *actor_);
+    save_adam(tensors, "critic_optimizer", *critic_opt_);
+    save_adam(tensors, "actor_optimizer", *actor_opt_);
+    save_adam(tensors, "alpha_optimizer", *alpha_opt_);
+    put_tensor(tensors, "log_alpha", log_alpha_);
+    replay_.save(tensors);
+    save_rng(tensors, generator_);
+    write_checkpoint(path, {run_meta(config_, to_json(spec_), {steps_, wall_s_}, stats_), std::move(tensors), path});
   }
 
  private:
@@ -204,28 +190,18 @@ class SacTrainer : public Trainer {
   }
 
   void load(const CheckpointFile& file) {
-    torch::serialize::InputArchive archive;
-    const std::string what = "checkpoint " + file.path;
-    read_archive(archive, file.tensors, what);
-    load_module(*critic_, archive, "critic", what);
-    load_module(*target_, archive, "critic_target", what);
-    load_module(*actor_, archive, "actor", what);
-    load_or_throw(what, [&] {
-      auto get = [&](const char* name, torch::optim::Optimizer& optimizer) {
-        torch::serialize::InputArchive sub;
-        archive.read(name, sub);
-        optimizer.load(sub);
-      };
-      get("critic_optimizer", *critic_opt_);
-      get("actor_optimizer", *actor_opt_);
-      get("alpha_optimizer", *alpha_opt_);
-      torch::Tensor log_alpha;
-      archive.read("log_alpha", log_alpha, true);
+    load_module(*critic_, file, "critic");
+    load_module(*target_, file, "critic_target");
+    load_module(*actor_, file, "actor");
+    load_adam(*critic_opt_, file, "critic_optimizer");
+    load_adam(*actor_opt_, file, "actor_optimizer");
+    load_adam(*alpha_opt_, file, "alpha_optimizer");
+    {
       torch::NoGradGuard no_grad;
-      log_alpha_.copy_(log_alpha);
-      replay_.load(archive);
-      load_rng(archive, generator_);
-    });
+      log_alpha_.copy_(get_tensor(file, "log_alpha", log_alpha_));
+    }
+    replay_.load(file);
+    load_rng(generator_, file);
     const RunProgress progress = load_run_meta(file.meta, stats_);
     steps_ = progress.steps;
     wall_s_ = progress.wall_s;
@@ -343,12 +319,11 @@ class SacTrainer : public Trainer {
 };
 
 std::unique_ptr<Policy> load_sac_policy(const CheckpointFile& file, bool sample) {
-  torch::serialize::InputArchive archive;
-  const NetworkSpec spec = read_network(file, archive);
+  const NetworkSpec spec = read_checkpoint_meta(file).network;
   SacCritic critic(spec);
   SacActor actor(spec);
-  load_module(*critic, archive, "critic", "checkpoint " + file.path);
-  load_module(*actor, archive, "actor", "checkpoint " + file.path);
+  load_module(*critic, file, "critic");
+  load_module(*actor, file, "actor");
   return make_sac_policy(critic, actor, spec, {.sample = sample});
 }
 

@@ -1,8 +1,9 @@
 // libFuzzer target: a checkpoint file less its checksum, which the target
-// appends -> the framing -> the metadata, every field checked. Torch-free, so
-// clang's campaign runs it (the tensors are the checkpoint target's, replayed
-// by the suite). Bad input must end in chore::Error; anything else is a
-// finding (scripts/fuzz).
+// appends -> the framing, the tensor records -> the metadata, every field
+// checked. All of a checkpoint that chore reads but the copy of checked
+// records into torch tensors (the checkpoint target's, replayed by the
+// suite), and torch-free, so clang's campaign runs it. Bad input must end in
+// chore::Error; anything else is a finding (scripts/fuzz).
 #include <cstdint>
 #include <string>
 
