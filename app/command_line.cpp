@@ -70,8 +70,8 @@ struct CommandLineParser::Impl {
     int64_t train_steps = 0;
   } values;
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
-  CLI::App *bench_cmd, *check_cmd, *sample_cmd, *coverage_cmd, *expert_cmd, *eval_cmd, *video_cmd, *observe_cmd,
-      *plot_cmd, *train_cmd, *reproduce_cmd;
+  CLI::App *bench_cmd, *check_cmd, *sample_cmd, *coverage_cmd, *scene_list_cmd, *scene_build_cmd, *expert_cmd,
+      *eval_cmd, *video_cmd, *observe_cmd, *plot_cmd, *train_cmd, *reproduce_cmd;
   CLI::Option* train_steps_option;
 
   Impl();
@@ -129,6 +129,16 @@ CommandLineParser::Impl::Impl() {
       ->check(integer_in(1, 64))
       ->capture_default_str();
   coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");
+  CLI::App* scene_cmd = app.add_subcommand("scene", "BEHAVIOR-1K's scenes as analogs generated from their inventories");
+  scene_cmd->require_subcommand(1);
+  scene_list_cmd = scene_cmd->add_subcommand("list", "The scenes of the inventories: rooms and objects");
+  scene_build_cmd = scene_cmd->add_subcommand("build", "Generate a scene's analog, compile it, draw it from above");
+  scene_build_cmd->add_option("name", c.scene_build.name, "Scene (chore scene list)")->required();
+  scene_build_cmd->add_option("--seed", c.scene_build.seed, "Seed of the layout")
+      ->check(seed_number())
+      ->capture_default_str();
+  scene_build_cmd->add_option("--out", c.scene_build.out, "Top-down picture to write (.png)");
+  scene_build_cmd->add_flag("--json", c.json, "Print the results as JSON");
   sample_cmd->add_option("--seeds", values.sample_seeds, "A range A-B: instantiate each, no picture")
       ->excludes(out_option);
 
@@ -310,6 +320,8 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
   try {
     if (*check_cmd) c.command = Command::activity_check;
     if (*coverage_cmd) c.command = Command::activity_coverage;
+    if (*scene_list_cmd) c.command = Command::scene_list;
+    if (*scene_build_cmd) c.command = Command::scene_build;
     if (*sample_cmd) {
       c.command = Command::activity_sample;
       if (!values.sample_seeds.empty()) c.sample.seeds = seed_range(values.sample_seeds, "--seeds");

@@ -17,6 +17,7 @@
 #include "app/observe_command.hpp"
 #include "app/plot.hpp"
 #include "app/reproduce.hpp"
+#include "app/scene_commands.hpp"
 #include "app/train_command.hpp"
 #include "app/video.hpp"
 #include "policies/evaluate.hpp"
@@ -28,6 +29,8 @@ enum class Command {
   activity_check,
   activity_sample,
   activity_coverage,
+  scene_list,
+  scene_build,
   expert,
   eval,
   video,
@@ -56,11 +59,12 @@ struct SampleArgs {
 // The command and its options; only those of `command` are set.
 struct CommandLine {
   Command command = Command::bench;
-  bool json = false;  // bench, expert, eval, activity coverage: print JSON
+  bool json = false;  // bench, expert, eval, activity coverage, scene build: print JSON
   BenchOptions bench;
   std::vector<std::string> check_files;
   SampleArgs sample;
   CoverageOptions coverage;
+  SceneBuildOptions scene_build;
   ExpertOptions expert;
   EvalOptions eval;
   PolicyArgs policy;  // eval, video

@@ -89,6 +89,14 @@ int main(int argc, char** argv) {
         std::cout << (c.json ? results.dump(2) + "\n" : chore::format_coverage(results));
         break;
       }
+      case chore::Command::scene_list:
+        chore::list_scenes(std::cout);
+        break;
+      case chore::Command::scene_build: {
+        const nlohmann::json result = chore::build_scene(c.scene_build);
+        std::cout << (c.json ? result.dump(2) + "\n" : chore::format_scene_build(result));
+        break;
+      }
       case chore::Command::expert: {
         const nlohmann::json results = chore::run_expert(c.expert, std::cerr);
         std::cout << (c.json ? results.dump(2) + "\n" : chore::format_expert(results));

@@ -380,10 +380,13 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // <size>: MuJoCo 2.2.2 preallocates for njmax constraint rows; each mjData
   // costs ~25 MB at 500 rows and ~780 MB at 8000. A resting free object has
   // about 4 contacts of 4 rows each (pyramidal cones): room for each free
-  // object's 8 contacts, plus the robot's and joint limits.
+  // object's 8 contacts, plus the robot's and joint limits, up to the
+  // restaurant's 65 free objects: past that (generated scenes of hundreds)
+  // the rows would cost gigabytes per env, and objects at rest sleep out of
+  // collision detection (world/sleeping.hpp), so only those awake need rows.
   int free_objects = 0;
   for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
-  const int nconmax = 200 + 8 * free_objects, njmax = 4 * nconmax;
+  const int nconmax = 200 + 8 * std::min(free_objects, 65), njmax = 4 * nconmax;
   std::string xml = "<mujoco model=\"" + scene->name_ +
                     "\">\n"
                     "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"

@@ -1,0 +1,475 @@
+#include "analogs/scene_analogs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <regex>
+
+#include "base/csv_file.hpp"
+#include "base/error.hpp"
+#include "base/json_file.hpp"
+#include "base/random.hpp"
+#include "tasks/knowledge_base.hpp"
+#include "world/scene.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kWall = 0.1;        // wall thickness (m)
+constexpr double kDoorway = 1.0;     // width of a doorway
+constexpr double kDoorClear = 1.0;   // kept free before a doorway, on each side
+constexpr double kGap = 0.05;        // between neighbouring pieces of furniture
+constexpr double kRobotClear = 0.5;  // around the robot's start
+constexpr int kTries = 60;           // random placements tried per object
+
+// An axis-aligned rectangle of the floor.
+struct Rect {
+  double x0, y0, x1, y1;
+  bool overlaps(const Rect& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+  Rect grown(double m) const { return {x0 - m, y0 - m, x1 + m, y1 + m}; }
+  double width() const { return x1 - x0; }
+  double depth() const { return y1 - y0; }
+};
+
+// What an inventory object is to the layout.
+enum class Kind { structure, door, on_wall, furniture, small };
+
+Kind kind_of(const CategoryModels& models, const std::string& synset) {
+  const KnowledgeBase& kb = models.knowledge_base();
+  const auto is = [&](const char* ancestor) { return kb.contains(ancestor) && kb.is_a(synset, ancestor); };
+  // Floors, walls and ceilings are the scene's own; lawns and driveways are floors.
+  for (const char* s : {"floor.n.01", "ceiling.n.01", "wall.n.01", "lawn.n.01", "driveway.n.01"}) {
+    if (is(s)) return Kind::structure;
+  }
+  if (is("door.n.01")) return Kind::door;
+  for (const char* s : {"window.n.01", "picture.n.01", "mirror.n.01", "switch.n.01", "wall_socket.n.01",
+                        "wall_clock.n.01", "towel_rack.n.01", "poster.n.01"}) {
+    if (is(s)) return Kind::on_wall;
+  }
+  return kb.has_property(synset, "sceneObject") ? Kind::furniture : Kind::small;
+}
+
+// A model's footprint half-extents at a yaw that is a multiple of 90 degrees.
+Eigen::Vector2d half_footprint(const Eigen::Vector3d& size, int quarter_turns) {
+  return quarter_turns % 2 == 0 ? Eigen::Vector2d(size.x() / 2, size.y() / 2)
+                                : Eigen::Vector2d(size.y() / 2, size.x() / 2);
+}
+
+Rect footprint(const Eigen::Vector2d& centre, const Eigen::Vector2d& half) {
+  return {centre.x() - half.x(), centre.y() - half.y(), centre.x() + half.x(), centre.y() + half.y()};
+}
+
+Rgb floor_colour(const std::string& type) {
+  uint64_t hash = 1469598103934665603ull;
+  for (unsigned char c : type) hash = (hash ^ c) * 1099511628211ull;
+  const double t = static_cast<double>(hash % 1000) / 1000.0;
+  return {0.45 + 0.3 * t, 0.4 + 0.2 * (1 - t), 0.35 + 0.15 * t};
+}
+
+// One room of the layout: its rectangle, doorways, and what stands in it.
+struct RoomLayout {
+  const RoomInventory* inventory;
+  Rect rect;
+  std::vector<Rect> keep_clear;  // before doorways
+  std::vector<Rect> taken;       // footprints of what stands on the floor
+  struct Surface {
+    Rect top;
+    double height;
+    std::vector<Rect> taken;
+  };
+  std::vector<Surface> surfaces;
+  // Stretches of wall free for wall items: per side (0 bottom, 1 right, 2 top, 3 left), intervals used.
+  std::vector<std::pair<double, double>> wall_used[4];
+
+  bool free(const Rect& r) const {
+    const Rect inner = rect.grown(-kWall / 2);
+    if (r.x0 < inner.x0 || r.y0 < inner.y0 || r.x1 > inner.x1 || r.y1 > inner.y1) return false;
+    for (const Rect& o : keep_clear)
+      if (o.overlaps(r)) return false;
+    for (const Rect& o : taken)
+      if (o.grown(kGap).overlaps(r)) return false;
+    return true;
+  }
+};
+
+// Room areas from their furniture, then rows of one width: a rectangle of rooms.
+std::vector<RoomLayout> lay_out_rooms(const SceneInventory& inventory, const CategoryModels& models, Rng& rng) {
+  std::vector<RoomLayout> rooms;
+  std::vector<Eigen::Vector2d> sizes;
+  double total = 0;
+  for (const RoomInventory& room : inventory.rooms) {
+    double footprint_area = 0;
+    for (const auto& [synset, count] : room.objects) {
+      if (kind_of(models, synset) != Kind::furniture) continue;
+      const Eigen::Vector3d s = models.size(synset);
+      footprint_area += count * (s.x() + kGap) * (s.y() + kGap);
+    }
+    const double area = std::max(6.0, 3.0 * footprint_area + 4.0), aspect = uniform(rng, 1.0, 1.5);
+    sizes.push_back({std::sqrt(area * aspect), std::sqrt(area / aspect)});
+    total += area;
+    rooms.push_back({&room, {}, {}, {}, {}, {}});
+  }
+  double width = std::sqrt(total) * 1.2;
+  for (const Eigen::Vector2d& s : sizes) width = std::max(width, s.x());
+  // Rows left to right; a row's rooms share its depth and its last room is
+  // widened to the common width.
+  double y = 0;
+  for (size_t first = 0; first < rooms.size();) {
+    size_t last = first;
+    double x = sizes[first].x(), depth = sizes[first].y();
+    while (last + 1 < rooms.size() && x + sizes[last + 1].x() <= width) {
+      ++last;
+      x += sizes[last].x();
+      depth = std::max(depth, sizes[last].y());
+    }
+    double x0 = 0;
+    for (size_t i = first; i <= last; ++i) {
+      const double x1 = i == last ? width : x0 + sizes[i].x();
+      rooms[i].rect = {x0, y, x1, y + depth};
+      x0 = x1;
+    }
+    y += depth;
+    first = last + 1;
+  }
+  return rooms;
+}
+
+// A doorway on the wall between rooms a and b (sharing a vertical edge when
+// `vertical`) at `along` (y or x), kept clear on both sides.
+struct Doorway {
+  int a, b;
+  bool vertical;
+  double at, along;  // the shared edge's x (vertical) or y; the doorway's centre along it
+};
+
+std::vector<Doorway> doorways(std::vector<RoomLayout>& rooms) {
+  std::vector<Doorway> doors;
+  for (size_t i = 0; i + 1 < rooms.size(); ++i) {
+    const Rect &a = rooms[i].rect, &b = rooms[i + 1].rect;
+    if (a.y0 == b.y0 && a.x1 == b.x0) doors.push_back({int(i), int(i + 1), true, a.x1, (a.y0 + a.y1) / 2});
+  }
+  // Each row's first room to the room of the row before that shares the most wall with it.
+  for (size_t i = 1; i < rooms.size(); ++i) {
+    const Rect& r = rooms[i].rect;
+    if (r.x0 != 0 || r.y0 == 0) continue;
+    int best = -1;
+    double best_overlap = 0;
+    for (size_t j = 0; j < i; ++j) {
+      const Rect& o = rooms[j].rect;
+      const double overlap = std::min(r.x1, o.x1) - std::max(r.x0, o.x0);
+      if (o.y1 == r.y0 && overlap > best_overlap) best = int(j), best_overlap = overlap;
+    }
+    if (best < 0 || best_overlap < kDoorway + 2 * kWall) continue;
+    const Rect& o = rooms[best].rect;
+    doors.push_back({best, int(i), false, r.y0, (std::max(r.x0, o.x0) + std::min(r.x1, o.x1)) / 2});
+  }
+  for (const Doorway& d : doors) {
+    const double half = kDoorway / 2 + kGap;
+    const Rect clear = d.vertical ? Rect{d.at - kDoorClear, d.along - half, d.at + kDoorClear, d.along + half}
+                                  : Rect{d.along - half, d.at - kDoorClear, d.along + half, d.at + kDoorClear};
+    rooms[d.a].keep_clear.push_back(clear);
+    rooms[d.b].keep_clear.push_back(clear);
+  }
+  return doors;
+}
+
+// Wall segments of every room's sides, with the doorways cut out.
+std::vector<std::array<double, 4>> walls(const std::vector<RoomLayout>& rooms, const std::vector<Doorway>& doors) {
+  std::vector<std::array<double, 4>> segments;
+  auto add = [&](double x0, double y0, double x1, double y1, bool vertical) {
+    // Gaps of the doorways on this line, in order along it.
+    std::vector<std::pair<double, double>> gaps;
+    for (const Doorway& d : doors) {
+      if (d.vertical != vertical) continue;
+      if (std::abs(d.at - (vertical ? x0 : y0)) > 1e-9) continue;
+      gaps.push_back({d.along - kDoorway / 2, d.along + kDoorway / 2});
+    }
+    std::sort(gaps.begin(), gaps.end());
+    double from = vertical ? y0 : x0;
+    const double to = vertical ? y1 : x1;
+    for (const auto& [g0, g1] : gaps) {
+      if (g1 <= from || g0 >= to) continue;
+      if (g0 > from) segments.push_back(vertical ? std::array{x0, from, x0, g0} : std::array{from, y0, g0, y0});
+      from = std::max(from, g1);
+    }
+    if (to > from) segments.push_back(vertical ? std::array{x0, from, x0, to} : std::array{from, y0, to, y0});
+  };
+  for (const RoomLayout& room : rooms) {
+    const Rect& r = room.rect;
+    add(r.x0, r.y0, r.x1, r.y0, false);
+    add(r.x0, r.y1, r.x1, r.y1, false);
+    add(r.x0, r.y0, r.x0, r.y1, true);
+    add(r.x1, r.y0, r.x1, r.y1, true);
+  }
+  return segments;
+}
+
+class Builder {
+ public:
+  Builder(const CategoryModels& models, SceneAnalog& out) : models_(models), out_(out) {}
+
+  // Adds an instance of `synset`: model once per synset, a BDDL-style name.
+  void add(const std::string& synset, const Eigen::Vector3d& pos, int quarter_turns, bool fixed) {
+    if (!out_.file.models.contains(synset)) out_.file.models[synset] = models_.model(synset);
+    const std::string category = synset.substr(0, synset.find('.'));
+    ObjectPlacement p;
+    p.name = category + "_" + std::to_string(++count_[category]);
+    p.model = synset;
+    p.synset = synset;
+    p.fixed = fixed;
+    p.pos = pos;
+    p.yaw = quarter_turns * M_PI / 2;
+    out_.file.objects.push_back(p);
+    ++out_.placed;
+  }
+
+ private:
+  const CategoryModels& models_;
+  SceneAnalog& out_;
+  std::map<std::string, int> count_;
+};
+
+// Yaw (quarter turns) that puts a model's back (+y) against wall side `side`
+// (0 bottom, 1 right, 2 top, 3 left), facing into the room.
+int facing_in(int side) {
+  static const int turns[4] = {2, 3, 0, 1};
+  return turns[side];
+}
+
+// Furniture against a wall, else free-standing; false when nowhere fits.
+bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen::Vector2d& at, int& turns) {
+  const Rect inner = room.rect.grown(-kWall / 2);
+  for (int t = 0; t < 2 * kTries; ++t) {
+    const bool against_wall = t < kTries;
+    const int side = uniform_index(rng, 4);
+    turns = against_wall ? facing_in(side) : uniform_index(rng, 4);
+    const Eigen::Vector2d half = half_footprint(size, turns);
+    if (2 * half.x() > inner.width() || 2 * half.y() > inner.depth()) continue;
+    Eigen::Vector2d c(uniform(rng, inner.x0 + half.x(), inner.x1 - half.x()),
+                      uniform(rng, inner.y0 + half.y(), inner.y1 - half.y()));
+    if (against_wall) {
+      if (side == 0) c.y() = inner.y0 + half.y();
+      if (side == 1) c.x() = inner.x1 - half.x();
+      if (side == 2) c.y() = inner.y1 - half.y();
+      if (side == 3) c.x() = inner.x0 + half.x();
+    }
+    const Rect r = footprint(c, half);
+    if (!room.free(r)) continue;
+    room.taken.push_back(r);
+    at = c;
+    return true;
+  }
+  return false;
+}
+
+// On a wall at the item's height, not over a doorway nor another wall item;
+// `on_floor` (doors): standing on the floor, clear of the furniture too.
+bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor, Rng& rng, Eigen::Vector3d& at,
+                   int& turns) {
+  const Rect inner = room.rect.grown(-kWall / 2);
+  for (int t = 0; t < kTries; ++t) {
+    const int side = uniform_index(rng, 4);
+    const bool horizontal = side % 2 == 0;
+    const double length = horizontal ? inner.width() : inner.depth();
+    if (size.x() + 0.2 > length) continue;
+    const double along = uniform(rng, 0.1 + size.x() / 2, length - 0.1 - size.x() / 2);
+    const std::pair<double, double> span = {along - size.x() / 2 - kGap, along + size.x() / 2 + kGap};
+    bool free = true;
+    for (const auto& [u0, u1] : room.wall_used[side]) free &= span.second <= u0 || span.first >= u1;
+    turns = facing_in(side);
+    const Eigen::Vector2d half = half_footprint(size, turns);
+    Eigen::Vector2d c = horizontal
+                            ? Eigen::Vector2d(inner.x0 + along, side == 0 ? inner.y0 + half.y() : inner.y1 - half.y())
+                            : Eigen::Vector2d(side == 1 ? inner.x1 - half.x() : inner.x0 + half.x(), inner.y0 + along);
+    const Rect r = footprint(c, half);
+    for (const Rect& o : room.keep_clear) free &= !o.overlaps(r);
+    if (on_floor) free &= room.free(r);
+    if (!free) continue;
+    room.wall_used[side].push_back(span);
+    if (on_floor) room.taken.push_back(r);
+    const double bottom = on_floor ? 0 : size.z() > 1.4 ? 0.3 : std::max(0.9, 1.4 - size.z() / 2);
+    at = {c.x(), c.y(), bottom};
+    return true;
+  }
+  return false;
+}
+
+// On a surface of the room (the top of a table, counter, cabinet, shelf), else the floor.
+bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen::Vector3d& at, int& turns) {
+  turns = uniform_index(rng, 4);
+  const Eigen::Vector2d half = half_footprint(size, turns);
+  for (int t = 0; t < kTries && !room.surfaces.empty(); ++t) {
+    RoomLayout::Surface& s = room.surfaces[uniform_index(rng, static_cast<int>(room.surfaces.size()))];
+    const Rect top = s.top.grown(-0.02);
+    if (2 * half.x() > top.width() || 2 * half.y() > top.depth()) continue;
+    const Eigen::Vector2d c(uniform(rng, top.x0 + half.x(), top.x1 - half.x()),
+                            uniform(rng, top.y0 + half.y(), top.y1 - half.y()));
+    const Rect r = footprint(c, half);
+    if (std::any_of(s.taken.begin(), s.taken.end(), [&](const Rect& o) { return o.grown(0.01).overlaps(r); })) continue;
+    s.taken.push_back(r);
+    at = {c.x(), c.y(), s.height + 0.002};
+    return true;
+  }
+  Eigen::Vector2d c;
+  if (!place_furniture(room, size, rng, c, turns)) return false;
+  at = {c.x(), c.y(), 0.002};
+  return true;
+}
+
+}  // namespace
+
+int SceneInventory::object_count() const {
+  int n = 0;
+  for (const RoomInventory& r : rooms)
+    for (const auto& [synset, count] : r.objects) n += count;
+  return n;
+}
+
+std::vector<SceneInventory> read_scene_inventories(const std::string& inventory_path,
+                                                   const std::string& category_path) {
+  const CsvTable categories = read_csv_file(category_path);
+  std::map<std::string, std::string> synset_of;
+  const size_t category_column = categories.column("category"), synset_column = categories.column("synset");
+  for (const auto& row : categories.rows) synset_of[row[category_column]] = row[synset_column];
+  const nlohmann::json file = read_json_file(inventory_path);
+  const JsonReader root(file, inventory_path);
+  const JsonReader scenes = root.at("scenes");
+  if (!file["scenes"].is_object()) scenes.fail("expected an object of scenes");
+  static const std::regex room_name(R"(([a-z_]+)_(\d+))");
+  std::vector<SceneInventory> inventories;
+  for (const auto& [scene, rooms] : file["scenes"].items()) {
+    const JsonReader where = scenes.at(scene.c_str());
+    if (!rooms.is_object()) where.fail("expected an object of rooms");
+    SceneInventory inventory{scene, {}};
+    for (const auto& [room, objects] : rooms.items()) {
+      std::smatch m;
+      if (!std::regex_match(room, m, room_name)) where.fail("room '" + room + "' is not TYPE_INDEX");
+      if (!objects.is_object()) where.at(room.c_str()).fail("expected an object of counts");
+      std::map<std::string, int> counts;
+      for (const auto& [model, count] : objects.items()) {
+        const std::string category = model.substr(0, model.rfind('-'));
+        const auto synset = synset_of.find(category);
+        if (synset == synset_of.end()) {
+          where.at(room.c_str()).fail("category '" + category + "' is not in " + category_path);
+        }
+        if (!count.is_number_integer() || count.get<int64_t>() < 1 || count.get<int64_t>() > 100000) {
+          where.at(room.c_str()).fail("'" + model + "' = " + count.dump() + " is not a count");
+        }
+        counts[synset->second] += count.get<int>();
+      }
+      inventory.rooms.push_back({room, m[1], {counts.begin(), counts.end()}});
+    }
+    inventories.push_back(std::move(inventory));
+  }
+  std::sort(inventories.begin(), inventories.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  return inventories;
+}
+
+const std::vector<SceneInventory>& shipped_scene_inventories() {
+  static std::once_flag once;
+  static std::vector<SceneInventory> inventories;
+  std::call_once(once, [] {
+    inventories = read_scene_inventories(default_tasks_dir() + "/kb/behavior-1k/combined_room_object_list.json",
+                                         default_tasks_dir() + "/kb/behavior-1k/category_mapping.csv");
+  });
+  return inventories;
+}
+
+const SceneInventory& find_scene_inventory(const std::string& name) {
+  std::string known;
+  for (const SceneInventory& s : shipped_scene_inventories()) {
+    if (s.name == name) return s;
+    known += (known.empty() ? "" : ", ") + s.name;
+  }
+  throw Error("no scene '" + name + "' among BEHAVIOR-1K's inventories (" + known + ")");
+}
+
+SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed) {
+  if (inventory.rooms.empty()) throw Error("scene " + inventory.name + ": no rooms");
+  Rng rng(seed);
+  SceneAnalog analog;
+  SceneFile& file = analog.file;
+  file.name = inventory.name;
+  file.path = inventory.name + " (analog, seed " + std::to_string(seed) + ")";
+  file.wall_thickness = kWall;
+  std::vector<RoomLayout> rooms = lay_out_rooms(inventory, models, rng);
+  const std::vector<Doorway> doors = doorways(rooms);
+  file.walls = walls(rooms, doors);
+  for (const RoomLayout& room : rooms) {
+    const Rect& r = room.rect;
+    file.rooms.push_back(
+        {room.inventory->name, room.inventory->type, {{r.x0, r.y0, r.x1, r.y1}}, floor_colour(room.inventory->type)});
+    file.ceiling_lights.push_back({{(r.x0 + r.x1) / 2, (r.y0 + r.y1) / 2, file.wall_height - 0.1}, {0.5, 0.5, 0.5}});
+  }
+  Builder builder(models, analog);
+  // Per room: doors (the doorways stay open: a door of the inventory stands
+  // closed against a wall, openable), then furniture, largest first, then what
+  // goes on walls and surfaces.
+  for (RoomLayout& room : rooms) {
+    std::vector<std::pair<std::string, int>> furniture, others;
+    for (const auto& [synset, count] : room.inventory->objects) {
+      const Kind kind = kind_of(models, synset);
+      if (kind == Kind::furniture) furniture.push_back({synset, count});
+      if (kind == Kind::on_wall || kind == Kind::small) others.push_back({synset, count});
+      for (int n = 0; kind == Kind::door && n < count; ++n) {
+        Eigen::Vector3d at;
+        int turns = 0;
+        if (!place_on_wall(room, models.size(synset), true, rng, at, turns)) {
+          ++analog.left_out;
+          continue;
+        }
+        builder.add(synset, at, turns, true);
+      }
+    }
+    std::stable_sort(furniture.begin(), furniture.end(), [&](const auto& a, const auto& b) {
+      const Eigen::Vector3d sa = models.size(a.first), sb = models.size(b.first);
+      return sa.x() * sa.y() > sb.x() * sb.y();
+    });
+    for (const auto& [synset, count] : furniture) {
+      const Eigen::Vector3d size = models.size(synset);
+      const Archetype archetype = models.archetype(synset);
+      for (int n = 0; n < count; ++n) {
+        Eigen::Vector2d at;
+        int turns = 0;
+        if (!place_furniture(room, size, rng, at, turns)) {
+          ++analog.left_out;
+          continue;
+        }
+        builder.add(synset, {at.x(), at.y(), 0}, turns, true);
+        const bool flat_top = archetype == Archetype::table || archetype == Archetype::cabinet ||
+                              archetype == Archetype::shelf || archetype == Archetype::block;
+        if (flat_top && size.z() > 0.3 && size.z() < 1.6) {
+          room.surfaces.push_back({footprint(at, half_footprint(size, turns)), size.z(), {}});
+        }
+      }
+    }
+    for (const auto& [synset, count] : others) {
+      const Eigen::Vector3d size = models.size(synset);
+      const bool on_wall = kind_of(models, synset) == Kind::on_wall;
+      for (int n = 0; n < count; ++n) {
+        Eigen::Vector3d at;
+        int turns = 0;
+        if (!(on_wall ? place_on_wall(room, size, false, rng, at, turns) : place_small(room, size, rng, at, turns))) {
+          ++analog.left_out;
+          continue;
+        }
+        builder.add(synset, at, turns, on_wall || models.knowledge_base().has_property(synset, "sceneObject"));
+      }
+    }
+  }
+  // The robot: in the first room, clear of everything on its floor.
+  const RoomLayout& start = rooms.front();
+  for (int t = 0; t < 20 * kTries; ++t) {
+    const Rect inner = start.rect.grown(-kWall / 2 - kRobotClear);
+    if (inner.width() <= 0 || inner.depth() <= 0) break;
+    const Eigen::Vector2d c(uniform(rng, inner.x0, inner.x1), uniform(rng, inner.y0, inner.y1));
+    const Rect r = footprint(c, {kRobotClear, kRobotClear});
+    if (std::any_of(start.taken.begin(), start.taken.end(), [&](const Rect& o) { return o.overlaps(r); })) continue;
+    file.robot_start = {c.x(), c.y(), uniform(rng, -M_PI, M_PI)};
+    return analog;
+  }
+  throw Error("scene " + inventory.name + ": no free floor for the robot in " + start.inventory->name);
+}
+
+}  // namespace chore

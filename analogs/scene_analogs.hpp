@@ -1,0 +1,63 @@
+// Analogs of BEHAVIOR-1K's scenes, generated from their furnishing
+// inventories: tasks/kb/behavior-1k/combined_room_object_list.json says, per
+// scene, its rooms and how many objects of each category each room holds
+// (categories are synsets through category_mapping.csv). BEHAVIOR's scene
+// meshes are not chore's to ship; what an activity needs of a scene is its
+// rooms and what stands in them, which the inventory gives.
+//
+// The generation, seeded (the same seed gives the same scene):
+//   rooms          each sized for its floor-standing furniture (3x their
+//                  footprint plus 4 m2, at least 6 m2, 1:1 to 1.5:1), laid out
+//                  in rows of one width, so the house is a rectangle of rooms;
+//                  a doorway between neighbours in a row and one from each row
+//                  to the row before, so every room is reachable
+//   doors          the doorways stay open; the inventory's doors stand closed
+//                  against walls (openable, as BDDL may ask)
+//   furniture      scene objects (fixed): against a wall facing into the room,
+//                  else free-standing; never overlapping each other, the walls
+//                  or the 1 m before a doorway
+//   on the walls   windows, pictures, mirrors, switches: at their height
+//   small objects  (free) on the top of a table, counter, cabinet or shelf of
+//                  their room, else on its floor
+//   the robot      starts in the first room, 0.5 m clear of everything
+// What does not fit is left out and counted (SceneAnalog::left_out).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "analogs/category_models.hpp"
+#include "world/scene_file.hpp"
+
+namespace chore {
+
+struct RoomInventory {
+  std::string name, type;                            // "kitchen_0", "kitchen"
+  std::vector<std::pair<std::string, int>> objects;  // synset, count; sorted by synset
+};
+
+struct SceneInventory {
+  std::string name;  // "Rs_int"
+  std::vector<RoomInventory> rooms;
+  int object_count() const;
+};
+
+// Every scene of the inventory file, sorted by name; a category the mapping
+// lacks, a bad count or room name is a chore::Error naming the file and scene.
+std::vector<SceneInventory> read_scene_inventories(const std::string& inventory_path, const std::string& category_path);
+// The shipped inventories (tasks/kb/behavior-1k/), read once.
+const std::vector<SceneInventory>& shipped_scene_inventories();
+// The shipped inventory of `name`; chore::Error naming the known scenes.
+const SceneInventory& find_scene_inventory(const std::string& name);
+
+struct SceneAnalog {
+  SceneFile file;
+  int placed = 0;    // inventory objects in the scene
+  int left_out = 0;  // inventory objects with no room left for them
+};
+
+SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed);
+
+}  // namespace chore

@@ -1,0 +1,308 @@
+// Generated object models (analogs/category_models.hpp): archetypes chosen by
+// the knowledge base, sizes from the nearest ancestor's entry scaled by mass,
+// and models that compile and stand still on a floor.
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "analogs/category_models.hpp"
+#include "analogs/scene_analogs.hpp"
+#include "base/error.hpp"
+#include "test_util.hpp"
+#include "world/predicates.hpp"
+#include "world/renderer.hpp"
+#include "world/scene.hpp"
+#include "world/world.hpp"
+
+namespace chore {
+namespace {
+
+namespace fs = std::filesystem;
+
+const CategoryModels& shipped() {
+  return *CategoryModels::shipped();
+}
+
+TEST(CategoryModels, ArchetypesFollowTheKnowledgeBase) {
+  const std::pair<const char*, Archetype> expected[] = {
+      {"cabinet.n.01", Archetype::cabinet},     {"sink.n.01", Archetype::basin},
+      {"towel.n.01", Archetype::cloth},         {"apple.n.01", Archetype::ball},
+      {"bowl.n.01", Archetype::open_container}, {"door.n.01", Archetype::door},
+      {"sofa.n.01", Archetype::seat},           {"bed.n.01", Archetype::bed},
+      {"shelf.n.01", Archetype::shelf},         {"breakfast_table.n.01", Archetype::table},
+      {"hammer.n.02", Archetype::block},
+  };
+  for (const auto& [synset, archetype] : expected) {
+    EXPECT_EQ(to_string(shipped().archetype(synset)), std::string(to_string(archetype))) << synset;
+  }
+  EXPECT_THROW(shipped().model("water.n.06"), Error);  // a substance
+  try {
+    shipped().model("cabinet.n.99");
+    ADD_FAILURE() << "an unknown synset was given a model";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cabinet.n.01"), std::string::npos) << e.what();  // did you mean
+  }
+}
+
+// A size table of three entries, with the shipped masses: a synset takes its
+// nearest ancestor's entry, scaled by the cube root of its own mass over the
+// entry's, clamped to [0.5, 2]; without a mass of its own, the entry as is.
+TEST(CategoryModels, SizesComeFromTheNearestAncestorScaledByMass) {
+  const fs::path dir = test::scratch_dir("category_sizes");
+  std::ofstream(dir / "sizes.json") << R"({"sizes": {
+      "entity.n.01": {"size": [0.1, 0.1, 0.1], "mass": 1.0},
+      "edible_fruit.n.01": {"size": [0.08, 0.08, 0.09], "mass": 0.2},
+      "apple.n.01": {"size": [0.07, 0.07, 0.07], "mass": 0.15}}})";
+  const auto kb = KnowledgeBase::load(default_tasks_dir() + "/kb/behavior-1k");
+  const auto models = CategoryModels::load(kb, (dir / "sizes.json").string(),
+                                           default_tasks_dir() + "/kb/behavior-1k/category_mapping.csv");
+  // Its own entry: as written, whatever its mass.
+  EXPECT_EQ(models->size_entry("apple.n.01"), "apple.n.01");
+  EXPECT_TRUE(models->size("apple.n.01").isApprox(Eigen::Vector3d(0.07, 0.07, 0.07)));
+  EXPECT_NEAR(models->mass("apple.n.01"), 0.163, 1e-12);  // BEHAVIOR's annotation
+  // A banana is an edible fruit: that entry, scaled by (0.12 / 0.2)^(1/3).
+  ASSERT_TRUE(kb->is_a("banana.n.02", "edible_fruit.n.01"));
+  EXPECT_EQ(models->size_entry("banana.n.02"), "edible_fruit.n.01");
+  const double banana = models->mass("banana.n.02");
+  EXPECT_TRUE(models->size("banana.n.02").isApprox(Eigen::Vector3d(0.08, 0.08, 0.09) * std::cbrt(banana / 0.2)))
+      << models->size("banana.n.02").transpose() << " for " << banana << " kg";
+  // A sofa (~50 kg) under the root's 1 kg entry: scaled by the clamp, 2.
+  EXPECT_EQ(models->size_entry("sofa.n.01"), "entity.n.01");
+  EXPECT_GT(models->mass("sofa.n.01"), 8.0);
+  EXPECT_TRUE(models->size("sofa.n.01").isApprox(Eigen::Vector3d(0.2, 0.2, 0.2)));
+
+  // A table naming a synset the knowledge base lacks, or without the root.
+  std::ofstream(dir / "bad.json") << R"({"sizes": {"entity.n.01": {"size": [0.1, 0.1, 0.1], "mass": 1},
+      "aple.n.01": {"size": [0.1, 0.1, 0.1], "mass": 1}}})";
+  EXPECT_THROW(CategoryModels::load(kb, (dir / "bad.json").string(),
+                                    default_tasks_dir() + "/kb/behavior-1k/category_mapping.csv"),
+               Error);
+  std::ofstream(dir / "rootless.json") << R"({"sizes": {"apple.n.01": {"size": [0.1, 0.1, 0.1], "mass": 1}}})";
+  EXPECT_THROW(CategoryModels::load(kb, (dir / "rootless.json").string(),
+                                    default_tasks_dir() + "/kb/behavior-1k/category_mapping.csv"),
+               Error);
+}
+
+TEST(CategoryModels, CategoriesHaveColoursOfTheirOwn) {
+  const KnowledgeBase& kb = shipped().knowledge_base();
+  std::vector<Rgb> colours;
+  for (const std::string& s : kb.children("fruit.n.01")) {
+    if (!kb.is_substance(s)) colours.push_back(shipped().colour(s));
+  }
+  ASSERT_GT(colours.size(), 5u);
+  for (size_t i = 0; i < colours.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const double d =
+          std::hypot(colours[i][0] - colours[j][0], colours[i][1] - colours[j][1], colours[i][2] - colours[j][2]);
+      EXPECT_GT(d, 0.02) << i << " and " << j;
+    }
+  }
+  EXPECT_EQ(shipped().colour("apple.n.01"), shipped().colour("apple.n.01"));
+}
+
+// One model of each archetype, free on a floor (furniture fixed): compiled
+// into a scene, they stand where placed after a second of physics, and the
+// openable ones open.
+TEST(CategoryModels, ModelsCompileAndStandOnTheFloor) {
+  const std::vector<std::string> synsets = {
+      "cabinet.n.01", "sink.n.01",       "towel.n.01",  "apple.n.01", "bowl.n.01",
+      "door.n.01",    "sofa.n.01",       "bed.n.01",    "shelf.n.01", "breakfast_table.n.01",
+      "hammer.n.02",  "dishwasher.n.01", "carton.n.02", "chair.n.01"};
+  SceneFile file;
+  file.name = "category_models";
+  // A grid of 2.5 m cells, four to a row, each lit from above.
+  constexpr double kCell = 2.5;
+  const int rows = static_cast<int>(synsets.size() + 3) / 4;
+  file.rooms.push_back({"living_room_0", "living_room", {{-1, -1, 4 * kCell, rows * kCell}}});
+  std::set<Archetype> archetypes;
+  for (size_t i = 0; i < synsets.size(); ++i) {
+    const std::string& s = synsets[i];
+    const ObjectModel model = shipped().model(s);
+    archetypes.insert(shipped().archetype(s));
+    ObjectPlacement p;
+    p.name = model.category + "_1";
+    p.model = s;
+    p.synset = s;
+    p.fixed = shipped().knowledge_base().has_property(s, "sceneObject");
+    p.pos = {(i % 4 + 0.5) * kCell, (i / 4 + 0.5) * kCell, 0};
+    file.models[s] = model;
+    file.objects.push_back(p);
+    file.ceiling_lights.push_back({{p.pos.x(), p.pos.y(), 2.5}, {0.4, 0.4, 0.4}});
+  }
+  EXPECT_EQ(archetypes.size(), 12u);  // every archetype
+  file.robot_start = {-0.5, -0.5, 0};
+  const auto scene = Scene::build(file);
+  World world(scene);
+  world.reset(scene->robot_start());
+  world.step(120);
+  const mjData* d = world.data();
+  for (size_t i = 0; i < scene->objects().size(); ++i) {
+    const SceneObject& o = scene->objects()[i];
+    if (o.body < 0) continue;
+    const Eigen::Vector3d at(d->xpos[3 * o.body], d->xpos[3 * o.body + 1], d->xpos[3 * o.body + 2]);
+    EXPECT_LT((at.head<2>() - Eigen::Vector2d(o.pos[0], o.pos[1])).norm(), 0.05) << o.name << " slid";
+    EXPECT_GT(at.z(), -0.01) << o.name << " fell through the floor";
+  }
+  // From above (test_output/category_models_overview.png): each model's own
+  // colour shows, not a flat or black picture.
+  constexpr int kSize = 512;
+  Renderer top(scene->model(), kSize, kSize, 1);
+  std::vector<std::uint8_t> rgb(kSize * kSize * 3);
+  std::vector<CameraView> view = {
+      {scene->model(), world.data(), scene->overview_camera(), rgb.data(), nullptr, 0, false}};
+  top.render(view);
+  cv::Mat bgr;
+  cv::cvtColor(cv::Mat(kSize, kSize, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
+  cv::imwrite((test::output_dir() / "category_models_overview.png").string(), bgr);
+  std::set<int> colours;
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+    colours.insert((rgb[i] >> 4) << 8 | (rgb[i + 1] >> 4) << 4 | rgb[i + 2] >> 4);
+  EXPECT_GT(colours.size(), 40u);
+
+  for (const char* name : {"cabinet_1", "door_1", "carton_1", "dishwasher_1"}) {
+    const SceneObject* o = scene->find_object(name);
+    ASSERT_NE(o, nullptr) << name;
+    EXPECT_EQ(o->joints.size(), 1u) << name << " has no door, drawer or lid";
+    EXPECT_FALSE(is_open(world, static_cast<int>(o - scene->objects().data()))) << name;
+  }
+}
+
+TEST(SceneAnalogs, InventoriesGiveRoomsAndSynsetCounts) {
+  const SceneInventory& rs = find_scene_inventory("Rs_int");
+  std::map<std::string, const RoomInventory*> rooms;
+  for (const RoomInventory& r : rs.rooms) rooms[r.name] = &r;
+  ASSERT_EQ(rooms.size(), 5u);
+  ASSERT_TRUE(rooms.contains("kitchen_0"));
+  EXPECT_EQ(rooms["kitchen_0"]->type, "kitchen");
+  const auto& kitchen = rooms["kitchen_0"]->objects;
+  const auto count = [&](const std::string& synset) {
+    for (const auto& [s, n] : kitchen)
+      if (s == synset) return n;
+    return 0;
+  };
+  EXPECT_EQ(count("cabinet.n.01"), 7);  // bottom and top cabinets, one synset
+  EXPECT_EQ(count("electric_refrigerator.n.01"), 1);
+  EXPECT_EQ(rs.object_count(), 76);
+  EXPECT_GE(shipped_scene_inventories().size(), 50u);
+  EXPECT_THROW(find_scene_inventory("Rs"), Error);
+}
+
+// Rasterises the walls at 5 cm and floods the floor from the robot's start:
+// every room must be reached through the doorways.
+std::set<std::string> rooms_reached(const SceneFile& f) {
+  constexpr double kCell = 0.05;
+  double x1 = 0, y1 = 0;
+  for (const Room& r : f.rooms) x1 = std::max(x1, r.rects[0][2]), y1 = std::max(y1, r.rects[0][3]);
+  const int nx = static_cast<int>(x1 / kCell) + 1, ny = static_cast<int>(y1 / kCell) + 1;
+  std::vector<char> blocked(nx * ny, 0);
+  for (const auto& w : f.walls) {
+    const int steps = static_cast<int>(std::hypot(w[2] - w[0], w[3] - w[1]) / (kCell / 2)) + 1;
+    for (int i = 0; i <= steps; ++i) {
+      const double x = w[0] + (w[2] - w[0]) * i / steps, y = w[1] + (w[3] - w[1]) * i / steps;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+          const int cx = static_cast<int>(x / kCell) + dx, cy = static_cast<int>(y / kCell) + dy;
+          if (cx >= 0 && cy >= 0 && cx < nx && cy < ny) blocked[cy * nx + cx] = 1;
+        }
+    }
+  }
+  std::vector<char> seen(nx * ny, 0);
+  std::vector<int> stack = {static_cast<int>(f.robot_start.y / kCell) * nx + static_cast<int>(f.robot_start.x / kCell)};
+  std::set<std::string> reached;
+  while (!stack.empty()) {
+    const int c = stack.back();
+    stack.pop_back();
+    if (seen[c] || blocked[c]) continue;
+    seen[c] = 1;
+    const int cx = c % nx, cy = c / nx;
+    for (const Room& r : f.rooms) {
+      const auto& b = r.rects[0];
+      if ((cx + 0.5) * kCell > b[0] && (cx + 0.5) * kCell < b[2] && (cy + 0.5) * kCell > b[1] &&
+          (cy + 0.5) * kCell < b[3])
+        reached.insert(r.name);
+    }
+    if (cx > 0) stack.push_back(c - 1);
+    if (cx + 1 < nx) stack.push_back(c + 1);
+    if (cy > 0) stack.push_back(c - nx);
+    if (cy + 1 < ny) stack.push_back(c + nx);
+  }
+  return reached;
+}
+
+TEST(SceneAnalogs, AreSeededConnectedAndCollisionFree) {
+  const CategoryModels& models = shipped();
+  const SceneInventory& inventory = find_scene_inventory("Rs_int");
+  const SceneAnalog a = generate_scene_analog(inventory, models, 0), b = generate_scene_analog(inventory, models, 0),
+                    c = generate_scene_analog(inventory, models, 1);
+  ASSERT_EQ(a.file.objects.size(), b.file.objects.size());
+  bool same_as_seed_1 = a.file.objects.size() == c.file.objects.size();
+  for (size_t i = 0; i < a.file.objects.size(); ++i) {
+    EXPECT_EQ(a.file.objects[i].name, b.file.objects[i].name);
+    EXPECT_EQ(a.file.objects[i].pos, b.file.objects[i].pos) << a.file.objects[i].name;
+    same_as_seed_1 = same_as_seed_1 && a.file.objects[i].pos == c.file.objects[i].pos;
+  }
+  EXPECT_FALSE(same_as_seed_1);
+  // Every inventory object but the floors and ceilings is placed or counted.
+  int structure = 0;
+  for (const RoomInventory& r : inventory.rooms)
+    for (const auto& [synset, n] : r.objects) structure += synset == "floor.n.01" || synset == "ceiling.n.01" ? n : 0;
+  EXPECT_EQ(a.placed + a.left_out + structure, inventory.object_count());
+  EXPECT_EQ(a.left_out, 0);
+
+  // Rooms tile one rectangle without overlap; each is reached from the robot's start.
+  double area = 0, x1 = 0, y1 = 0;
+  for (const Room& r : a.file.rooms) {
+    const auto& q = r.rects[0];
+    area += (q[2] - q[0]) * (q[3] - q[1]);
+    x1 = std::max(x1, q[2]), y1 = std::max(y1, q[3]);
+  }
+  EXPECT_NEAR(area, x1 * y1, 1e-6);
+  EXPECT_EQ(rooms_reached(a.file).size(), a.file.rooms.size());
+
+  // Fixed furniture on the floor: footprints apart, inside its room's walls.
+  struct Box {
+    std::string name;
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes;
+  for (const ObjectPlacement& o : a.file.objects) {
+    if (!o.fixed || o.pos.z() > 0.01) continue;
+    const Eigen::Vector3d s = models.size(o.synset);
+    const bool turned = std::abs(std::sin(o.yaw)) > 0.5;
+    const double hx = (turned ? s.y() : s.x()) / 2, hy = (turned ? s.x() : s.y()) / 2;
+    boxes.push_back({o.name, o.pos.x() - hx, o.pos.y() - hy, o.pos.x() + hx, o.pos.y() + hy});
+  }
+  ASSERT_GT(boxes.size(), 10u);
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const Box &p = boxes[i], &q = boxes[j];
+      EXPECT_FALSE(p.x0 < q.x1 - 1e-9 && q.x0 < p.x1 - 1e-9 && p.y0 < q.y1 - 1e-9 && q.y0 < p.y1 - 1e-9)
+          << p.name << " overlaps " << q.name;
+    }
+  }
+
+  // Compiled, the free objects stay where they were put (on surfaces or the floor).
+  const auto scene = Scene::build(a.file);
+  World world(scene);
+  world.reset(scene->robot_start());
+  world.step(120);
+  int free_objects = 0;
+  for (const SceneObject& o : scene->objects()) {
+    if (o.fixed || o.body < 0) continue;
+    ++free_objects;
+    const double* p = world.data()->xpos + 3 * o.body;
+    EXPECT_LT(std::hypot(p[0] - o.pos[0], p[1] - o.pos[1]), 0.1) << o.name;
+    EXPECT_GT(p[2], -0.01) << o.name;
+  }
+  EXPECT_GT(free_objects, 5);
+}
+
+}  // namespace
+}  // namespace chore
