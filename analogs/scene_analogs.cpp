@@ -17,7 +17,7 @@ namespace chore {
 namespace {
 
 constexpr double kWall = 0.1;        // wall thickness (m)
-constexpr double kDoorway = 1.0;     // width of a doorway
+constexpr double kDoorway = 1.2;     // width of a doorway: the base passes with its margin
 constexpr double kDoorClear = 1.0;   // kept free before a doorway, on each side
 constexpr double kGap = 0.05;        // between neighbouring pieces of furniture
 constexpr double kRobotClear = 0.5;  // around the robot's start
@@ -94,16 +94,38 @@ struct RoomLayout {
 };
 
 // Room areas from their furniture, then rows of one width: a rectangle of rooms.
-std::vector<RoomLayout> lay_out_rooms(const SceneInventory& inventory, const CategoryModels& models, Rng& rng) {
+// The room an extra object goes in: by name, else by type; "" the first.
+size_t room_of(const SceneInventory& inventory, const ExtraObject& e) {
+  if (e.room.empty()) return 0;
+  for (int by_type = 0; by_type < 2; ++by_type) {
+    for (size_t r = 0; r < inventory.rooms.size(); ++r) {
+      if ((by_type ? inventory.rooms[r].type : inventory.rooms[r].name) == e.room) return r;
+    }
+  }
+  throw Error("scene " + inventory.name + ": no room '" + e.room + "' for " + e.synset);
+}
+
+bool is_furniture(const CategoryModels& models, const ExtraObject& e) {
+  return !e.loose && kind_of(models, e.synset) == Kind::furniture;
+}
+
+std::vector<RoomLayout> lay_out_rooms(const SceneInventory& inventory, const std::vector<ExtraObject>& extra,
+                                      const CategoryModels& models, Rng& rng) {
   std::vector<RoomLayout> rooms;
   std::vector<Eigen::Vector2d> sizes;
   double total = 0;
-  for (const RoomInventory& room : inventory.rooms) {
+  for (size_t r = 0; r < inventory.rooms.size(); ++r) {
+    const RoomInventory& room = inventory.rooms[r];
     double footprint_area = 0;
-    for (const auto& [synset, count] : room.objects) {
-      if (kind_of(models, synset) != Kind::furniture) continue;
+    auto add_footprint = [&](const std::string& synset, int count) {
       const Eigen::Vector3d s = models.size(synset);
       footprint_area += count * (s.x() + kGap) * (s.y() + kGap);
+    };
+    for (const auto& [synset, count] : room.objects) {
+      if (kind_of(models, synset) == Kind::furniture) add_footprint(synset, count);
+    }
+    for (const ExtraObject& e : extra) {
+      if (is_furniture(models, e) && room_of(inventory, e) == r) add_footprint(e.synset, 1);
     }
     const double area = std::max(6.0, 3.0 * footprint_area + 4.0), aspect = uniform(rng, 1.0, 1.5);
     sizes.push_back({std::sqrt(area * aspect), std::sqrt(area / aspect)});
@@ -317,6 +339,27 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
   return true;
 }
 
+// A piece of furniture placed (fixed) with its top as a surface for small
+// objects when it has a flat one at a height they are put at.
+bool furnish(RoomLayout& room, const CategoryModels& models, const std::string& synset,
+             const std::vector<std::string>& clear_tops, Rng& rng, Builder& builder) {
+  const Eigen::Vector3d size = models.size(synset);
+  Eigen::Vector2d at;
+  int turns = 0;
+  if (!place_furniture(room, size, rng, at, turns)) return false;
+  builder.add(synset, {at.x(), at.y(), 0}, turns, true);
+  const Archetype archetype = models.archetype(synset);
+  const bool flat_top = archetype == Archetype::table || archetype == Archetype::cabinet ||
+                        archetype == Archetype::shelf || archetype == Archetype::block;
+  const KnowledgeBase& kb = models.knowledge_base();
+  const bool clear = std::any_of(clear_tops.begin(), clear_tops.end(),
+                                 [&](const std::string& s) { return kb.contains(s) && kb.is_a(synset, s); });
+  if (flat_top && !clear && size.z() > 0.3 && size.z() < 1.6) {
+    room.surfaces.push_back({footprint(at, half_footprint(size, turns)), size.z(), {}});
+  }
+  return true;
+}
+
 }  // namespace
 
 int SceneInventory::object_count() const {
@@ -385,7 +428,9 @@ const SceneInventory& find_scene_inventory(const std::string& name) {
   throw Error("no scene '" + name + "' among BEHAVIOR-1K's inventories (" + known + ")");
 }
 
-SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed) {
+SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed,
+                                  const AnalogExtras& extras) {
+  const std::vector<ExtraObject>& extra = extras.objects;
   if (inventory.rooms.empty()) throw Error("scene " + inventory.name + ": no rooms");
   Rng rng(seed);
   SceneAnalog analog;
@@ -393,7 +438,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
   file.name = inventory.name;
   file.path = inventory.name + " (analog, seed " + std::to_string(seed) + ")";
   file.wall_thickness = kWall;
-  std::vector<RoomLayout> rooms = lay_out_rooms(inventory, models, rng);
+  std::vector<RoomLayout> rooms = lay_out_rooms(inventory, extra, models, rng);
   const std::vector<Doorway> doors = doorways(rooms);
   file.walls = walls(rooms, doors);
   for (const RoomLayout& room : rooms) {
@@ -407,11 +452,10 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
   // closed against a wall, openable), then furniture, largest first, then what
   // goes on walls and surfaces.
   for (RoomLayout& room : rooms) {
-    std::vector<std::pair<std::string, int>> furniture, others;
+    std::vector<std::pair<std::string, int>> furniture;
     for (const auto& [synset, count] : room.inventory->objects) {
       const Kind kind = kind_of(models, synset);
       if (kind == Kind::furniture) furniture.push_back({synset, count});
-      if (kind == Kind::on_wall || kind == Kind::small) others.push_back({synset, count});
       for (int n = 0; kind == Kind::door && n < count; ++n) {
         Eigen::Vector3d at;
         int turns = 0;
@@ -427,29 +471,39 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
       return sa.x() * sa.y() > sb.x() * sb.y();
     });
     for (const auto& [synset, count] : furniture) {
-      const Eigen::Vector3d size = models.size(synset);
-      const Archetype archetype = models.archetype(synset);
       for (int n = 0; n < count; ++n) {
-        Eigen::Vector2d at;
-        int turns = 0;
-        if (!place_furniture(room, size, rng, at, turns)) {
-          ++analog.left_out;
-          continue;
-        }
-        builder.add(synset, {at.x(), at.y(), 0}, turns, true);
-        const bool flat_top = archetype == Archetype::table || archetype == Archetype::cabinet ||
-                              archetype == Archetype::shelf || archetype == Archetype::block;
-        if (flat_top && size.z() > 0.3 && size.z() < 1.6) {
-          room.surfaces.push_back({footprint(at, half_footprint(size, turns)), size.z(), {}});
-        }
+        analog.left_out += !furnish(room, models, synset, extras.clear_tops, rng, builder);
       }
     }
-    for (const auto& [synset, count] : others) {
+  }
+  // What the caller adds, before the inventory's small objects take the
+  // space: furniture first (it makes surfaces), then the rest.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const ExtraObject& e : extra) {
+      if (is_furniture(models, e) != (pass == 0)) continue;
+      RoomLayout& room = rooms[room_of(inventory, e)];
+      if (pass == 0) {
+        analog.left_out += !furnish(room, models, e.synset, extras.clear_tops, rng, builder);
+        continue;
+      }
+      Eigen::Vector3d at;
+      int turns = 0;
+      if (!place_small(room, models.size(e.synset), rng, at, turns)) {
+        ++analog.left_out;
+        continue;
+      }
+      builder.add(e.synset, at, turns, false);
+    }
+  }
+  for (RoomLayout& room : rooms) {
+    for (const auto& [synset, count] : room.inventory->objects) {
+      const Kind kind = kind_of(models, synset);
+      if (kind != Kind::on_wall && kind != Kind::small) continue;
       const Eigen::Vector3d size = models.size(synset);
-      const bool on_wall = kind_of(models, synset) == Kind::on_wall;
       for (int n = 0; n < count; ++n) {
         Eigen::Vector3d at;
         int turns = 0;
+        const bool on_wall = kind == Kind::on_wall;
         if (!(on_wall ? place_on_wall(room, size, false, rng, at, turns) : place_small(room, size, rng, at, turns))) {
           ++analog.left_out;
           continue;

@@ -58,6 +58,24 @@ struct SceneAnalog {
   int left_out = 0;  // inventory objects with no room left for them
 };
 
-SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed);
+// An object added beyond the inventory, in the first room whose name or type
+// is `room` ("": the first room): fixed furniture when its synset is a scene
+// object and it is not `loose`, else free on a surface or the floor.
+struct ExtraObject {
+  std::string room, synset;
+  bool loose = false;
+};
+
+// What a caller adds to an inventory: objects, and the synsets of furniture
+// whose tops stay clear of the inventory's small objects (an activity samples
+// its own objects onto them).
+struct AnalogExtras {
+  std::vector<ExtraObject> objects;
+  std::vector<std::string> clear_tops;
+};
+
+// chore::Error for an extra object's room the inventory lacks.
+SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed,
+                                  const AnalogExtras& extras = {});
 
 }  // namespace chore

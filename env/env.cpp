@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analogs/activity_scenes.hpp"
 #include "base/error.hpp"
 #include "env/env_impl.hpp"
 #include "env/observations.hpp"
@@ -23,15 +24,27 @@ bool wants(const EnvConfig& c, const std::string& name) {
 
 EnvAssets load_assets(const EnvConfig& config) {
   std::string scene = config.scene;
-  if (scene.empty()) {
-    scene = config.activity.empty() ? "" : activity_scene(config.activity);
-    if (scene.empty()) scene = "apartment";
-  }
+  if (scene.empty() && !config.activity.empty()) scene = activity_scene(config.activity);
   SceneOptions options;
   options.robot = config.robot;
   options.cloth = config.cloth;
   EnvAssets assets;
-  assets.scene = Scene::load(scene, options);
+  // A scene of BEHAVIOR-1K's inventories, or none named for a BEHAVIOR-1K
+  // activity: its analog, with the objects the activity needs.
+  const bool inventory = std::any_of(shipped_scene_inventories().begin(), shipped_scene_inventories().end(),
+                                     [&](const SceneInventory& s) { return s.name == scene; });
+  std::optional<Problem> problem;
+  if (!config.activity.empty() && (inventory || scene.empty()))
+    problem = load_bddl(resolve_activity_path(config.activity));
+  if (problem && (inventory || problem->domain == Domain::omnigibson)) {
+    const SceneInventory& chosen = activity_inventory(*problem, scene);
+    assets.scene = Scene::build(activity_scene_analog(*problem, chosen, *CategoryModels::shipped()).file, options);
+  } else if (inventory) {
+    assets.scene =
+        Scene::build(generate_scene_analog(find_scene_inventory(scene), *CategoryModels::shipped(), 0).file, options);
+  } else {
+    assets.scene = Scene::load(scene.empty() ? "apartment" : scene, options);
+  }
   if (!config.activity.empty()) {
     assets.activity = Activity::load(config.activity, *assets.scene);
   }

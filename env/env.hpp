@@ -34,7 +34,11 @@ struct EnvConfig {
   // A BDDL activity (tasks/activities/<name>.bddl or a path); empty: no
   // activity, reward 0, episodes end by the time limit.
   std::string activity;
-  // Empty: the activity's scene (tasks/activities/scenes.json), or the apartment.
+  // A scene file (assets/scenes/<name>.json or a path), or a scene of
+  // BEHAVIOR-1K's inventories (chore scene list), built as its analog with the
+  // objects the activity needs. Empty: the activity's scene
+  // (tasks/activities/scenes.json), else for a BEHAVIOR-1K activity the analog
+  // of a scene that has its rooms (analogs/activity_scenes.hpp), else the apartment.
   std::string scene;
   int width = 128, height = 128;
   // Any of "rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow",

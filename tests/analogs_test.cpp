@@ -12,9 +12,11 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "analogs/activity_scenes.hpp"
 #include "analogs/category_models.hpp"
 #include "analogs/scene_analogs.hpp"
 #include "base/error.hpp"
+#include "env/env.hpp"
 #include "test_util.hpp"
 #include "world/predicates.hpp"
 #include "world/renderer.hpp"
@@ -302,6 +304,58 @@ TEST(SceneAnalogs, AreSeededConnectedAndCollisionFree) {
     EXPECT_GT(p[2], -0.01) << o.name;
   }
   EXPECT_GT(free_objects, 5);
+}
+
+// A BEHAVIOR-1K activity no scene file has: it gets the smallest inventory
+// with a kitchen, a countertop there, and its apple and bowl as added free
+// objects, which its sampler puts on the countertop.
+TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
+  const fs::path file = test::scratch_dir("analog_activity") / "apple_on_counter" / "problem0.bddl";
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << R"((define (problem apple_on_counter-0)
+    (:domain omnigibson)
+    (:objects
+        countertop.n.01_1 - countertop.n.01
+        apple.n.01_1 - apple.n.01
+        bowl.n.01_1 - bowl.n.01
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (ontop apple.n.01_1 countertop.n.01_1)
+        (ontop bowl.n.01_1 countertop.n.01_1)
+        (inroom countertop.n.01_1 kitchen)
+        (inroom floor.n.01_1 kitchen)
+        (ontop agent.n.01_1 floor.n.01_1))
+    (:goal (and (inside ?apple.n.01_1 ?bowl.n.01_1))))
+)";
+  const Problem problem = load_bddl(file.string());
+  const SceneInventory& inventory = activity_inventory(problem);
+  int smallest = 1 << 30;
+  for (const SceneInventory& s : shipped_scene_inventories()) {
+    const bool kitchen = std::any_of(s.rooms.begin(), s.rooms.end(), [](const auto& r) { return r.type == "kitchen"; });
+    if (kitchen) smallest = std::min(smallest, s.object_count());
+  }
+  EXPECT_EQ(inventory.object_count(), smallest) << inventory.name;
+  EXPECT_THROW(activity_inventory(problem, "gates_bedroom"), Error);  // one bedroom, no kitchen
+
+  EnvConfig config;
+  config.activity = file.string();
+  config.observations = {"rgb"};
+  config.width = config.height = 64;
+  Env env(config);
+  const auto reset = env.reset(0);
+  EXPECT_EQ(env.world().scene().name(), inventory.name);
+  EXPECT_EQ(reset.info.total, 1);
+  // Sampled: both on the countertop, in the kitchen.
+  const World& world = env.world();
+  const Scene& scene = world.scene();
+  const SceneObject* apple = scene.find_object("apple_1");
+  ASSERT_NE(apple, nullptr);
+  const double* p = world.data()->xpos + 3 * apple->body;
+  const Room* room = scene.room_at(p[0], p[1]);
+  ASSERT_NE(room, nullptr);
+  EXPECT_EQ(room->type, "kitchen");
+  EXPECT_GT(p[2], 0.5) << "on the countertop, not the floor";
 }
 
 }  // namespace

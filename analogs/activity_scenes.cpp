@@ -1,0 +1,141 @@
+#include "analogs/activity_scenes.hpp"
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <set>
+
+#include "base/error.hpp"
+#include "base/json_file.hpp"
+#include "tasks/knowledge_base.hpp"
+
+namespace chore {
+namespace {
+
+// What an activity asks of a scene: the scene objects its inroom literals
+// name, by room, and the synsets of its other objects.
+struct Needs {
+  std::map<std::string, std::vector<std::string>> in_room;  // BDDL room -> synsets
+  std::vector<std::string> loose;
+  std::set<std::string> rooms;
+};
+
+Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
+  std::map<std::string, std::string> room_of;
+  std::set<std::string> future;
+  for (const Literal& l : problem.init) {
+    if (l.negated) continue;
+    if (l.predicate == "inroom" && l.args.size() == 2) room_of[l.args[0]] = l.args[1];
+    if (l.predicate == "future" && l.args.size() == 1) future.insert(l.args[0]);
+  }
+  Needs needs;
+  for (const auto& [instance, room] : room_of) needs.rooms.insert(room);
+  for (const ObjectDecl& d : problem.objects) {
+    if (d.type == "agent.n.01" || d.type == "floor.n.01" || future.contains(d.name)) continue;
+    if (!kb.contains(d.type) || kb.is_substance(d.type)) continue;
+    const auto room = room_of.find(d.name);
+    if (room != room_of.end()) {
+      needs.in_room[room->second].push_back(d.type);
+    } else {
+      needs.loose.push_back(d.type);
+    }
+  }
+  return needs;
+}
+
+bool matches(const RoomInventory& room, const std::string& bddl_room) {
+  return room.type == bddl_room || room.name == bddl_room;
+}
+
+// The BDDL rooms no room of `inventory` matches.
+std::vector<std::string> missing_rooms(const SceneInventory& inventory, const std::set<std::string>& rooms) {
+  std::vector<std::string> missing;
+  for (const std::string& r : rooms) {
+    if (std::none_of(inventory.rooms.begin(), inventory.rooms.end(), [&](const auto& i) { return matches(i, r); })) {
+      missing.push_back(r);
+    }
+  }
+  return missing;
+}
+
+// BEHAVIOR's preselected scenes per activity, read once.
+const std::map<std::string, std::vector<std::string>>& preselected_scenes() {
+  static std::once_flag once;
+  static std::map<std::string, std::vector<std::string>> scenes;
+  std::call_once(once, [] {
+    const std::string path = default_tasks_dir() + "/kb/behavior-1k/activity_to_preselected_scenes.json";
+    const nlohmann::json file = read_json_file(path);
+    if (!file.is_object()) throw Error(path + ": expected an object of activities");
+    for (const auto& [activity, list] : file.items()) {
+      if (!list.is_array()) JsonReader(file, path).at(activity.c_str()).fail("expected a list of scenes");
+      for (const nlohmann::json& scene : list) {
+        if (!scene.is_string()) JsonReader(file, path).at(activity.c_str()).fail("expected scene names");
+        scenes[activity].push_back(scene.get<std::string>());
+      }
+    }
+  });
+  return scenes;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
+}  // namespace
+
+const SceneInventory& activity_inventory(const Problem& problem, const std::string& scene) {
+  const Needs needs = needs_of(problem, CategoryModels::shipped()->knowledge_base());
+  if (!scene.empty()) {
+    const SceneInventory& inventory = find_scene_inventory(scene);
+    const std::vector<std::string> missing = missing_rooms(inventory, needs.rooms);
+    if (!missing.empty()) throw Error("scene " + scene + " has no room " + joined(missing) + " for " + problem.name);
+    return inventory;
+  }
+  // "assembling_gift_baskets-0": the activity is the name before the instance number.
+  const std::string activity = problem.name.substr(0, problem.name.rfind('-'));
+  if (const auto it = preselected_scenes().find(activity); it != preselected_scenes().end()) {
+    for (const std::string& name : it->second) {
+      for (const SceneInventory& inventory : shipped_scene_inventories()) {
+        if (inventory.name == name && missing_rooms(inventory, needs.rooms).empty()) return inventory;
+      }
+    }
+  }
+  const SceneInventory* best = nullptr;
+  for (const SceneInventory& inventory : shipped_scene_inventories()) {
+    if (!missing_rooms(inventory, needs.rooms).empty()) continue;
+    if (!best || inventory.object_count() < best->object_count()) best = &inventory;
+  }
+  if (!best) {
+    throw Error(problem.name + ": no BEHAVIOR-1K scene has rooms " +
+                joined(std::vector<std::string>(needs.rooms.begin(), needs.rooms.end())));
+  }
+  return *best;
+}
+
+SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& inventory,
+                                  const CategoryModels& models) {
+  const KnowledgeBase& kb = models.knowledge_base();
+  const Needs needs = needs_of(problem, kb);
+  AnalogExtras extras;
+  // Per BDDL room and synset: instances the room's inventory lacks; their
+  // tops stay clear for what the activity puts there.
+  for (const auto& [room, synsets] : needs.in_room) {
+    extras.clear_tops.insert(extras.clear_tops.end(), synsets.begin(), synsets.end());
+    std::map<std::string, int> wanted;
+    for (const std::string& s : synsets) ++wanted[s];
+    for (const auto& [synset, count] : wanted) {
+      int have = 0;
+      for (const RoomInventory& r : inventory.rooms) {
+        if (!matches(r, room)) continue;
+        for (const auto& [s, n] : r.objects) have += kb.contains(s) && kb.is_a(s, synset) ? n : 0;
+      }
+      for (int i = have; i < count; ++i) extras.objects.push_back({room, synset, false});
+    }
+  }
+  for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
+  return generate_scene_analog(inventory, models, 0, extras);
+}
+
+}  // namespace chore
