@@ -26,25 +26,34 @@ TEST(ActivityCoverage, FailuresOfOneCauseReadAlike) {
 TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   const auto dir = test::scratch_dir("coverage");
   std::filesystem::copy_file(default_tasks_dir() + "/activities/collect_trash.bddl", dir / "collect_trash.bddl");
+  // BEHAVIOR-100's dialect is set in the apartment, which has no garage; a
+  // BEHAVIOR-1K activity gets the analog of an inventory with its rooms, and
+  // none has a garage and a hammam.
   const std::string unknown_room =
-      "(define (problem r) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)"
-      " (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 garage)) (:goal (ontop ?agent.n.01_1 "
+      "(define (problem r) (:domain igibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)"
+      " (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 garage)) (:goal (onfloor ?agent.n.01_1 "
       "?floor.n.01_1)))";
   test::write_file(dir / "a" / "problem0.bddl", unknown_room);
   test::write_file(dir / "b" / "problem0.bddl", unknown_room);
+  test::write_file(dir / "c" / "problem0.bddl",
+                   "(define (problem garage_spa-0) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 "
+                   "floor.n.01_1 floor.n.01_2 - floor.n.01) (:init (ontop agent.n.01_1 floor.n.01_1) (inroom "
+                   "floor.n.01_1 garage) (inroom floor.n.01_2 hammam)) (:goal (ontop ?agent.n.01_1 ?floor.n.01_1)))");
   test::write_file(dir / "bad.bddl", "(define (problem x)");
   test::write_file(dir / "domain_x.bddl", "(define (domain x) (:predicates (p ?a)))");
   std::ostringstream log;
   const nlohmann::json c = activity_coverage({.dir = dir.string(), .threads = 2}, log);
-  EXPECT_EQ(c["total"], 4);  // the domain file is not an activity
-  EXPECT_EQ(c["parsed"], 3);
+  EXPECT_EQ(c["total"], 5);  // the domain file is not an activity
+  EXPECT_EQ(c["parsed"], 4);
   EXPECT_EQ(c["instantiated"], 1);
-  ASSERT_EQ(c["causes"].size(), 2u);
+  ASSERT_EQ(c["causes"].size(), 3u) << c["causes"].dump(1);
   EXPECT_EQ(c["causes"][0]["count"], 2);
   EXPECT_EQ(c["causes"][0]["cause"], "instantiate: no room 'garage' for _");
   EXPECT_EQ(c["causes"][0]["example"], "a");  // a folder's problem0.bddl is named by its folder
-  EXPECT_EQ(c["causes"][1]["cause"].get<std::string>().substr(0, 7), "parse: ");
-  EXPECT_NE(format_coverage(c).find("4 activities; parsed and grounded 3 (75.0%), instantiated 1 (25.0%)"),
+  EXPECT_EQ(c["causes"][1]["cause"], "instantiate: garage_spa-N: no BEHAVIOR-1K scene has rooms garage, hammam")
+      << c["causes"].dump(1);
+  EXPECT_EQ(c["causes"][2]["cause"].get<std::string>().substr(0, 7), "parse: ");
+  EXPECT_NE(format_coverage(c).find("5 activities; parsed and grounded 4 (80.0%), instantiated 1 (20.0%)"),
             std::string::npos)
       << format_coverage(c);
 }
