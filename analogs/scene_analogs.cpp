@@ -289,7 +289,7 @@ bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Ei
 // `on_floor` (doors): standing on the floor, clear of the furniture too.
 bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor, Rng& rng, Eigen::Vector3d& at,
                    int& turns) {
-  const Rect inner = room.rect.grown(-kWall / 2);
+  const Rect inner = room.rect.grown(-kWall / 2 - 0.01);  // not touching the wall: a door's leaf swings free
   for (int t = 0; t < kTries; ++t) {
     const int side = uniform_index(rng, 4);
     const bool horizontal = side % 2 == 0;
@@ -512,18 +512,18 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
       }
     }
   }
-  // The robot: in the first room, clear of everything on its floor.
-  const RoomLayout& start = rooms.front();
-  for (int t = 0; t < 20 * kTries; ++t) {
+  // The robot: in the first room with floor clear of everything around it.
+  for (const RoomLayout& start : rooms) {
     const Rect inner = start.rect.grown(-kWall / 2 - kRobotClear);
-    if (inner.width() <= 0 || inner.depth() <= 0) break;
-    const Eigen::Vector2d c(uniform(rng, inner.x0, inner.x1), uniform(rng, inner.y0, inner.y1));
-    const Rect r = footprint(c, {kRobotClear, kRobotClear});
-    if (std::any_of(start.taken.begin(), start.taken.end(), [&](const Rect& o) { return o.overlaps(r); })) continue;
-    file.robot_start = {c.x(), c.y(), uniform(rng, -M_PI, M_PI)};
-    return analog;
+    for (int t = 0; t < 20 * kTries && inner.width() > 0 && inner.depth() > 0; ++t) {
+      const Eigen::Vector2d c(uniform(rng, inner.x0, inner.x1), uniform(rng, inner.y0, inner.y1));
+      const Rect r = footprint(c, {kRobotClear, kRobotClear});
+      if (std::any_of(start.taken.begin(), start.taken.end(), [&](const Rect& o) { return o.overlaps(r); })) continue;
+      file.robot_start = {c.x(), c.y(), uniform(rng, -M_PI, M_PI)};
+      return analog;
+    }
   }
-  throw Error("scene " + inventory.name + ": no free floor for the robot in " + start.inventory->name);
+  throw Error("scene " + inventory.name + ": no room has free floor for the robot");
 }
 
 }  // namespace chore

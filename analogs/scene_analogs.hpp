@@ -19,7 +19,7 @@
 //   on the walls   windows, pictures, mirrors, switches: at their height
 //   small objects  (free) on the top of a table, counter, cabinet or shelf of
 //                  their room, else on its floor
-//   the robot      starts in the first room, 0.5 m clear of everything
+//   the robot      starts in the first room with floor 0.5 m clear of everything
 // What does not fit is left out and counted (SceneAnalog::left_out).
 #pragma once
 
