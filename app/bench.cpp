@@ -385,7 +385,7 @@ std::string format_table(const nlohmann::json& r) {
   std::snprintf(buf, sizeof buf, "%-24s", "Eval. conditions");
   text += buf;
   for (const std::string& s : scenes) {
-    std::snprintf(buf, sizeof buf, "%14s", s.c_str());
+    std::snprintf(buf, sizeof buf, " %13s", s.c_str());  // a space apart, however long the name
     text += buf;
   }
   text += "\n";
