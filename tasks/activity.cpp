@@ -174,12 +174,31 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
 
   // Sampling order: joint states, then placements, then the other states
   // (objects must be where they end up before dirt is laid on them).
+  // Placements go support first, as BEHAVIOR's sampler does: a plate onto
+  // the table before the food onto the plate, which would otherwise stay
+  // behind when the plate moves.
+  std::map<std::string, std::string> support;  // object -> what a placement puts it on, in or by
+  for (const Literal& l : a->problem_.init) {
+    if (!l.negated && kKinematic.count(l.predicate) && l.args.size() == 2) support.emplace(l.args[0], l.args[1]);
+  }
+  auto depth = [&](std::string object) {  // supports below it; a cycle stops at their count
+    size_t d = 0;
+    for (auto it = support.find(object); it != support.end() && d <= support.size(); it = support.find(object)) {
+      object = it->second;
+      ++d;
+    }
+    return d;
+  };
   auto rank = [](const Literal& l) { return l.predicate == "open" ? 0 : kKinematic.count(l.predicate) ? 1 : 2; };
+  auto key = [&](const Literal& l) {
+    const size_t below = rank(l) == 1 && l.args.size() == 2 ? depth(l.args[1]) : 0;
+    return std::pair(rank(l), below);
+  };
   for (const Literal& l : a->problem_.init) {
     if (l.predicate != "inroom") a->init_order_.push_back(l);
   }
   std::stable_sort(a->init_order_.begin(), a->init_order_.end(),
-                   [&](const Literal& x, const Literal& y) { return rank(x) < rank(y); });
+                   [&](const Literal& x, const Literal& y) { return key(x) < key(y); });
   return a;
 }
 

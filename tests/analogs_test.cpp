@@ -307,8 +307,10 @@ TEST(SceneAnalogs, AreSeededConnectedAndCollisionFree) {
 }
 
 // A BEHAVIOR-1K activity no scene file has: it gets the smallest inventory
-// with a kitchen, a countertop there, and its apple and bowl as added free
-// objects, which its sampler puts on the countertop.
+// with a kitchen, a countertop there, and its apple, plate and bowl as added
+// free objects, which its sampler puts on the countertop, the plate first
+// though the file names the apple's placement first (support first, as
+// BEHAVIOR samples: else the apple stays behind when the plate moves).
 TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
   const fs::path file = test::scratch_dir("analog_activity") / "apple_on_counter" / "problem0.bddl";
   fs::create_directories(file.parent_path());
@@ -317,11 +319,13 @@ TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
     (:objects
         countertop.n.01_1 - countertop.n.01
         apple.n.01_1 - apple.n.01
+        plate.n.04_1 - plate.n.04
         bowl.n.01_1 - bowl.n.01
         floor.n.01_1 - floor.n.01
         agent.n.01_1 - agent.n.01)
     (:init
-        (ontop apple.n.01_1 countertop.n.01_1)
+        (ontop apple.n.01_1 plate.n.04_1)
+        (ontop plate.n.04_1 countertop.n.01_1)
         (ontop bowl.n.01_1 countertop.n.01_1)
         (inroom countertop.n.01_1 kitchen)
         (inroom floor.n.01_1 kitchen)
@@ -356,6 +360,11 @@ TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
   ASSERT_NE(room, nullptr);
   EXPECT_EQ(room->type, "kitchen");
   EXPECT_GT(p[2], 0.5) << "on the countertop, not the floor";
+  const SceneObject* plate = scene.find_object("plate_1");
+  ASSERT_NE(plate, nullptr);
+  const double* q = world.data()->xpos + 3 * plate->body;
+  EXPECT_GT(p[2], q[2]) << "on the plate";
+  EXPECT_LT(std::hypot(p[0] - q[0], p[1] - q[1]), 0.2) << "on the plate";
 }
 
 }  // namespace
