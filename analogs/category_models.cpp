@@ -9,6 +9,7 @@
 
 #include "base/csv_file.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
 #include "base/json_file.hpp"
 #include "world/scene.hpp"
 
@@ -48,8 +49,7 @@ std::map<std::string, double> read_masses(const std::string& path) {
 // A hue per synset: FNV-1a of its name, spread over the circle, at one of
 // three saturation/value pairs (more categories than hues tell apart).
 Rgb hashed_colour(const std::string& synset) {
-  uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : synset) hash = (hash ^ c) * 1099511628211ull;
+  const uint64_t hash = fnv1a(synset);
   const double hue = static_cast<double>(hash % 3600) / 10.0;
   static const double shades[3][2] = {{0.55, 0.80}, {0.70, 0.60}, {0.35, 0.90}};
   const double s = shades[(hash / 3600) % 3][0], v = shades[(hash / 3600) % 3][1];

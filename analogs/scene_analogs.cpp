@@ -8,6 +8,7 @@
 
 #include "base/csv_file.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
 #include "base/json_file.hpp"
 #include "base/random.hpp"
 #include "tasks/knowledge_base.hpp"
@@ -61,8 +62,7 @@ Rect footprint(const Eigen::Vector2d& centre, const Eigen::Vector2d& half) {
 }
 
 Rgb floor_colour(const std::string& type) {
-  uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : type) hash = (hash ^ c) * 1099511628211ull;
+  const uint64_t hash = fnv1a(type);
   const double t = static_cast<double>(hash % 1000) / 1000.0;
   return {0.45 + 0.3 * t, 0.4 + 0.2 * (1 - t), 0.35 + 0.15 * t};
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "base/hash.hpp"
 #include "base/json_file.hpp"
 
 namespace chore {
@@ -133,9 +134,7 @@ const TensorRecord& CheckpointFile::tensor(const std::string& name) const {
 }
 
 uint64_t checkpoint_checksum(std::string_view bytes) {
-  uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
+  return fnv1a(bytes);
 }
 
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint) {
