@@ -1,6 +1,7 @@
 #include "analogs/activity_scenes.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <set>
@@ -83,6 +84,65 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
+// Containers and surfaces large enough for what :init puts inside or on
+// them, as BEHAVIOR's scenes have them: room for 2.5x the footprints of the
+// contents (each turned any way: its diagonal squared), no side shorter than
+// the largest diagonal, and, inside, the tallest under the lid; walls, doors
+// and the sampler's margins beside. A container grows along both sides, a
+// surface along its width. Nested ones (a tupperware in the fridge) are sized
+// inside out.
+std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, const CategoryModels& models) {
+  constexpr double kWalls = 0.1, kSpace = 2.5;
+  const KnowledgeBase& kb = models.knowledge_base();
+  std::map<std::string, std::string> synset_of;
+  for (const ObjectDecl& d : problem.objects) synset_of[d.name] = d.type;
+  const auto object_synset = [&](const std::string& instance) -> std::string {
+    const auto it = synset_of.find(instance);
+    return it != synset_of.end() && kb.contains(it->second) && !kb.is_substance(it->second) &&
+                   it->second != "agent.n.01" && it->second != "floor.n.01"
+               ? it->second
+               : "";
+  };
+  std::map<std::string, Eigen::Vector3d> least;
+  const auto size = [&](const std::string& synset) {
+    const auto it = least.find(synset);
+    return it == least.end() ? models.size(synset) : models.size(synset).cwiseMax(it->second);
+  };
+  struct Load {
+    bool inside = false;
+    double area = 0, diagonal = 0, height = 0;
+  };
+  for (int depth = 0; depth < 3; ++depth) {  // BEHAVIOR nests two deep at most
+    std::map<std::string, Load> loads;       // support instance -> what goes on or in it
+    for (const Literal& l : problem.init) {
+      if (l.negated || (l.predicate != "inside" && l.predicate != "ontop") || l.args.size() != 2) continue;
+      const std::string what = object_synset(l.args[0]);
+      if (what.empty() || object_synset(l.args[1]).empty()) continue;
+      const Eigen::Vector3d s = size(what);
+      Load& load = loads[l.args[1]];
+      const double diagonal = s.head<2>().norm() + 0.02;
+      load.inside |= l.predicate == "inside";
+      load.area += diagonal * diagonal;
+      load.diagonal = std::max(load.diagonal, diagonal);
+      if (l.predicate == "inside") load.height = std::max(load.height, s.z());
+    }
+    for (const auto& [instance, load] : loads) {
+      const std::string synset = object_synset(instance);
+      const Eigen::Vector3d own = size(synset);
+      Eigen::Vector3d need;
+      if (load.inside) {
+        const double side = std::max(load.diagonal, std::sqrt(kSpace * load.area)) + kWalls;
+        need = {side, side, load.height + kWalls};
+      } else {
+        need = {std::max(load.diagonal, kSpace * load.area / std::max(own.y(), load.diagonal)), load.diagonal, 0};
+      }
+      const auto [it, fresh] = least.try_emplace(synset, need);
+      if (!fresh) it->second = it->second.cwiseMax(need);
+    }
+  }
+  return least;
+}
+
 }  // namespace
 
 const SceneInventory& activity_inventory(const Problem& problem, const std::string& scene) {
@@ -135,6 +195,7 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
     }
   }
   for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
+  extras.least_sizes = support_sizes(problem, models);
   return generate_scene_analog(inventory, models, 0, extras);
 }
 

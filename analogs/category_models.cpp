@@ -329,8 +329,11 @@ Archetype CategoryModels::archetype(const std::string& synset) const {
 }
 
 ObjectModel CategoryModels::model(const std::string& synset) const {
+  return model(synset, size(synset));
+}
+
+ObjectModel CategoryModels::model(const std::string& synset, const Eigen::Vector3d& s) const {
   const Archetype a = archetype(synset);
-  const Eigen::Vector3d s = size(synset);
   const double m = mass(synset);
   const Rgb rgb = colour(synset);
   ObjectModel model;

@@ -67,6 +67,8 @@ class CategoryModels {
   // The entry of the size table that sized it (itself or its nearest ancestor).
   std::string size_entry(const std::string& synset) const;
   ObjectModel model(const std::string& synset) const;
+  // Its model at another size (a lawn sized to its garden).
+  ObjectModel model(const std::string& synset, const Eigen::Vector3d& size) const;
 
   const KnowledgeBase& knowledge_base() const { return *kb_; }
 

@@ -33,16 +33,38 @@ struct Rect {
   double depth() const { return y1 - y0; }
 };
 
-// What an inventory object is to the layout.
-enum class Kind { structure, door, on_wall, furniture, small };
+// The category models at their sizes in this scene: a synset's own, grown
+// to the least size the caller asks of it.
+struct Models {
+  const CategoryModels& models;
+  const std::map<std::string, Eigen::Vector3d>& least_sizes;
 
-Kind kind_of(const CategoryModels& models, const std::string& synset) {
+  Eigen::Vector3d size(const std::string& synset) const {
+    const auto least = least_sizes.find(synset);
+    const Eigen::Vector3d own = models.size(synset);
+    return least == least_sizes.end() ? own : own.cwiseMax(least->second);
+  }
+  ObjectModel model(const std::string& synset) const { return models.model(synset, size(synset)); }
+  Archetype archetype(const std::string& synset) const { return models.archetype(synset); }
+  const KnowledgeBase& knowledge_base() const { return models.knowledge_base(); }
+};
+
+// What an inventory object is to the layout.
+// Ground (lawns, driveways) is furniture a hand's breadth high: an object of
+// the scene BDDL places things on, a slab over part of its room's floor.
+enum class Kind { structure, ground, door, on_wall, furniture, small };
+bool stands_on_floor(Kind kind) {
+  return kind == Kind::furniture || kind == Kind::ground;
+}
+
+Kind kind_of(const Models& models, const std::string& synset) {
   const KnowledgeBase& kb = models.knowledge_base();
   const auto is = [&](const char* ancestor) { return kb.contains(ancestor) && kb.is_a(synset, ancestor); };
-  // Floors, walls and ceilings are the scene's own; lawns and driveways are floors.
-  for (const char* s : {"floor.n.01", "ceiling.n.01", "wall.n.01", "lawn.n.01", "driveway.n.01"}) {
+  // Floors, walls and ceilings are the scene's own.
+  for (const char* s : {"floor.n.01", "ceiling.n.01", "wall.n.01"}) {
     if (is(s)) return Kind::structure;
   }
+  if (is("lawn.n.01") || is("driveway.n.01")) return Kind::ground;
   if (is("door.n.01")) return Kind::door;
   for (const char* s : {"window.n.01", "picture.n.01", "mirror.n.01", "switch.n.01", "wall_socket.n.01",
                         "wall_clock.n.01", "towel_rack.n.01", "poster.n.01"}) {
@@ -105,12 +127,12 @@ size_t room_of(const SceneInventory& inventory, const ExtraObject& e) {
   throw Error("scene " + inventory.name + ": no room '" + e.room + "' for " + e.synset);
 }
 
-bool is_furniture(const CategoryModels& models, const ExtraObject& e) {
-  return !e.loose && kind_of(models, e.synset) == Kind::furniture;
+bool is_furniture(const Models& models, const ExtraObject& e) {
+  return !e.loose && stands_on_floor(kind_of(models, e.synset));
 }
 
 std::vector<RoomLayout> lay_out_rooms(const SceneInventory& inventory, const std::vector<ExtraObject>& extra,
-                                      const CategoryModels& models, Rng& rng) {
+                                      const Models& models, Rng& rng) {
   std::vector<RoomLayout> rooms;
   std::vector<Eigen::Vector2d> sizes;
   double total = 0;
@@ -122,7 +144,7 @@ std::vector<RoomLayout> lay_out_rooms(const SceneInventory& inventory, const std
       footprint_area += count * (s.x() + kGap) * (s.y() + kGap);
     };
     for (const auto& [synset, count] : room.objects) {
-      if (kind_of(models, synset) == Kind::furniture) add_footprint(synset, count);
+      if (stands_on_floor(kind_of(models, synset))) add_footprint(synset, count);
     }
     for (const ExtraObject& e : extra) {
       if (is_furniture(models, e) && room_of(inventory, e) == r) add_footprint(e.synset, 1);
@@ -229,7 +251,7 @@ std::vector<std::array<double, 4>> walls(const std::vector<RoomLayout>& rooms, c
 
 class Builder {
  public:
-  Builder(const CategoryModels& models, SceneAnalog& out) : models_(models), out_(out) {}
+  Builder(const Models& models, SceneAnalog& out) : models_(models), out_(out) {}
 
   // Adds an instance of `synset`: model once per synset, a BDDL-style name.
   void add(const std::string& synset, const Eigen::Vector3d& pos, int quarter_turns, bool fixed) {
@@ -247,7 +269,7 @@ class Builder {
   }
 
  private:
-  const CategoryModels& models_;
+  const Models& models_;
   SceneAnalog& out_;
   std::map<std::string, int> count_;
 };
@@ -341,7 +363,7 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
 
 // A piece of furniture placed (fixed) with its top as a surface for small
 // objects when it has a flat one at a height they are put at.
-bool furnish(RoomLayout& room, const CategoryModels& models, const std::string& synset,
+bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
              const std::vector<std::string>& clear_tops, Rng& rng, Builder& builder) {
   const Eigen::Vector3d size = models.size(synset);
   Eigen::Vector2d at;
@@ -428,8 +450,9 @@ const SceneInventory& find_scene_inventory(const std::string& name) {
   throw Error("no scene '" + name + "' among BEHAVIOR-1K's inventories (" + known + ")");
 }
 
-SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& models, uint64_t seed,
+SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& category_models, uint64_t seed,
                                   const AnalogExtras& extras) {
+  const Models models{category_models, extras.least_sizes};
   const std::vector<ExtraObject>& extra = extras.objects;
   if (inventory.rooms.empty()) throw Error("scene " + inventory.name + ": no rooms");
   Rng rng(seed);
@@ -455,7 +478,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
     std::vector<std::pair<std::string, int>> furniture;
     for (const auto& [synset, count] : room.inventory->objects) {
       const Kind kind = kind_of(models, synset);
-      if (kind == Kind::furniture) furniture.push_back({synset, count});
+      if (stands_on_floor(kind)) furniture.push_back({synset, count});
       for (int n = 0; kind == Kind::door && n < count; ++n) {
         Eigen::Vector3d at;
         int turns = 0;
@@ -486,9 +509,14 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
         analog.left_out += !furnish(room, models, e.synset, extras.clear_tops, rng, builder);
         continue;
       }
+      // An object of no room given goes in the first room with space for it.
       Eigen::Vector3d at;
       int turns = 0;
-      if (!place_small(room, models.size(e.synset), rng, at, turns)) {
+      bool placed = place_small(room, models.size(e.synset), rng, at, turns);
+      for (size_t r = 0; !placed && e.room.empty() && r < rooms.size(); ++r) {
+        placed = place_small(rooms[r], models.size(e.synset), rng, at, turns);
+      }
+      if (!placed) {
         ++analog.left_out;
         continue;
       }

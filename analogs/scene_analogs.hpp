@@ -23,7 +23,10 @@
 // What does not fit is left out and counted (SceneAnalog::left_out).
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,12 +69,16 @@ struct ExtraObject {
   bool loose = false;
 };
 
-// What a caller adds to an inventory: objects, and the synsets of furniture
+// What a caller adds to an inventory: objects, the synsets of furniture
 // whose tops stay clear of the inventory's small objects (an activity samples
-// its own objects onto them).
+// its own objects onto them), and least sizes.
 struct AnalogExtras {
   std::vector<ExtraObject> objects;
   std::vector<std::string> clear_tops;
+  // Least outer sizes (x, y, z) of synsets' models: containers grown to hold
+  // what the activity puts inside them. A synset keeps its own size where
+  // that is larger.
+  std::map<std::string, Eigen::Vector3d> least_sizes;
 };
 
 // chore::Error for an extra object's room the inventory lacks.

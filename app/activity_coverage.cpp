@@ -38,10 +38,13 @@ namespace {
 
 struct Result {
   std::string name, file, stage = "instantiated", error;
-  double seconds = 0;
+  double seconds = 0;        // parse, ground, instantiate
+  std::string out_of_reach;  // of an instantiated one: what lies out of the robot's reach ("": none)
 };
 
-// Parse and ground (as `activity check`), then reset an Env at the seed.
+// Parse and ground (as `activity check`), then reset an Env at the seed;
+// then whether the primitives' targets are within the robot's reach (not
+// timed: EnvConfig::reachable_instances resamples until they are).
 Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t seed) {
   Result r;
   r.file = file;
@@ -56,13 +59,16 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t s
     EnvConfig config;
     config.activity = file;
     config.observations = {"proprio"};  // no rendering: instantiation alone
+    config.reachable_instances = false;
     Env env(config);
     env.reset(seed);
     r.stage = "instantiated";
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.out_of_reach = env.out_of_reach();
   } catch (const Error& e) {
     r.error = e.what();
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
 
@@ -105,13 +111,23 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
 
   nlohmann::json activities = nlohmann::json::array();
   std::map<std::string, std::pair<int, std::string>> causes;  // "stage: cause" -> count, example
-  int parsed = 0, instantiated = 0;
+  std::map<std::string, std::pair<int, std::string>> reach_causes;
+  int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0;
   std::vector<double> seconds;
   for (const Result& r : results) {
     parsed += r.stage != "parse";
     instantiated += r.stage == "instantiated";
-    if (r.stage == "instantiated") seconds.push_back(r.seconds);
+    if (r.stage == "instantiated") {
+      seconds.push_back(r.seconds);
+      within_20s += r.seconds <= 20;
+      reachable += r.out_of_reach.empty();
+    }
     nlohmann::json a = {{"name", r.name}, {"file", r.file}, {"stage", r.stage}, {"seconds", r.seconds}};
+    if (r.stage == "instantiated") a["out_of_reach"] = r.out_of_reach;
+    if (!r.out_of_reach.empty()) {
+      auto& [count, example] = reach_causes[failure_cause(r.out_of_reach)];
+      if (count++ == 0) example = r.name;
+    }
     if (!r.error.empty()) {
       const std::string cause = r.stage + ": " + failure_cause(r.error);
       a["error"] = r.error;
@@ -122,20 +138,26 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
     activities.push_back(std::move(a));
   }
   std::sort(seconds.begin(), seconds.end());
-  nlohmann::json grouped = nlohmann::json::array();
-  for (const auto& [cause, entry] : causes)
-    grouped.push_back({{"cause", cause}, {"count", entry.first}, {"example", entry.second}});
-  std::stable_sort(grouped.begin(), grouped.end(),
-                   [](const nlohmann::json& a, const nlohmann::json& b) { return a["count"] > b["count"]; });
+  const auto grouped = [](const std::map<std::string, std::pair<int, std::string>>& causes) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& [cause, entry] : causes)
+      out.push_back({{"cause", cause}, {"count", entry.first}, {"example", entry.second}});
+    std::stable_sort(out.begin(), out.end(),
+                     [](const nlohmann::json& a, const nlohmann::json& b) { return a["count"] > b["count"]; });
+    return out;
+  };
   return {{"dir", options.dir},
           {"seed", options.seed},
           {"activities", activities},
           {"total", files.size()},
           {"parsed", parsed},
           {"instantiated", instantiated},
+          {"instantiated_within_20s", within_20s},
+          {"reachable", reachable},
           {"median_seconds", seconds.empty() ? 0.0 : seconds[seconds.size() / 2]},
           {"max_seconds", seconds.empty() ? 0.0 : seconds.back()},
-          {"causes", grouped}};
+          {"causes", grouped(causes)},
+          {"out_of_reach_causes", grouped(reach_causes)}};
 }
 
 std::string format_coverage(const nlohmann::json& c) {
@@ -146,12 +168,17 @@ std::string format_coverage(const nlohmann::json& c) {
       << " activities; parsed and grounded " << c["parsed"] << " (" << 100 * c["parsed"].get<double>() / total
       << "%), instantiated " << c["instantiated"] << " (" << 100 * c["instantiated"].get<double>() / total
       << "%) at seed " << c["seed"] << ", median " << c["median_seconds"].get<double>() << " s, slowest "
-      << c["max_seconds"].get<double>() << " s\n";
-  if (!c["causes"].empty()) out << "failures by cause:\n";
-  for (const auto& cause : c["causes"]) {
-    out << "  " << cause["count"] << "  " << cause["cause"].get<std::string>() << "  (e.g. "
-        << cause["example"].get<std::string>() << ")\n";
-  }
+      << c["max_seconds"].get<double>() << " s; " << c["instantiated_within_20s"] << " within 20 s; " << c["reachable"]
+      << " with everything the primitives act on within the robot's reach\n";
+  const auto list = [&](const char* title, const nlohmann::json& causes) {
+    if (!causes.empty()) out << title << ":\n";
+    for (const auto& cause : causes) {
+      out << "  " << cause["count"] << "  " << cause["cause"].get<std::string>() << "  (e.g. "
+          << cause["example"].get<std::string>() << ")\n";
+    }
+  };
+  list("failures by cause", c["causes"]);
+  list("instantiated, out of reach", c["out_of_reach_causes"]);
   return out.str();
 }
 

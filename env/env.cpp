@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "analogs/activity_scenes.hpp"
 #include "base/error.hpp"
@@ -77,6 +78,10 @@ bool Env::closed() const {
 }
 const Segmentation& Env::segmentation() const {
   return impl_->sensors_->segmentation(*impl_->world_);
+}
+std::string Env::out_of_reach() {
+  impl_->check_open();
+  return impl_->first_out_of_reach(impl_->episode_seed_);
 }
 const PrimitiveResult& Env::last_primitive() const {
   return impl_->last_primitive_;
@@ -157,12 +162,22 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
   } else {
     throw Error("env config: unknown action space '" + config_.action_space + "' (known: low_level, primitives)");
   }
-  if (activity_ && config_.robot && config_.reachable_instances) {
-    const auto placed_inside = [&](const std::string& instance) {
-      const std::vector<Literal>& init = activity_->problem().init;
-      return std::any_of(init.begin(), init.end(), [&](const Literal& l) {
-        return l.predicate == "inside" && !l.negated && l.args.at(0) == instance;
-      });
+  if (activity_ && config_.robot) {
+    // What :init puts inside something, or on what is inside (bacon on a tray
+    // in the fridge), is reached once its container is opened.
+    std::map<std::string, std::pair<std::string, bool>> support;  // instance -> (support, inside)
+    for (const Literal& l : activity_->problem().init) {
+      if (!l.negated && l.args.size() == 2 && (l.predicate == "inside" || l.predicate == "ontop"))
+        support.emplace(l.args[0], std::pair(l.args[1], l.predicate == "inside"));
+    }
+    const auto placed_inside = [&](std::string instance) {
+      for (size_t depth = 0; depth <= support.size(); ++depth) {  // a cycle stops at the count
+        const auto it = support.find(instance);
+        if (it == support.end()) return false;
+        if (it->second.second) return true;
+        instance = it->second.first;
+      }
+      return false;
     };
     for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_)) {
       if (primitive_touches(a.type) && !(a.type == PrimitiveType::pick && placed_inside(a.instance)))
@@ -230,7 +245,8 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   for (int attempt = 0; attempt < kInstanceAttempts; ++attempt) {
     if (attempt > 0) world_->reset(start);
     activity_->instantiate(*world_, rng_);
-    out_of_reach = first_out_of_reach();
+    if (!config_.reachable_instances) break;
+    out_of_reach = first_out_of_reach(rng_());
     if (out_of_reach.empty()) break;
   }
   if (!out_of_reach.empty()) {
@@ -243,11 +259,11 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   return make_info(&goal.score);
 }
 
-std::string Env::Impl::first_out_of_reach() {
+std::string Env::Impl::first_out_of_reach(uint64_t seed) {
   std::vector<PrimitiveType> types;
   std::vector<int> objects;
   for (const PrimitiveAction& a : reach_checks_) types.push_back(a.type), objects.push_back(a.object);
-  const ReachProblem problem = chore::first_out_of_reach(*world_, types, objects, rng_());
+  const ReachProblem problem = chore::first_out_of_reach(*world_, types, objects, seed);
   return problem.index < 0 ? "" : to_string(reach_checks_[problem.index]) + ": " + problem.reason;
 }
 

@@ -127,6 +127,11 @@ class Env : public EnvState {
 
   // The semantic classes and instances that "seg_semantic" and "seg_instance" number.
   const Segmentation& segmentation() const;
+  // The first thing of the current instance the robot must act on that lies
+  // out of its reach (as reachable_instances checks it, whatever that
+  // setting), or "" when all is within reach. Plans without acting: the
+  // world and the episode's random stream are as they were.
+  std::string out_of_reach();
   // The last primitive's full result (reason, timings), primitive action space only.
   const PrimitiveResult& last_primitive() const;
   // The activity (nullptr without one).

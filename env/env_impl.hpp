@@ -49,7 +49,7 @@ struct Env::Impl {
   // Applies one action to the world; returns physics steps run.
   int64_t act_low_level(std::span<const float> action, World::StepReport& report);
   int64_t act_primitive(std::span<const float> action, World::StepReport& report);
-  std::string first_out_of_reach();  // a reach check failing in the sampled instance, or ""
+  std::string first_out_of_reach(uint64_t seed);  // a reach check failing in the sampled instance, or ""
   SensorFrame sensor_frame(ArrayDict& obs, int index) const;
   ObservationSource observation_source() const;
 
@@ -65,7 +65,7 @@ struct Env::Impl {
   ArrayDict obs_;
   Rng rng_;
   std::vector<PrimitiveAction> primitive_actions_;
-  std::vector<PrimitiveAction> reach_checks_;  // what reset checks is within reach
+  std::vector<PrimitiveAction> reach_checks_;  // what must be within reach (reset checks it when asked)
   PrimitiveResult last_primitive_;
   std::array<int, kPrimitiveStatuses> primitive_counts_{};
   int last_primitive_status_ = -1, last_invalid_action_ = -1, invalid_repeats_ = 0;

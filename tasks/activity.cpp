@@ -22,20 +22,21 @@ namespace {
 
 // The binary predicates between two objects, by BDDL name.
 const std::map<std::string, bool (*)(const World&, int, int), std::less<>> kObjectRelations = {
-    {"ontop", ontop},   {"inside", inside},     {"under", under},
-    {"nextto", nextto}, {"touching", touching}, {"insameroom", insameroom}};
+    {"ontop", ontop},       {"inside", inside},         {"under", under},       {"nextto", nextto},
+    {"touching", touching}, {"insameroom", insameroom}, {"overlaid", overlaid}, {"draped", draped}};
 
 constexpr int kInstantiationAttempts = 10;
 
 // Predicates chore can check, by their BDDL names (both dialects).
-const std::set<std::string> kKinematic = {"ontop", "inside", "under", "onfloor", "nextto", "touching"};
+const std::set<std::string> kKinematic = {"ontop",  "inside",   "under",    "onfloor",
+                                          "nextto", "touching", "overlaid", "draped"};
 const std::set<std::string> kUnaryStates = {"cooked", "burnt",      "frozen", "hot",   "on_fire",
                                             "soaked", "toggled_on", "sliced", "broken"};
-const std::set<std::string> kOther = {"inroom",  "open",     "saturated", "covered",  "filled",  "dusty",
-                                      "stained", "grasped",  "inhand",    "infov",    "inreach", "insameroom",
-                                      "folded",  "unfolded", "attached",  "insource", "future",  "real"};
+const std::set<std::string> kOther = {"inroom",   "open",     "saturated", "covered", "filled",  "contains",   "dusty",
+                                      "stained",  "grasped",  "inhand",    "infov",   "inreach", "insameroom", "folded",
+                                      "unfolded", "attached", "insource",  "future",  "real"};
 // Second arguments that name a substance rather than an object.
-const std::set<std::string> kSubstanceArgument = {"covered", "filled", "saturated", "insource"};
+const std::set<std::string> kSubstanceArgument = {"covered", "filled", "contains", "saturated", "insource"};
 
 // "stain.n.01" -> "stain": the name dirt and liquids are kept under.
 std::string lemma(const std::string& synset) {
@@ -219,9 +220,15 @@ int Activity::object(const std::string& instance) const {
 void Activity::configure(World& world) const {
   const Scene& scene = world.scene();
   std::set<int> liquid_holders;
+  // What the activity fills, or asks to contain something, holds a liquid level.
+  const auto holder = [&](const auto& l) {
+    if ((l.predicate == "filled" || l.predicate == "contains") && binding(l.args.at(0)).kind == Binding::Kind::object)
+      liquid_holders.insert(object(l.args[0]));
+  };
   for (const Literal& l : problem_.init) {
-    if (l.predicate == "filled" && !l.negated) liquid_holders.insert(object(l.args[0]));
+    if (!l.negated) holder(l);
   }
+  for (const GroundLiteral& l : goal_.literals) holder(l);
   for (const auto& [instance, b] : bindings_) {
     if (b.kind != Binding::Kind::object) continue;
     const std::string& s = scene.objects()[b.index].synset;
@@ -277,6 +284,9 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     const Room* now = w.scene().room_at(base.x, base.y);
     return now == &w.scene().rooms()[room] || sample_robot_in_room(w, room, rng);
   }
+  // A floor or substance first (covered floor dust): what chore cannot sample
+  // must hold, and holds() names why it cannot.
+  if (first.kind != Binding::Kind::object) return holds(w, l);
   const bool value = !l.negated;
   if (kKinematic.count(l.predicate)) {
     // Negated placements are not sampled (as BEHAVIOR's sampler); fixed
@@ -286,7 +296,9 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     }
     const Binding& second = binding(l.args.at(1));
     if (second.kind == Binding::Kind::floor) return sample_onfloor(w, first.index, second.index, rng);
-    if (l.predicate == "ontop") return sample_ontop(w, first.index, second.index, rng);
+    // A cloth laid over b settles into overlaid or draped (the checks say which).
+    if (l.predicate == "ontop" || l.predicate == "overlaid" || l.predicate == "draped")
+      return sample_ontop(w, first.index, second.index, rng);
     if (l.predicate == "inside") return sample_inside(w, first.index, second.index, rng);
     return sample_under(w, first.index, second.index, rng);
   }
@@ -296,7 +308,8 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     return sample_covered(w, first.index, l.predicate == "dusty" ? "dust" : "stain", value, rng);
   } else if (l.predicate == "covered") {
     return sample_covered(w, first.index, lemma(type_of(l.args.at(1))), value, rng);
-  } else if (kUnaryStates.count(l.predicate) || l.predicate == "saturated" || l.predicate == "filled") {
+  } else if (kUnaryStates.count(l.predicate) || l.predicate == "saturated" || l.predicate == "filled" ||
+             l.predicate == "contains") {
     sample_state(w, l.predicate, first.index, value, liquid_of(l));
   } else {
     return holds(w, l);
@@ -365,10 +378,13 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     value = attached(w, object_arg(0), arg(1).kind == Binding::Kind::agent ? -1 : object_arg(1));
   } else if (p == "covered") {
     value = covered(w, object_arg(0), lemma(type_of(l.args.at(1))));
-  } else if (p == "soaked" || p == "saturated" || p == "filled") {
+  } else if (p == "soaked" || p == "saturated" || p == "filled" || p == "contains") {
     const int a = object_arg(0);
     const std::string liquid = liquid_of(l);
-    value = p == "soaked" ? soaked(w, a, liquid) : p == "saturated" ? saturated(w, a, liquid) : filled(w, a, liquid);
+    value = p == "soaked"      ? soaked(w, a, liquid)
+            : p == "saturated" ? saturated(w, a, liquid)
+            : p == "filled"    ? filled(w, a, liquid)
+                               : contains(w, a, liquid);
   } else if (p == "dusty" || p == "stained") {
     value = dirty(w, object_arg(0), p == "dusty" ? "dust" : "stain");
   } else if (p == "insource") {

@@ -362,11 +362,17 @@ bool KnowledgeBase::is_openable(const std::string& synset) const {
 
 bool KnowledgeBase::is_source_of(const std::string& synset, const std::string& substance) const {
   if (!contains(synset)) return false;
-  if (const auto conditions = text_parameter(synset, "particleSource", "conditions")) {
-    const nlohmann::json systems = nlohmann::json::parse(*conditions, nullptr, false);
-    return systems.is_object() && systems.contains(substance);
+  // A source gives its substance out (a sink's water), an applier holds it to
+  // spray (an atomizer's fertilizer): both have it "in source".
+  bool annotated = false;
+  for (const char* property : {"particleSource", "particleApplier"}) {
+    if (const auto conditions = text_parameter(synset, property, "conditions")) {
+      const nlohmann::json systems = nlohmann::json::parse(*conditions, nullptr, false);
+      if (systems.is_object() && systems.contains(substance)) return true;
+      annotated = true;
+    }
   }
-  return substance.starts_with("water.") && has_property(synset, "waterSource");
+  return !annotated && substance.starts_with("water.") && has_property(synset, "waterSource");
 }
 
 }  // namespace chore

@@ -90,7 +90,7 @@ class KnowledgeBase {
   bool is_slicer(const std::string& synset) const;
   bool is_openable(const std::string& synset) const;
   // A particle source of `substance` (a synset): BEHAVIOR-1K's particleSource
-  // with the substance among its conditions' systems, or BEHAVIOR-100's
+  // or particleApplier with the substance among its conditions' systems, or BEHAVIOR-100's
   // waterSource for water. False for synsets it does not know.
   bool is_source_of(const std::string& synset, const std::string& substance) const;
 

@@ -69,6 +69,9 @@ class ObjectStates {
   static constexpr double kDirtyFraction =
       0.5;  // stained/dusty (iGibson) while more than this share of the sampled remain
   static constexpr double kSoakedLevel = 0.5;
+  // filled from a fifth of the inner height up (OmniGibson's VOLUME_FILL_PROPORTION);
+  // contains from any amount.
+  static constexpr double kFilledLevel = 0.2;
   static constexpr double kToggleDistance = 0.1;  // m from the toggle point
   static constexpr int kToggleSteps = 5;
   static constexpr double kCleaningRadius = 0.06;  // m around a tool's contact

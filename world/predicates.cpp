@@ -14,6 +14,8 @@ constexpr double kVerticalRange = 5.0;    // m, BEHAVIOR's vertical ray length
 constexpr double kHorizontalRange = 1.0;  // m, for inside's horizontal rays
 constexpr int kHorizontalAngles = 5;      // directions over [0, pi/2)
 constexpr double kOpenFraction = 0.05;
+constexpr double kOverlaidShare = 0.5;  // of b's horizontal extent an overlaid cloth covers (OmniGibson's)
+constexpr double kDrapeDrop = 0.05;     // m a draped cloth hangs below b's top
 
 const Eigen::Vector3d kUp(0, 0, 1), kDown(0, 0, -1);
 
@@ -159,6 +161,21 @@ bool unfolded(const World& w, int a) {
   return spread(w, a) > 0.9;
 }
 
+bool overlaid(const World& w, int a, int b) {
+  if (w.scene().objects()[a].keypoints.empty() || !touching(w, a, b)) return false;
+  const Aabb cloth = object_aabb(w, a), under = object_aabb(w, b);
+  const Eigen::Vector2d lo = cloth.lo.head<2>().cwiseMax(under.lo.head<2>());
+  const Eigen::Vector2d hi = cloth.hi.head<2>().cwiseMin(under.hi.head<2>());
+  const double covered = (hi - lo).cwiseMax(0.0).prod(), area = under.extent().head<2>().prod();
+  return cloth.center().z() >= under.hi.z() - kDrapeDrop && area > 0 && covered >= kOverlaidShare * area;
+}
+
+bool draped(const World& w, int a, int b) {
+  if (w.scene().objects()[a].keypoints.empty() || !touching(w, a, b)) return false;
+  const Aabb cloth = object_aabb(w, a), over = object_aabb(w, b);
+  return cloth.hi.z() >= over.hi.z() && cloth.lo.z() <= over.hi.z() - kDrapeDrop;
+}
+
 bool attached(const World& w, int a, int b) {
   const mjModel* m = w.model();
   const Scene& scene = w.scene();
@@ -240,9 +257,22 @@ bool dirty(const World& w, int a, const std::string& substance) {
   return dirt_test(w, a, substance,
                    [](int left, int sampled) { return left > ObjectStates::kDirtyFraction * sampled; });
 }
-bool filled(const World& w, int a, const std::string& liquid) {
-  return state_test(
-      w, a, [&](const auto& ab, const auto& s) { return ab.holds_liquid && s.liquid == liquid && s.liquid_level > 0; });
+namespace {
+// How high a container holds `substance`, as a fraction of its inner height.
+double content_level(const World& w, int a, const std::string& substance) {
+  double level = 0;
+  state_test(w, a, [&](const auto& ab, const auto& s) {
+    level = ab.holds_liquid && s.liquid == substance ? s.liquid_level : 0;
+    return true;
+  });
+  return level;
+}
+}  // namespace
+bool filled(const World& w, int a, const std::string& substance) {
+  return content_level(w, a, substance) >= ObjectStates::kFilledLevel;
+}
+bool contains(const World& w, int a, const std::string& substance) {
+  return content_level(w, a, substance) > 0;
 }
 bool toggled_on(const World& w, int a) {
   return state_test(w, a, [](const auto& ab, const auto& s) { return ab.toggleable && s.toggled; });

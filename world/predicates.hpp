@@ -37,6 +37,12 @@ bool insameroom(const World& world, int a, int b);
 // diagonal (folded) or over 90% (unfolded); in between, neither.
 bool folded(const World& world, int a);
 bool unfolded(const World& world, int a);
+// Cloths on b, as OmniGibson's Overlaid and Draped: in contact with b, and
+// covering at least half of b's horizontal extent from above (overlaid), or
+// lying over b's top with part of it hanging 5 cm or more below it (draped).
+// False for objects that are not cloths.
+bool overlaid(const World& world, int a, int b);
+bool draped(const World& world, int a, int b);
 // a and b are held together by an active equality constraint (b = -1: the
 // robot, e.g. through the assistive grasp's weld).
 bool attached(const World& world, int a, int b);
@@ -54,7 +60,10 @@ bool covered(const World& world, int a, const std::string& substance);
 // BEHAVIOR-100's stained and dusty, as iGibson computes them: dirty while more
 // than half of the particles sampled remain (covered asks for all but four gone).
 bool dirty(const World& world, int a, const std::string& substance);
-bool filled(const World& world, int a, const std::string& liquid = "water");
+// A container holds `substance` up to a fifth of its inner height or more
+// (filled), or any of it (contains).
+bool filled(const World& world, int a, const std::string& substance = "water");
+bool contains(const World& world, int a, const std::string& substance);
 bool toggled_on(const World& world, int a);
 bool sliced(const World& world, int a);
 bool broken(const World& world, int a);

@@ -31,10 +31,17 @@ int free_joint_qpos(const World& w, int a) {
   return m->jnt_qposadr[m->body_jntadr[o.body]];
 }
 
-Footprint footprint(const World& w, int a) {
+void place(World& w, int a, double x, double y, double z, double yaw);
+
+// Stands `a` upright where it is first: placements only turn it about the
+// vertical, so its size in that pose holds for every one of them (an object
+// that fell over, a cloth that lay tilted, would otherwise be placed in the
+// floor).
+Footprint footprint(World& w, int a) {
+  const Eigen::Vector3d origin = object_frame(w, a).pos;
+  place(w, a, origin.x(), origin.y(), origin.z(), 0);
   const Aabb box = object_aabb(w, a);
-  const double origin_z = object_frame(w, a).pos.z();
-  return {0.5 * box.extent().head<2>().norm(), box.extent().z(), origin_z - box.lo.z()};
+  return {0.5 * box.extent().head<2>().norm(), box.extent().z(), origin.z() - box.lo.z()};
 }
 
 void place(World& w, int a, double x, double y, double z, double yaw) {
@@ -66,13 +73,14 @@ std::vector<int> geoms_except(const World& w, int a, int b = -1) {
   return out;
 }
 
+// In contact with another object or the scene (a cloth's tiles touching
+// each other do not count).
 bool touches_anything(const World& w, int a) {
   const mjData* d = w.data();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
-    if (w.scene().object_of_geom(con.geom1) == a || w.scene().object_of_geom(con.geom2) == a) {
-      return true;
-    }
+    const int o1 = w.scene().object_of_geom(con.geom1), o2 = w.scene().object_of_geom(con.geom2);
+    if ((o1 == a) != (o2 == a)) return true;
   }
   return false;
 }
@@ -115,13 +123,19 @@ bool sample_ontop(World& w, int a, int b, Rng& rng, const SampleOptions& options
   const Footprint f = footprint(w, a);
   const Aabb box = object_aabb(w, b);
   const std::vector<int> others = geoms_except(w, a);
-  return search(w, options, [&] {
-    const Eigen::Vector2d p = point_in(box, f.radius, rng);
+  // A cloth is laid over all of b from above it and settles onto b (a towel
+  // over a sink's rim), as BEHAVIOR drops cloth onto rigid objects.
+  const bool cloth = !w.scene().objects()[a].keypoints.empty();
+  return search(w, cloth ? SampleOptions{options.attempts, 4 * options.settle_seconds} : options, [&] {
+    const Eigen::Vector2d p = point_in(box, cloth ? 0 : f.radius, rng);
     const Eigen::Vector3d start(p.x(), p.y(), box.hi.z() + 0.01);
     // The first surface below must be b's: nothing else lies there.
     const double to_b = ray_to_object(w, b, start, kDown, 10);
     if (to_b < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_b - 1e-9) return false;
-    return try_place(w, a, f, p.x(), p.y(), start.z() - to_b, rng);
+    // Where a rim stands above the surface (a plate onto a plate of its
+    // size), on top of b's box: it settles onto the rim.
+    return (!cloth && try_place(w, a, f, p.x(), p.y(), start.z() - to_b, rng)) ||
+           try_place(w, a, f, p.x(), p.y(), box.hi.z(), rng);
   });
 }
 
@@ -228,10 +242,13 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
   } else if (predicate == "soaked" || predicate == "saturated") {
     require(ab && ab->soakable, "SoakedLevel");
     s->soaked[liquid] = value ? 1.0 : 0.0;
-  } else if (predicate == "filled") {
+  } else if (predicate == "filled" || predicate == "contains") {
     require(ab && ab->holds_liquid, "a liquid level");
-    s->liquid = liquid;
-    s->liquid_level = value ? 0.8 : 0.0;  // filled: four fifths up
+    if (value || s->liquid == liquid) {
+      s->liquid = liquid;
+      // filled: four fifths up; contains: a little, below filled's level.
+      s->liquid_level = !value ? 0.0 : predicate == "filled" ? 0.8 : ObjectStates::kFilledLevel / 2;
+    }
   } else if (predicate == "toggled_on") {
     require(ab && ab->toggleable, "ToggledState");
     s->toggled = value;

@@ -30,11 +30,11 @@ bool sample_robot_in_room(World& world, int room, Rng& rng);
 void sample_open(World& world, int a, bool open, Rng& rng);
 
 // A unary predicate on extended states made `value`: cooked, burnt, frozen, hot,
-// on_fire, soaked, saturated, filled, toggled_on, sliced, broken. It writes the
+// on_fire, soaked, saturated, filled, contains, toggled_on, sliced, broken. It writes the
 // state the checker reads, as OmniGibson's samplers do (cooked: the highest
 // temperature reached is past the cook temperature). chore::Error for an
 // unknown predicate or an object that does not keep that state.
-// soaked, saturated and filled name their liquid.
+// soaked, saturated, filled and contains name their substance.
 void sample_state(World& world, const std::string& predicate, int a, bool value, const std::string& liquid = "water");
 // Dirt particles of `substance` on a's upward-facing surfaces (value true:
 // `particles` of them, found by rays from above that hit a first), or none.
