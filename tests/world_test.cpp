@@ -248,6 +248,31 @@ TEST(Sleeping, AnObjectLetGoInTheAirFallsBeforeItSleeps) {
   EXPECT_GT(contacts_of(w, "small_block_1", true), 0);
 }
 
+TEST(Sleeping, AnObjectKeptAwakeThenPutInTheAirFallsBeforeItSleeps) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.impl().world();
+  const int block_index = object_index(w, "small_block_1");
+  double* block = w.data()->qpos + (object_qpos(w, "small_block_1") - w.data()->qpos);
+  const double floor_z = block[2], x = block[0], y = block[1];
+  // Still beside the robot: awake (its region), however long it rests.
+  const Pose2 base = w.base_pose();
+  block[0] = base.x + 0.45 * std::cos(base.yaw);
+  block[1] = base.y + 0.45 * std::sin(base.yaw);
+  mj_forward(w.model(), w.data());
+  w.step(120);
+  ASSERT_FALSE(w.asleep(block_index));
+  // A sampler puts it back where it was, 30 cm up: away from the robot and
+  // still, but not at rest. It falls, then sleeps.
+  block[0] = x, block[1] = y, block[2] = floor_z + 0.3;
+  mj_forward(w.model(), w.data());
+  w.step(1);
+  EXPECT_FALSE(w.asleep(block_index));
+  w.step(120);
+  EXPECT_NEAR(object_qpos(w, "small_block_1")[2], floor_z, 0.005);
+  EXPECT_TRUE(w.asleep(block_index));
+}
+
 TEST(Sleeping, StaticGeomsLeftOutOfTheStepStayPutAndStillCollide) {
   auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
   World w(scene);

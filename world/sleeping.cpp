@@ -63,6 +63,15 @@ bool Sleeping::moved_while_asleep(const Object& o, const mjData* d) const {
   return std::any_of(o.dofs.begin(), o.dofs.end(), [&](int v) { return d->qvel[v] != 0; });
 }
 
+// An awake object put somewhere by a sampler or a kinematic move since the
+// last physics step: still, but not at rest (it may hang in the air).
+bool Sleeping::moved_since_step(const Object& o, const mjData* d) const {
+  for (size_t k = 0; k < o.step_qpos.size(); ++k) {
+    if (d->qpos[o.qpos[k]] != o.step_qpos[k]) return true;
+  }
+  return false;
+}
+
 void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   const size_t n = objects_.size();
   // Scratch kept between steps: this runs before every physics step.
@@ -97,7 +106,7 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
       speed = std::max(speed, std::abs(d->qvel[o.dofs[k]]) / (angular ? 10.0 : 1.0));
     }
     // A sleeper moved by anyone but physics (a sampler, a kinematic primitive) wakes.
-    if (speed > kRestSpeed || (o.asleep && moved_while_asleep(o, d))) {
+    if (speed > kRestSpeed || (o.asleep ? moved_while_asleep(o, d) : moved_since_step(o, d))) {
       still = 0;
       awake_[i] = 1;
       regions_.push_back(boxes_[i].grown(kMovingMargin));
@@ -176,13 +185,17 @@ void Sleeping::keep_resting_contacts(const mjData* d) {
   }
 }
 
-void Sleeping::unmask(mjModel* m, mjData* d) const {
+void Sleeping::unmask(mjModel* m, mjData* d, bool physics) {
   for (int b : static_bodies_) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
-  for (const Object& o : objects_) {
-    if (!o.asleep) continue;
-    for (int b : o.bodies) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
-    for (size_t k = 0; k < o.qpos.size(); ++k) d->qpos[o.qpos[k]] = o.rest_qpos[k];
-    for (int v : o.dofs) d->qvel[v] = 0;
+  for (Object& o : objects_) {
+    if (o.asleep) {
+      for (int b : o.bodies) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
+      for (size_t k = 0; k < o.qpos.size(); ++k) d->qpos[o.qpos[k]] = o.rest_qpos[k];
+      for (int v : o.dofs) d->qvel[v] = 0;
+    } else if (physics && o.static_body < 0) {
+      o.step_qpos.resize(o.qpos.size());
+      for (size_t k = 0; k < o.qpos.size(); ++k) o.step_qpos[k] = d->qpos[o.qpos[k]];
+    }
   }
 }
 
@@ -198,6 +211,7 @@ void Sleeping::wake_all() {
   for (Object& o : objects_) {
     o.asleep = false;
     o.still_steps = 0;
+    o.step_qpos.clear();
   }
   std::fill(static_asleep_.begin(), static_asleep_.end(), 0);
   resting_.clear();

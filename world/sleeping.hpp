@@ -55,8 +55,10 @@ class Sleeping {
   // the sleepers' bodies out of `m`'s collision detection. `held_body` (-1:
   // none) is carried by the robot and always awake.
   void mask(mjModel_* m, const mjData* d, int held_body);
-  // Gives the bodies their geoms back and the sleepers their resting state.
-  void unmask(mjModel_* m, mjData* d) const;
+  // Gives the bodies their geoms back and the sleepers their resting state;
+  // after a physics step (`physics`), remembers where the awake are, to tell
+  // a later move by anything but physics.
+  void unmask(mjModel_* m, mjData* d, bool physics);
   // Appends the kept resting contacts to d's contact list (once per list).
   void append_resting_contacts(const mjModel_* m, mjData* d) const;
   // Everyone awake, nothing remembered.
@@ -76,8 +78,10 @@ class Sleeping {
     bool asleep = false;
     int still_steps = 0;            // steps below the rest speed
     std::vector<double> rest_qpos;  // where it fell asleep
+    std::vector<double> step_qpos;  // where the last physics step left it (empty: not yet)
   };
   bool moved_while_asleep(const Object& o, const mjData* d) const;
+  bool moved_since_step(const Object& o, const mjData* d) const;
   void keep_resting_contacts(const mjData* d);
 
   std::vector<Object> objects_;

@@ -304,11 +304,12 @@ class StaticGeomsLeftOut {
 // ends: a MuJoCo error throws through it (mujoco_errors.hpp).
 class SleepersMasked {
  public:
-  SleepersMasked(Sleeping* sleeping, mjModel* m, mjData* d, int held_body) : sleeping_(sleeping), m_(m), d_(d) {
+  SleepersMasked(Sleeping* sleeping, mjModel* m, mjData* d, int held_body, bool physics)
+      : sleeping_(sleeping), m_(m), d_(d), physics_(physics) {
     if (sleeping_) sleeping_->mask(m_, d_, held_body);
   }
   ~SleepersMasked() {
-    if (sleeping_) sleeping_->unmask(m_, d_);
+    if (sleeping_) sleeping_->unmask(m_, d_, physics_);
   }
   SleepersMasked(const SleepersMasked&) = delete;
   SleepersMasked& operator=(const SleepersMasked&) = delete;
@@ -317,12 +318,13 @@ class SleepersMasked {
   Sleeping* sleeping_;
   mjModel* m_;
   mjData* d_;
+  bool physics_;
 };
 
 }  // namespace
 
 void World::run_masked(void (*stage)(const mjModel*, mjData*)) {
-  const SleepersMasked masked(sleeping_on_ ? &*sleeping_ : nullptr, model_, data_, grasped_body());
+  const SleepersMasked masked(sleeping_on_ ? &*sleeping_ : nullptr, model_, data_, grasped_body(), stage == mj_step);
   const StaticGeomsLeftOut out(model_, *scene_);
   stage(model_, data_);
 }
