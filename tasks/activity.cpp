@@ -274,12 +274,15 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   if (first.kind == Binding::Kind::future) return holds(w, l);
   if (first.kind == Binding::Kind::agent) {
     // The start: (onfloor agent floor) in BEHAVIOR-100, (ontop agent floor) in
-    // every BEHAVIOR-1K file. Anything else about the agent must simply hold.
+    // most BEHAVIOR-1K files, (ontop agent lawn) in some: the robot stands in
+    // that room. Anything else about the agent must simply hold.
     const Binding& second = binding(l.args.at(1));
-    if ((l.predicate != "onfloor" && l.predicate != "ontop") || second.kind != Binding::Kind::floor || l.negated) {
+    if ((l.predicate != "onfloor" && l.predicate != "ontop") || second.kind == Binding::Kind::agent ||
+        second.kind == Binding::Kind::substance || second.kind == Binding::Kind::future || l.negated) {
       return holds(w, l);
     }
-    const int room = second.index;
+    const int room = agent_room(w, second);
+    if (room < 0) return false;
     const Pose2 base = w.base_pose();
     const Room* now = w.scene().room_at(base.x, base.y);
     return now == &w.scene().rooms()[room] || sample_robot_in_room(w, room, rng);
@@ -317,6 +320,15 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   return true;
 }
 
+// The room the agent stands in when on `where`: a floor's, or the room of
+// the object it stands on (a lawn); -1 when that object is in no room.
+int Activity::agent_room(const World& w, const Binding& where) const {
+  if (where.kind == Binding::Kind::floor) return where.index;
+  const Eigen::Vector3d c = object_aabb(w, where.index).center();
+  const Room* r = w.scene().room_at(c.x(), c.y());
+  return r ? static_cast<int>(r - w.scene().rooms().data()) : -1;
+}
+
 // The liquid a soaked/saturated/filled literal names: its second argument's
 // synset lemma (B1K: water.n.06_1 -> "water"), or water (BEHAVIOR-100's unary soaked).
 std::string Activity::liquid_of(const Literal& l) const {
@@ -349,14 +361,12 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     value = p == "future";
   } else if (p == "future" || p == "real") {
     value = p == "real";  // a scene object is real
+  } else if ((p == "onfloor" || p == "ontop") && arg(0).kind == Binding::Kind::agent) {
+    const int room = agent_room(w, arg(1));
+    const Pose2 base = w.base_pose();
+    value = room >= 0 && scene.room_at(base.x, base.y) == &scene.rooms()[room];
   } else if (p == "onfloor" || ((p == "ontop") && arg(1).kind == Binding::Kind::floor)) {
-    const int room = arg(1).index;
-    if (arg(0).kind == Binding::Kind::agent) {
-      const Pose2 base = w.base_pose();
-      value = scene.room_at(base.x, base.y) == &scene.rooms()[room];
-    } else {
-      value = onfloor(w, object_arg(0), room);
-    }
+    value = onfloor(w, object_arg(0), arg(1).index);
   } else if (p == "inroom") {
     const Room* r = nullptr;
     if (arg(0).kind == Binding::Kind::floor) {

@@ -83,6 +83,7 @@ class Activity {
   bool sample_literal(World& world, const Literal& literal, Rng& rng) const;
   std::string type_of(const std::string& instance) const;
   std::string liquid_of(const Literal& literal) const;
+  int agent_room(const World& world, const Binding& where) const;
 
   std::string name_;
   Problem problem_;

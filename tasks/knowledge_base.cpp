@@ -71,6 +71,7 @@ constexpr StateRule kStateRules[] = {
     {"heatable", bit(ExtendedState::temperature)},
     {"meltable", bit(ExtendedState::temperature)},  // the table misspells it "metable"
     {"soakable", bit(ExtendedState::soaked_level)},
+    {"particleRemover", bit(ExtendedState::soaked_level)},  // BEHAVIOR-1K: what wipes up absorbs (a rag)
     {"dustyable", bit(ExtendedState::covered_level)},
     {"stainable", bit(ExtendedState::covered_level)},
     {"toggleable", bit(ExtendedState::toggled_state)},

@@ -18,6 +18,7 @@
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "test_util.hpp"
+#include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/renderer.hpp"
 #include "world/scene.hpp"
@@ -365,6 +366,56 @@ TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
   const double* q = world.data()->xpos + 3 * plate->body;
   EXPECT_GT(p[2], q[2]) << "on the plate";
   EXPECT_LT(std::hypot(p[0] - q[0], p[1] - q[1]), 0.2) << "on the plate";
+}
+
+// BEHAVIOR-1K's garden activities: the lawn is an object of the garden the
+// agent starts on, a small container grows to hold what :init puts in it,
+// and a goal may ask what a container contains.
+TEST(SceneAnalogs, AGardenHasItsLawnAndContainersHoldTheirContents) {
+  const fs::path file = test::scratch_dir("analog_garden") / "chorizo_on_lawn" / "problem0.bddl";
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << R"((define (problem chorizo_on_lawn-0)
+    (:domain omnigibson)
+    (:objects
+        lawn.n.01_1 - lawn.n.01
+        tupperware.n.01_1 - tupperware.n.01
+        chorizo.n.01_1 - chorizo.n.01
+        bucket.n.01_1 - bucket.n.01
+        water.n.06_1 - water.n.06
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (inside chorizo.n.01_1 tupperware.n.01_1)
+        (ontop tupperware.n.01_1 lawn.n.01_1)
+        (ontop bucket.n.01_1 lawn.n.01_1)
+        (inroom lawn.n.01_1 garden)
+        (inroom floor.n.01_1 garden)
+        (ontop agent.n.01_1 lawn.n.01_1))
+    (:goal (and (contains ?bucket.n.01_1 ?water.n.06_1))))
+)";
+  const CategoryModels& models = *CategoryModels::shipped();
+  const Eigen::Vector3d chorizo = models.size("chorizo.n.01"), tupperware = models.size("tupperware.n.01");
+  ASSERT_GT(chorizo.head<2>().norm(), tupperware.x()) << "the test needs a container too small of its own";
+
+  EnvConfig config;
+  config.activity = file.string();
+  config.observations = {"proprio"};
+  config.reachable_instances = false;
+  Env env(config);
+  const auto reset = env.reset(0);
+  EXPECT_EQ(reset.info.total, 1);
+  EXPECT_EQ(reset.info.satisfied, 0) << "the bucket holds no water yet";
+  const World& world = env.world();
+  const Scene& scene = world.scene();
+  const SceneObject* lawn = scene.find_object("lawn_1");
+  ASSERT_NE(lawn, nullptr);
+  EXPECT_TRUE(lawn->fixed);
+  const Room* garden = scene.room_at(world.base_pose().x, world.base_pose().y);
+  ASSERT_NE(garden, nullptr);
+  EXPECT_EQ(garden->type, "garden") << "the agent starts in the lawn's room";
+  const SceneObject* box = scene.find_object("tupperware_1");
+  ASSERT_NE(box, nullptr);
+  EXPECT_GT(object_aabb(world, static_cast<int>(box - scene.objects().data())).extent().x(), chorizo.head<2>().norm());
 }
 
 }  // namespace

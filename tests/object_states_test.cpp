@@ -102,7 +102,15 @@ TEST_F(ObjectStatesTest, WaterInAContainerSoaksWhatEntersIt) {
   world_.reset(scene_->robot_start());
   sample_state(world_, "filled", bin, true, "oil");
   EXPECT_TRUE(filled(world_, bin, "oil"));
+  EXPECT_TRUE(contains(world_, bin, "oil"));
   EXPECT_FALSE(filled(world_, bin, "water"));
+  // contains asks for any of it, filled for a fifth of the height (OmniGibson's).
+  sample_state(world_, "contains", bin, true, "oil");
+  EXPECT_TRUE(contains(world_, bin, "oil"));
+  EXPECT_FALSE(filled(world_, bin, "oil"));
+  sample_state(world_, "contains", bin, false, "water");  // holds no water: the oil stays
+  EXPECT_TRUE(contains(world_, bin, "oil"));
+  sample_state(world_, "filled", bin, true, "oil");
   put(rag, 1.5, -1.5, 0.03);
   run(1);
   EXPECT_TRUE(soaked(world_, rag, "oil"));
