@@ -386,6 +386,14 @@ TEST(Cloth, ARagIsOneObjectOfManyBodiesThatDrapesOverAnEdge) {
   // down (a rigid board with a third over the edge would stay level).
   EXPECT_NEAR(highest, 0.756, 0.005);
   EXPECT_LT(lowest, highest - 0.01);
+  // Draped over the table's edge (6 cm down), but covering little of the
+  // table: not overlaid.
+  const auto index_of = [&](const char* name) {
+    return static_cast<int>(scene->find_object(name) - scene->objects().data());
+  };
+  EXPECT_TRUE(draped(world, index_of("rag_1"), index_of("table_1")));
+  EXPECT_FALSE(overlaid(world, index_of("rag_1"), index_of("table_1")));
+  EXPECT_FALSE(draped(world, index_of("apple_1"), index_of("table_1"))) << "not a cloth";
   // Keypoints: the draped rag is still spread out; curled up, it is folded.
   const int index = static_cast<int>(rag - scene->objects().data());
   EXPECT_TRUE(unfolded(world, index));
@@ -396,6 +404,13 @@ TEST(Cloth, ARagIsOneObjectOfManyBodiesThatDrapesOverAnEdge) {
   mj_forward(world.model(), world.data());
   EXPECT_TRUE(folded(world, index));
   EXPECT_FALSE(unfolded(world, index));
+  // Dropped over a cup, it covers all of the cup's top: overlaid.
+  world.reset(scene->robot_start());
+  const double* cup = world.data()->xpos + 3 * scene->find_object("cup_1")->body;
+  q[0] = cup[0], q[1] = cup[1], q[2] = object_aabb(world, index_of("cup_1")).hi.z() + 0.02;
+  mj_forward(world.model(), world.data());
+  for (int i = 0; i < 60; ++i) world.step(4);
+  EXPECT_TRUE(overlaid(world, index_of("rag_1"), index_of("cup_1")));
   // With cloth off, the same rag is one rigid body.
   SceneOptions rigid;
   rigid.cloth = false;
