@@ -9,31 +9,61 @@
 #include "base/error.hpp"
 #include "base/json_file.hpp"
 #include "tasks/knowledge_base.hpp"
+#include "tasks/vocabulary.hpp"
 
 namespace chore {
 namespace {
 
 // What an activity asks of a scene: the scene objects its inroom literals
-// name, by room, and the synsets of its other objects.
+// name, by room, and the synsets of its other objects; those the category
+// models lack, modelled as their nearest ancestor that has one.
 struct Needs {
   std::map<std::string, std::vector<std::string>> in_room;  // BDDL room -> synsets
   std::vector<std::string> loose;
   std::set<std::string> rooms;
+  std::map<std::string, std::string> modelled_as;
 };
 
+// `synset` if the models' knowledge base has it as an object, else its
+// nearest ancestor in the activity's own that it has ("" for none).
+std::string model_synset(const std::string& synset, const KnowledgeBase& models, const KnowledgeBase& dialect) {
+  const auto modelled = [&](const std::string& s) { return models.contains(s) && !models.is_substance(s); };
+  if (modelled(synset)) return synset;
+  if (!dialect.contains(synset)) return "";
+  std::vector<std::string> level = {synset};
+  for (size_t depth = 0; depth < 64 && !level.empty(); ++depth) {  // breadth first: nearest first
+    std::vector<std::string> next;
+    for (const std::string& s : level) {
+      for (const std::string& p : dialect.parents(s)) {
+        if (modelled(p)) return p;
+        next.push_back(p);
+      }
+    }
+    level = std::move(next);
+  }
+  return "";
+}
+
 Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
+  const KnowledgeBase& dialect = *dialect_knowledge_base(problem.domain);
   std::map<std::string, std::string> room_of;
-  std::set<std::string> future;
+  std::set<std::string> future, substances;
   for (const Literal& l : problem.init) {
     if (l.negated) continue;
     if (l.predicate == "inroom" && l.args.size() == 2) room_of[l.args[0]] = l.args[1];
     if (l.predicate == "future" && l.args.size() == 1) future.insert(l.args[0]);
+    if (l.args.size() == 2 && (l.predicate == "covered" || l.predicate == "filled" || l.predicate == "contains" ||
+                               l.predicate == "saturated" || l.predicate == "insource"))
+      substances.insert(l.args[1]);
   }
   Needs needs;
   for (const auto& [instance, room] : room_of) needs.rooms.insert(room);
   for (const ObjectDecl& d : problem.objects) {
     if (d.type == "agent.n.01" || d.type == "floor.n.01" || future.contains(d.name)) continue;
-    if (!kb.contains(d.type) || kb.is_substance(d.type)) continue;
+    if (substances.contains(d.name) || (dialect.contains(d.type) && dialect.is_substance(d.type))) continue;
+    const std::string model = model_synset(d.type, kb, dialect);
+    if (model.empty()) continue;
+    if (model != d.type) needs.modelled_as[d.type] = model;
     const auto room = room_of.find(d.name);
     if (room != room_of.end()) {
       needs.in_room[room->second].push_back(d.type);
@@ -189,13 +219,14 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
       int have = 0;
       for (const RoomInventory& r : inventory.rooms) {
         if (!matches(r, room)) continue;
-        for (const auto& [s, n] : r.objects) have += kb.contains(s) && kb.is_a(s, synset) ? n : 0;
+        for (const auto& [s, n] : r.objects) have += kb.contains(synset) && kb.is_a(s, synset) ? n : 0;
       }
       for (int i = have; i < count; ++i) extras.objects.push_back({room, synset, false});
     }
   }
   for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
   extras.least_sizes = support_sizes(problem, models);
+  extras.modelled_as = needs.modelled_as;
   return generate_scene_analog(inventory, models, 0, extras);
 }
 

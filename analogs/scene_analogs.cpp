@@ -33,20 +33,36 @@ struct Rect {
   double depth() const { return y1 - y0; }
 };
 
-// The category models at their sizes in this scene: a synset's own, grown
-// to the least size the caller asks of it.
+// The category models at their sizes in this scene: a synset's own (or that
+// of the synset the caller models it as), grown to the least size the caller
+// asks of it.
 struct Models {
   const CategoryModels& models;
-  const std::map<std::string, Eigen::Vector3d>& least_sizes;
+  const AnalogExtras& extras;
 
-  Eigen::Vector3d size(const std::string& synset) const {
-    const auto least = least_sizes.find(synset);
-    const Eigen::Vector3d own = models.size(synset);
-    return least == least_sizes.end() ? own : own.cwiseMax(least->second);
+  const std::string& resolve(const std::string& synset) const {
+    const auto as = extras.modelled_as.find(synset);
+    return as == extras.modelled_as.end() ? synset : as->second;
   }
-  ObjectModel model(const std::string& synset) const { return models.model(synset, size(synset)); }
-  Archetype archetype(const std::string& synset) const { return models.archetype(synset); }
-  const KnowledgeBase& knowledge_base() const { return models.knowledge_base(); }
+  Eigen::Vector3d size(const std::string& synset) const {
+    const auto least = extras.least_sizes.find(synset);
+    const Eigen::Vector3d own = models.size(resolve(synset));
+    return least == extras.least_sizes.end() ? own : own.cwiseMax(least->second);
+  }
+  ObjectModel model(const std::string& synset) const {
+    ObjectModel m = models.model(resolve(synset), size(synset));
+    m.synset = synset;
+    return m;
+  }
+  Archetype archetype(const std::string& synset) const { return models.archetype(resolve(synset)); }
+  // Whether the knowledge base's `ancestor` is one of what `synset` is modelled as.
+  bool is_a(const std::string& synset, const std::string& ancestor) const {
+    const KnowledgeBase& kb = models.knowledge_base();
+    return kb.contains(ancestor) && kb.is_a(resolve(synset), ancestor);
+  }
+  bool has_property(const std::string& synset, const char* property) const {
+    return models.knowledge_base().has_property(resolve(synset), property);
+  }
 };
 
 // What an inventory object is to the layout.
@@ -58,8 +74,7 @@ bool stands_on_floor(Kind kind) {
 }
 
 Kind kind_of(const Models& models, const std::string& synset) {
-  const KnowledgeBase& kb = models.knowledge_base();
-  const auto is = [&](const char* ancestor) { return kb.contains(ancestor) && kb.is_a(synset, ancestor); };
+  const auto is = [&](const char* ancestor) { return models.is_a(synset, ancestor); };
   // Floors, walls and ceilings are the scene's own.
   for (const char* s : {"floor.n.01", "ceiling.n.01", "wall.n.01"}) {
     if (is(s)) return Kind::structure;
@@ -70,7 +85,7 @@ Kind kind_of(const Models& models, const std::string& synset) {
                         "wall_clock.n.01", "towel_rack.n.01", "poster.n.01"}) {
     if (is(s)) return Kind::on_wall;
   }
-  return kb.has_property(synset, "sceneObject") ? Kind::furniture : Kind::small;
+  return models.has_property(synset, "sceneObject") ? Kind::furniture : Kind::small;
 }
 
 // A model's footprint half-extents at a yaw that is a multiple of 90 degrees.
@@ -373,9 +388,8 @@ bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
   const Archetype archetype = models.archetype(synset);
   const bool flat_top = archetype == Archetype::table || archetype == Archetype::cabinet ||
                         archetype == Archetype::shelf || archetype == Archetype::block;
-  const KnowledgeBase& kb = models.knowledge_base();
-  const bool clear = std::any_of(clear_tops.begin(), clear_tops.end(),
-                                 [&](const std::string& s) { return kb.contains(s) && kb.is_a(synset, s); });
+  const bool clear =
+      std::any_of(clear_tops.begin(), clear_tops.end(), [&](const std::string& s) { return models.is_a(synset, s); });
   if (flat_top && !clear && size.z() > 0.3 && size.z() < 1.6) {
     room.surfaces.push_back({footprint(at, half_footprint(size, turns)), size.z(), {}});
   }
@@ -452,7 +466,7 @@ const SceneInventory& find_scene_inventory(const std::string& name) {
 
 SceneAnalog generate_scene_analog(const SceneInventory& inventory, const CategoryModels& category_models, uint64_t seed,
                                   const AnalogExtras& extras) {
-  const Models models{category_models, extras.least_sizes};
+  const Models models{category_models, extras};
   const std::vector<ExtraObject>& extra = extras.objects;
   if (inventory.rooms.empty()) throw Error("scene " + inventory.name + ": no rooms");
   Rng rng(seed);
@@ -536,7 +550,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
           ++analog.left_out;
           continue;
         }
-        builder.add(synset, at, turns, on_wall || models.knowledge_base().has_property(synset, "sceneObject"));
+        builder.add(synset, at, turns, on_wall || models.has_property(synset, "sceneObject"));
       }
     }
   }

@@ -79,6 +79,9 @@ struct AnalogExtras {
   // what the activity puts inside them. A synset keeps its own size where
   // that is larger.
   std::map<std::string, Eigen::Vector3d> least_sizes;
+  // Synsets the category models lack (BEHAVIOR-100's sunglass.n.01) built as
+  // another's (an ancestor's): synset -> the synset whose model it takes.
+  std::map<std::string, std::string> modelled_as;
 };
 
 // chore::Error for an extra object's room the inventory lacks.

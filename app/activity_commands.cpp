@@ -47,6 +47,21 @@ cv::Mat to_bgr(const Array& rgb, int height, int width) {
 
 }  // namespace
 
+cv::Mat instance_picture(Env& env, const ArrayDict& obs, int head_size, int top_size) {
+  // The third-person view: the whole scene from above, ceilings left out.
+  Renderer top(env.world().model(), top_size, top_size);
+  ArrayDict overview(Space::dict({{"rgb", Space::box({top_size, top_size, 3}, DType::uint8, 0, 255)}}), 1);
+  std::vector<CameraView> view = {
+      {env.world().model(), env.impl().world().data(), env.world().scene().overview_camera(),
+       static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false, &env.world()}};
+  top.render(view);
+  cv::Mat head = to_bgr(obs["rgb"], head_size, head_size);
+  cv::Mat panel(top_size, head_size + top_size, CV_8UC3, cv::Scalar(0, 0, 0));
+  head.copyTo(panel(cv::Rect(0, (top_size - head_size) / 2, head_size, head_size)));
+  to_bgr(overview["rgb"], top_size, top_size).copyTo(panel(cv::Rect(head_size, 0, top_size, top_size)));
+  return panel;
+}
+
 void sample_activity(const std::string& activity, const std::string& scene, uint64_t seed, const std::string& png,
                      std::ostream& out) {
   constexpr int kHead = 384, kTop = 768;
@@ -55,22 +70,16 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   config.scene = scene;
   config.width = config.height = kHead;
   config.observations = {"rgb"};
+  config.reachable_instances = false;  // the instance as sampled: what is out of reach is said below
   Env env(config);
   const auto reset = env.reset(seed);
-  // The third-person view: the whole scene from above, ceilings left out.
-  Renderer top(env.world().model(), kTop, kTop);
-  ArrayDict overview(Space::dict({{"rgb", Space::box({kTop, kTop, 3}, DType::uint8, 0, 255)}}), 1);
-  std::vector<CameraView> view = {
-      {env.world().model(), env.impl().world().data(), env.world().scene().overview_camera(),
-       static_cast<std::uint8_t*>(overview["rgb"].item(0)), nullptr, 0, false, &env.world()}};
-  top.render(view);
-  cv::Mat head = to_bgr(reset.obs["rgb"], kHead, kHead);
-  cv::Mat panel(kTop, kHead + kTop, CV_8UC3, cv::Scalar(0, 0, 0));
-  head.copyTo(panel(cv::Rect(0, (kTop - kHead) / 2, kHead, kHead)));
-  to_bgr(overview["rgb"], kTop, kTop).copyTo(panel(cv::Rect(kHead, 0, kTop, kTop)));
-  write_png(png, panel, "activity sample");
+  const std::string out_of_reach = env.out_of_reach();
+  write_png(png, instance_picture(env, reset.obs, kHead, kTop), "activity sample");
   out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q " << reset.info.q << ", "
-      << reset.info.satisfied << "/" << reset.info.total << " goal literals hold; picture: " << png << "\n";
+      << reset.info.satisfied << "/" << reset.info.total << " goal literals hold; "
+      << (out_of_reach.empty() ? "all the primitives act on is within the robot's reach"
+                               : "out of the robot's reach: " + out_of_reach)
+      << "; picture: " << png << "\n";
 }
 
 void sample_activity_seeds(const std::string& activity, const std::string& scene, uint64_t first, uint64_t last,

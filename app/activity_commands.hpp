@@ -2,9 +2,13 @@
 // grounded; an activity instantiated from a seed and pictured.
 #pragma once
 
+#include <opencv2/core.hpp>
+
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include "env/env.hpp"
 
 namespace chore {
 
@@ -12,6 +16,10 @@ namespace chore {
 // options and literals to `out`, or the file's error (with file:line:col) to
 // `err`. Returns how many files failed.
 int check_activities(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
+
+// The robot's head camera (`obs` of an env with "rgb" at head_size) beside a
+// top-down view of the whole scene, drawn now (BGR, for OpenCV).
+cv::Mat instance_picture(Env& env, const ArrayDict& obs, int head_size, int top_size);
 
 // Instantiates `activity` with `seed` and writes a PNG: the robot's head
 // camera beside a top-down view of the scene.

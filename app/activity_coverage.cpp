@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -11,8 +13,14 @@
 #include <thread>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
+#include "app/activity_commands.hpp"
+#include "app/png.hpp"
 #include "base/error.hpp"
+#include "base/random.hpp"
 #include "env/env.hpp"
+#include "env/vector_env.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/vocabulary.hpp"
 
@@ -40,12 +48,67 @@ struct Result {
   std::string name, file, stage = "instantiated", error;
   double seconds = 0;        // parse, ground, instantiate
   std::string out_of_reach;  // of an instantiated one: what lies out of the robot's reach ("": none)
+  bool ran = false;          // and it ran in a VectorEnv, from the same instance
+  cv::Mat picture;           // for the contact sheet
 };
+
+constexpr int kSheetHead = 64, kSheetTop = 128, kSheetLabel = 12, kSheetColumns = 16;
+
+// The instantiated activities' pictures in a grid, each under its name.
+void write_contact_sheet(const std::string& path, const std::vector<Result>& results) {
+  std::vector<const Result*> shown;
+  for (const Result& r : results) {
+    if (!r.picture.empty()) shown.push_back(&r);
+  }
+  if (shown.empty()) throw Error("activity coverage: no activity instantiated for the contact sheet " + path);
+  const int width = kSheetHead + kSheetTop, height = kSheetTop + kSheetLabel;
+  const int columns = std::min<int>(kSheetColumns, static_cast<int>(shown.size()));
+  const int rows = (static_cast<int>(shown.size()) + columns - 1) / columns;
+  cv::Mat sheet(rows * height, columns * width, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (size_t i = 0; i < shown.size(); ++i) {
+    const int x = static_cast<int>(i % columns) * width, y = static_cast<int>(i / columns) * height;
+    shown[i]->picture.copyTo(sheet(cv::Rect(x, y + kSheetLabel, width, kSheetTop)));
+    cv::putText(sheet, shown[i]->name.substr(0, 34), {x + 2, y + kSheetLabel - 3}, cv::FONT_HERSHEY_PLAIN, 0.7,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  }
+  write_png(path, sheet, "contact sheet");
+}
+
+// Two envs of a VectorEnv, reset at `seed`: env 0 must start bit for bit as
+// `env` did (the same seed, the same instance, from a second build of the
+// scene), then both take `steps` seeded random low-level actions with
+// finite rewards and Q in [0, 1].
+void run_in_vector_env(const EnvConfig& config, const Env& env, uint64_t seed, int steps) {
+  VectorEnvConfig vector;
+  vector.env = config;
+  vector.num_envs = 2;
+  VectorEnv envs(vector);
+  envs.reset(seed);
+  const mjModel* m = env.world().model();
+  const mjData *a = env.world().data(), *b = envs.state(0).world().data();
+  const auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  if (envs.state(0).world().model()->nq != m->nq || !std::equal(a->qpos, a->qpos + m->nq, b->qpos, same))
+    throw Error("the same seed gave another instance in a VectorEnv");
+  const Space& space = envs.single_action_space();
+  const size_t size = space.element_count();
+  Rng rng(seed);
+  std::vector<float> actions(2 * size);
+  for (int step = 0; step < steps; ++step) {
+    for (float& x : actions) x = static_cast<float>(uniform(rng, space.low, space.high));
+    const Batch batch = envs.step(actions);
+    for (int i = 0; i < batch.size(); ++i) {
+      const Info& info = batch.infos[i];
+      if (!std::isfinite(batch.rewards[i]) || info.q < 0 || info.q > 1)
+        throw Error("step " + std::to_string(step) + ": reward " + std::to_string(batch.rewards[i]) + ", Q " +
+                    std::to_string(info.q));
+    }
+  }
+}
 
 // Parse and ground (as `activity check`), then reset an Env at the seed;
 // then whether the primitives' targets are within the robot's reach (not
 // timed: EnvConfig::reachable_instances resamples until they are).
-Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t seed) {
+Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t seed, int steps, bool picture) {
   Result r;
   r.file = file;
   r.name = fs::path(file).stem() == "problem0" ? fs::path(file).parent_path().filename().string()
@@ -58,13 +121,21 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t s
     r.stage = "instantiate";
     EnvConfig config;
     config.activity = file;
-    config.observations = {"proprio"};  // no rendering: instantiation alone
+    config.observations = {picture ? "rgb" : "proprio"};  // rendering only for the sheet
+    config.width = config.height = kSheetHead;
     config.reachable_instances = false;
     Env env(config);
-    env.reset(seed);
+    const auto reset = env.reset(seed);
     r.stage = "instantiated";
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.out_of_reach = env.out_of_reach();
+    if (picture) r.picture = instance_picture(env, reset.obs, kSheetHead, kSheetTop);
+    if (steps > 0) {
+      r.stage = "run";
+      run_in_vector_env(config, env, seed, steps);
+      r.stage = "instantiated";
+      r.ran = true;
+    }
   } catch (const Error& e) {
     r.error = e.what();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -99,7 +170,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   std::atomic<size_t> next = 0, done = 0;
   auto work = [&] {
     for (size_t i; (i = next++) < files.size();) {
-      results[i] = run_one(files[i], vocabulary, options.seed);
+      results[i] = run_one(files[i], vocabulary, options.seed, options.steps, !options.sheet.empty());
       if (const size_t n = ++done; n % 50 == 0 || n == files.size())
         log << "coverage: " << n << "/" << files.size() << std::endl;
     }
@@ -109,21 +180,25 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   work();
   for (std::thread& t : pool) t.join();
 
+  if (!options.sheet.empty()) write_contact_sheet(options.sheet, results);
+
   nlohmann::json activities = nlohmann::json::array();
   std::map<std::string, std::pair<int, std::string>> causes;  // "stage: cause" -> count, example
   std::map<std::string, std::pair<int, std::string>> reach_causes;
-  int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0;
+  int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0, ran = 0;
   std::vector<double> seconds;
   for (const Result& r : results) {
     parsed += r.stage != "parse";
-    instantiated += r.stage == "instantiated";
-    if (r.stage == "instantiated") {
+    instantiated += r.stage == "instantiated" || r.stage == "run";
+    ran += r.ran;
+    if (r.stage == "instantiated" || r.stage == "run") {
       seconds.push_back(r.seconds);
       within_20s += r.seconds <= 20;
       reachable += r.out_of_reach.empty();
     }
     nlohmann::json a = {{"name", r.name}, {"file", r.file}, {"stage", r.stage}, {"seconds", r.seconds}};
-    if (r.stage == "instantiated") a["out_of_reach"] = r.out_of_reach;
+    if (r.stage == "instantiated" || r.stage == "run") a["out_of_reach"] = r.out_of_reach;
+    if (options.steps > 0) a["ran"] = r.ran;
     if (!r.out_of_reach.empty()) {
       auto& [count, example] = reach_causes[failure_cause(r.out_of_reach)];
       if (count++ == 0) example = r.name;
@@ -154,6 +229,8 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
           {"instantiated", instantiated},
           {"instantiated_within_20s", within_20s},
           {"reachable", reachable},
+          {"steps", options.steps},
+          {"ran", ran},
           {"median_seconds", seconds.empty() ? 0.0 : seconds[seconds.size() / 2]},
           {"max_seconds", seconds.empty() ? 0.0 : seconds.back()},
           {"causes", grouped(causes)},
@@ -169,7 +246,10 @@ std::string format_coverage(const nlohmann::json& c) {
       << "%), instantiated " << c["instantiated"] << " (" << 100 * c["instantiated"].get<double>() / total
       << "%) at seed " << c["seed"] << ", median " << c["median_seconds"].get<double>() << " s, slowest "
       << c["max_seconds"].get<double>() << " s; " << c["instantiated_within_20s"] << " within 20 s; " << c["reachable"]
-      << " with everything the primitives act on within the robot's reach\n";
+      << " with everything the primitives act on within the robot's reach";
+  if (c["steps"].get<int>() > 0)
+    out << "; " << c["ran"] << " ran " << c["steps"] << " random low-level steps in a VectorEnv from the same instance";
+  out << "\n";
   const auto list = [&](const char* title, const nlohmann::json& causes) {
     if (!causes.empty()) out << title << ":\n";
     for (const auto& cause : causes) {

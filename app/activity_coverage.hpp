@@ -1,8 +1,10 @@
 // `chore activity coverage DIR`: how much of an activity corpus chore runs.
 // Each .bddl problem file under DIR (domain files skipped) is parsed and
 // grounded against its dialect, then instantiated at one seed in an Env (its
-// scene: tasks/activities/scenes.json, else the apartment); the report gives
-// the share at each stage, the seconds each took, and the failures grouped by
+// scene: tasks/activities/scenes.json, else the analog of a BEHAVIOR-1K
+// scene); the report gives the share at each stage, the seconds each took,
+// how many have all the primitives act on within the robot's reach, how many
+// ran in a VectorEnv (CoverageOptions::steps), and the failures grouped by
 // cause (the error with its names and numbers blanked), each with an example.
 #pragma once
 
@@ -18,6 +20,11 @@ struct CoverageOptions {
   std::string dir;
   uint64_t seed = 0;
   int threads = 1;  // files instantiated at once
+  // After instantiating, run each in a VectorEnv of two envs for this many
+  // random low-level steps (0: not run), checking env 0 starts as the Env did.
+  int steps = 0;
+  // A PNG of every instantiated activity's head camera and top-down view ("": none).
+  std::string sheet;
 };
 
 nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& log);

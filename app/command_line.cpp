@@ -128,6 +128,13 @@ CommandLineParser::Impl::Impl() {
   coverage_cmd->add_option("--threads", c.coverage.threads, "Files at once")
       ->check(integer_in(1, 64))
       ->capture_default_str();
+  coverage_cmd
+      ->add_option("--steps", c.coverage.steps,
+                   "Then run each in a VectorEnv of 2 envs for this many random low-level steps (0: not run)")
+      ->check(integer_in(0, 100000))
+      ->capture_default_str();
+  coverage_cmd->add_option("--sheet", c.coverage.sheet,
+                           "Contact sheet PNG: head camera and top-down view of every instantiated activity");
   coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");
   CLI::App* scene_cmd = app.add_subcommand("scene", "BEHAVIOR-1K's scenes as analogs generated from their inventories");
   scene_cmd->require_subcommand(1);

@@ -30,14 +30,14 @@ EnvAssets load_assets(const EnvConfig& config) {
   options.robot = config.robot;
   options.cloth = config.cloth;
   EnvAssets assets;
-  // A scene of BEHAVIOR-1K's inventories, or none named for a BEHAVIOR-1K
-  // activity: its analog, with the objects the activity needs.
+  // A scene of BEHAVIOR-1K's inventories, or none named for an activity of
+  // either dialect: its analog, with the objects the activity needs.
   const bool inventory = std::any_of(shipped_scene_inventories().begin(), shipped_scene_inventories().end(),
                                      [&](const SceneInventory& s) { return s.name == scene; });
   std::optional<Problem> problem;
   if (!config.activity.empty() && (inventory || scene.empty()))
     problem = load_bddl(resolve_activity_path(config.activity));
-  if (problem && (inventory || problem->domain == Domain::omnigibson)) {
+  if (problem) {
     const SceneInventory& chosen = activity_inventory(*problem, scene);
     assets.scene = Scene::build(activity_scene_analog(*problem, chosen, *CategoryModels::shipped()).file, options);
   } else if (inventory) {

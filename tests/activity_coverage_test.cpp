@@ -2,6 +2,9 @@
 // grouped by cause.
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
 #include <filesystem>
 
 #include "app/activity_coverage.hpp"
@@ -26,12 +29,11 @@ TEST(ActivityCoverage, FailuresOfOneCauseReadAlike) {
 TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   const auto dir = test::scratch_dir("coverage");
   std::filesystem::copy_file(default_tasks_dir() + "/activities/collect_trash.bddl", dir / "collect_trash.bddl");
-  // BEHAVIOR-100's dialect is set in the apartment, which has no garage; a
-  // BEHAVIOR-1K activity gets the analog of an inventory with its rooms, and
-  // none has a garage and a hammam.
+  // An activity of either dialect without a scene gets the analog of an
+  // inventory with its rooms, and none has a home office.
   const std::string unknown_room =
       "(define (problem r) (:domain igibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)"
-      " (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 garage)) (:goal (onfloor ?agent.n.01_1 "
+      " (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 home_office)) (:goal (onfloor ?agent.n.01_1 "
       "?floor.n.01_1)))";
   test::write_file(dir / "a" / "problem0.bddl", unknown_room);
   test::write_file(dir / "b" / "problem0.bddl", unknown_room);
@@ -42,13 +44,15 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   test::write_file(dir / "bad.bddl", "(define (problem x)");
   test::write_file(dir / "domain_x.bddl", "(define (domain x) (:predicates (p ?a)))");
   std::ostringstream log;
-  const nlohmann::json c = activity_coverage({.dir = dir.string(), .threads = 2}, log);
+  const std::string sheet = (dir / "sheet.png").string();
+  const nlohmann::json c = activity_coverage({.dir = dir.string(), .threads = 2, .steps = 3, .sheet = sheet}, log);
   EXPECT_EQ(c["total"], 5);  // the domain file is not an activity
   EXPECT_EQ(c["parsed"], 4);
   EXPECT_EQ(c["instantiated"], 1);
+  EXPECT_EQ(c["ran"], 1) << "collect_trash ran in a VectorEnv from the same instance";
   ASSERT_EQ(c["causes"].size(), 3u) << c["causes"].dump(1);
   EXPECT_EQ(c["causes"][0]["count"], 2);
-  EXPECT_EQ(c["causes"][0]["cause"], "instantiate: no room 'garage' for _");
+  EXPECT_EQ(c["causes"][0]["cause"], "instantiate: r: no BEHAVIOR-1K scene has rooms home_office");
   EXPECT_EQ(c["causes"][0]["example"], "a");  // a folder's problem0.bddl is named by its folder
   EXPECT_EQ(c["causes"][1]["cause"], "instantiate: garage_spa-N: no BEHAVIOR-1K scene has rooms garage, hammam")
       << c["causes"].dump(1);
@@ -56,6 +60,14 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   EXPECT_NE(format_coverage(c).find("5 activities; parsed and grounded 4 (80.0%), instantiated 1 (20.0%)"),
             std::string::npos)
       << format_coverage(c);
+  // The contact sheet: one picture, the head camera's and the top-down view, drawn.
+  const cv::Mat picture = cv::imread(sheet);
+  ASSERT_FALSE(picture.empty());
+  EXPECT_EQ(picture.cols, 64 + 128);
+  cv::Scalar mean, spread;
+  cv::meanStdDev(picture, mean, spread);
+  EXPECT_GT(mean[0] + mean[1] + mean[2], 3 * 30) << "not black";
+  EXPECT_GT(spread[0] + spread[1] + spread[2], 3 * 10) << "not one colour";
 }
 
 }  // namespace

@@ -87,13 +87,13 @@ TEST(BadInput, BuffersBeyondMemoryAreErrorsNamingTheSetting) {
   EXPECT_NO_THROW(check_fits_in_memory(1e6, "x"));
   ASSERT_LT(physical_memory_bytes(), 49e9) << "the sizes below assume a machine of under 49 GB";
   const fs::path dir = test::scratch_dir("cli_memory");
-  expect_error("train --activity store_decoration --baseline rl-vmc --set sac.buffer=1000000 --out " +
-                   (dir / "sac").string(),
-               "chore: error: sac.buffer = 1000000: its replay buffer needs 98.6 GB, more than this machine's");
+  expect_error(
+      "train --activity store_decoration --baseline rl-vmc --set sac.buffer=1000000 --out " + (dir / "sac").string(),
+      "chore: error: sac.buffer = 1000000: its replay buffer needs 98.6 GB, more than this machine's");
   EXPECT_FALSE(fs::exists(dir / "sac"));
-  expect_error("train --activity store_decoration --baseline rl-prim --set ppo.buffer=1000000 --out " +
-                   (dir / "ppo").string(),
-               "chore: error: ppo.buffer = 1000000: a rollout of its observations needs 49.2 GB");
+  expect_error(
+      "train --activity store_decoration --baseline rl-prim --set ppo.buffer=1000000 --out " + (dir / "ppo").string(),
+      "chore: error: ppo.buffer = 1000000: a rollout of its observations needs 49.2 GB");
   expect_error("bench --sections vector --envs 256 --width 4096 --height 4096 --scenes studio",
                "chore: error: vector env of 256 envs at 4096x4096: the buffer of its batched observations needs");
 }

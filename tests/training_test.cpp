@@ -520,8 +520,9 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   record.type = ElementType::float64;
   record.bytes += record.bytes;
   write_checkpoint((dir / "type.pt").string(), wrong_type);
-  EXPECT_NE(load_error((dir / "type.pt").string()).find("tensor '" + first + "' is float64, the network expects float32"),
-            std::string::npos);
+  EXPECT_NE(
+      load_error((dir / "type.pt").string()).find("tensor '" + first + "' is float64, the network expects float32"),
+      std::string::npos);
   auto framing_error = [&](const std::string& name, TensorRecord t) {
     CheckpointFile bad = file;
     bad.tensors = {{"x", std::move(t)}};
