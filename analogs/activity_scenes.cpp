@@ -44,6 +44,12 @@ std::string model_synset(const std::string& synset, const KnowledgeBase& models,
   return "";
 }
 
+// The synset a needed object is modelled as.
+const std::string& needs_model(const Needs& needs, const std::string& synset) {
+  const auto as = needs.modelled_as.find(synset);
+  return as == needs.modelled_as.end() ? synset : as->second;
+}
+
 Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   const KnowledgeBase& dialect = *dialect_knowledge_base(problem.domain);
   std::map<std::string, std::string> room_of;
@@ -227,6 +233,14 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
   for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
   extras.least_sizes = support_sizes(problem, models);
   extras.modelled_as = needs.modelled_as;
+  std::map<std::string, std::string> synset_of;
+  for (const ObjectDecl& d : problem.objects) synset_of[d.name] = d.type;
+  for (const Literal& l : problem.init) {
+    if (l.negated || l.predicate != "attached" || l.args.size() != 2) continue;
+    const auto object = synset_of.find(l.args[0]), to = synset_of.find(l.args[1]);
+    if (object != synset_of.end() && to != synset_of.end())
+      extras.attachments.push_back({needs_model(needs, object->second), needs_model(needs, to->second)});
+  }
   return generate_scene_analog(inventory, models, 0, extras);
 }
 

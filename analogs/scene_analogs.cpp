@@ -23,6 +23,7 @@ constexpr double kDoorClear = 1.0;   // kept free before a doorway, on each side
 constexpr double kGap = 0.05;        // between neighbouring pieces of furniture
 constexpr double kRobotClear = 0.5;  // around the robot's start
 constexpr int kTries = 60;           // random placements tried per object
+constexpr int kAttachments = 64;     // weld pairs per pair of synsets an activity attaches
 
 // An axis-aligned rectangle of the floor.
 struct Rect {
@@ -82,7 +83,7 @@ Kind kind_of(const Models& models, const std::string& synset) {
   if (is("lawn.n.01") || is("driveway.n.01")) return Kind::ground;
   if (is("door.n.01")) return Kind::door;
   for (const char* s : {"window.n.01", "picture.n.01", "mirror.n.01", "switch.n.01", "wall_socket.n.01",
-                        "wall_clock.n.01", "towel_rack.n.01", "poster.n.01"}) {
+                        "wall_clock.n.01", "towel_rack.n.01", "poster.n.01", "wall_nail.n.01"}) {
     if (is(s)) return Kind::on_wall;
   }
   return models.has_property(synset, "sceneObject") ? Kind::furniture : Kind::small;
@@ -551,6 +552,17 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
           continue;
         }
         builder.add(synset, at, turns, on_wall || models.has_property(synset, "sceneObject"));
+      }
+    }
+  }
+  // The pairs an activity may attach, at most kAttachments per pair of synsets.
+  for (const auto& [object, to] : extras.attachments) {
+    int pairs = 0;
+    for (const ObjectPlacement& a : file.objects) {
+      for (const ObjectPlacement& b : file.objects) {
+        if (&a == &b || pairs >= kAttachments || !models.is_a(a.synset, object) || !models.is_a(b.synset, to)) continue;
+        file.attachments.push_back({a.name, b.name});
+        ++pairs;
       }
     }
   }

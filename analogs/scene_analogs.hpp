@@ -82,6 +82,9 @@ struct AnalogExtras {
   // Synsets the category models lack (BEHAVIOR-100's sunglass.n.01) built as
   // another's (an ancestor's): synset -> the synset whose model it takes.
   std::map<std::string, std::string> modelled_as;
+  // Synsets (object, to) an activity attaches: every object of the first
+  // with every object of the second may be (SceneFile::attachments).
+  std::vector<std::pair<std::string, std::string>> attachments;
 };
 
 // chore::Error for an extra object's room the inventory lacks.

@@ -74,14 +74,14 @@ void write_contact_sheet(const std::string& path, const std::vector<Result>& res
   write_png(path, sheet, "contact sheet");
 }
 
-// Two envs of a VectorEnv, reset at `seed`: env 0 must start bit for bit as
-// `env` did (the same seed, the same instance, from a second build of the
-// scene), then both take `steps` seeded random low-level actions with
-// finite rewards and Q in [0, 1].
+// A VectorEnv (of one env: the next would take the next seed, another
+// instance), reset at `seed`: it must start bit for bit as `env` did (the
+// same seed, the same instance, from a second build of the scene), then take
+// `steps` seeded random low-level actions with finite rewards and Q in [0, 1].
 void run_in_vector_env(const EnvConfig& config, const Env& env, uint64_t seed, int steps) {
   VectorEnvConfig vector;
   vector.env = config;
-  vector.num_envs = 2;
+  vector.num_envs = 1;
   VectorEnv envs(vector);
   envs.reset(seed);
   const mjModel* m = env.world().model();
@@ -92,7 +92,7 @@ void run_in_vector_env(const EnvConfig& config, const Env& env, uint64_t seed, i
   const Space& space = envs.single_action_space();
   const size_t size = space.element_count();
   Rng rng(seed);
-  std::vector<float> actions(2 * size);
+  std::vector<float> actions(size);
   for (int step = 0; step < steps; ++step) {
     for (float& x : actions) x = static_cast<float>(uniform(rng, space.low, space.high));
     const Batch batch = envs.step(actions);

@@ -20,8 +20,8 @@ struct CoverageOptions {
   std::string dir;
   uint64_t seed = 0;
   int threads = 1;  // files instantiated at once
-  // After instantiating, run each in a VectorEnv of two envs for this many
-  // random low-level steps (0: not run), checking env 0 starts as the Env did.
+  // After instantiating, run each in a VectorEnv for this many random
+  // low-level steps (0: not run), checking it starts as the Env did.
   int steps = 0;
   // A PNG of every instantiated activity's head camera and top-down view ("": none).
   std::string sheet;

@@ -130,7 +130,7 @@ CommandLineParser::Impl::Impl() {
       ->capture_default_str();
   coverage_cmd
       ->add_option("--steps", c.coverage.steps,
-                   "Then run each in a VectorEnv of 2 envs for this many random low-level steps (0: not run)")
+                   "Then run each in a VectorEnv for this many random low-level steps (0: not run)")
       ->check(integer_in(0, 100000))
       ->capture_default_str();
   coverage_cmd->add_option("--sheet", c.coverage.sheet,

@@ -305,7 +305,9 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     if (l.predicate == "inside") return sample_inside(w, first.index, second.index, rng);
     return sample_under(w, first.index, second.index, rng);
   }
-  if (l.predicate == "open") {
+  if (l.predicate == "attached" && value && binding(l.args.at(1)).kind == Binding::Kind::object) {
+    return sample_attached(w, first.index, binding(l.args[1]).index, rng);
+  } else if (l.predicate == "open") {
     sample_open(w, first.index, value, rng);
   } else if (l.predicate == "dusty" || l.predicate == "stained") {
     return sample_covered(w, first.index, l.predicate == "dusty" ? "dust" : "stain", value, rng);

@@ -17,6 +17,7 @@
 #include "analogs/scene_analogs.hpp"
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "env/env_impl.hpp"
 #include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
@@ -416,6 +417,45 @@ TEST(SceneAnalogs, AGardenHasItsLawnAndContainersHoldTheirContents) {
   const SceneObject* box = scene.find_object("tupperware_1");
   ASSERT_NE(box, nullptr);
   EXPECT_GT(object_aabb(world, static_cast<int>(box - scene.objects().data())).extent().x(), chorizo.head<2>().norm());
+}
+
+// BDDL's attached: a rod attached to a wall nail is welded where it was
+// sampled, stays there as the world steps, and is let go at the next reset.
+TEST(SceneAnalogs, AttachedObjectsAreWeldedWhereSampled) {
+  const fs::path file = test::scratch_dir("analog_attached") / "rod_on_nail" / "problem0.bddl";
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << R"((define (problem rod_on_nail-0)
+    (:domain omnigibson)
+    (:objects
+        wall_nail.n.01_1 - wall_nail.n.01
+        curtain_rod.n.01_1 - curtain_rod.n.01
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (attached curtain_rod.n.01_1 wall_nail.n.01_1)
+        (inroom wall_nail.n.01_1 living_room)
+        (inroom floor.n.01_1 living_room)
+        (ontop agent.n.01_1 floor.n.01_1))
+    (:goal (and (not (attached ?curtain_rod.n.01_1 ?wall_nail.n.01_1)))))
+)";
+  EnvConfig config;
+  config.activity = file.string();
+  config.observations = {"proprio"};
+  config.reachable_instances = false;
+  Env env(config);
+  const auto reset = env.reset(0);
+  EXPECT_EQ(reset.info.satisfied, 0) << "attached at the start";
+  World& world = env.impl().world();
+  const Scene& scene = world.scene();
+  const int rod = static_cast<int>(scene.find_object("curtain_rod_1") - scene.objects().data());
+  const int nail = static_cast<int>(scene.find_object("wall_nail_1") - scene.objects().data());
+  ASSERT_TRUE(attached(world, rod, nail));
+  EXPECT_GT(object_aabb(world, rod).lo.z(), 0.5) << "up on the nail, not on the floor";
+  const Eigen::Vector3d before = object_aabb(world, rod).center();
+  world.step(120);
+  EXPECT_LT((object_aabb(world, rod).center() - before).norm(), 0.03) << "held (a soft weld sags), not fallen";
+  world.reset(scene.robot_start());
+  EXPECT_FALSE(attached(world, rod, nail));
 }
 
 }  // namespace

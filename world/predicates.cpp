@@ -183,6 +183,10 @@ bool attached(const World& w, int a, int b) {
   auto is = [&](int body, int object) {
     return object >= 0 ? scene.object_of_body(body) == object : m->body_rootid[body] == robot;
   };
+  for (const Scene::Attachment& at : scene.attachments()) {  // to furniture in a static body too
+    if (at.weld >= 0 && m->eq_active[at.weld] && ((at.object == a && at.to == b) || (at.object == b && at.to == a)))
+      return true;
+  }
   for (int e = 0; e < m->neq; ++e) {
     if (!m->eq_active[e] || (m->eq_type[e] != mjEQ_WELD && m->eq_type[e] != mjEQ_CONNECT)) continue;
     const int b1 = m->eq_obj1id[e], b2 = m->eq_obj2id[e];

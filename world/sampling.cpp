@@ -195,6 +195,27 @@ bool sample_onfloor(World& w, int a, int room, Rng& rng, const SampleOptions& op
   });
 }
 
+bool sample_attached(World& w, int a, int b, Rng& rng, const SampleOptions& options) {
+  const Footprint f = footprint(w, a);
+  const Aabb box = object_aabb(w, b);
+  // Clear of everything but b (a rod along the wall its nail is on, not into
+  // it: a weld against a contact throws the object across the room).
+  const auto clear = [&] {
+    const mjData* d = w.data();
+    for (int c = 0; c < d->ncon; ++c) {
+      const int o1 = w.scene().object_of_geom(d->contact[c].geom1), o2 = w.scene().object_of_geom(d->contact[c].geom2);
+      if ((o1 == a) != (o2 == a) && o1 != b && o2 != b) return false;
+    }
+    return true;
+  };
+  for (int attempt = 0; attempt < options.attempts; ++attempt) {
+    const Eigen::Vector2d p = point_in(box, 0, rng);
+    place(w, a, p.x(), p.y(), box.hi.z() + kDropHeight + f.bottom, uniform_index(rng, 4) * M_PI / 2);
+    if (clear()) return w.attach_objects(a, b);
+  }
+  return false;
+}
+
 void sample_open(World& w, int a, bool open, Rng& rng) {
   const SceneObject& o = w.scene().objects()[a];
   const mjModel* m = w.model();

@@ -23,6 +23,11 @@ bool sample_ontop(World& world, int a, int b, Rng& rng, const SampleOptions& opt
 bool sample_inside(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
 bool sample_under(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
 bool sample_onfloor(World& world, int a, int room, Rng& rng, const SampleOptions& options = {});
+// a attached to b (BDDL's attached): a on top of b's box at a random point of
+// it, turned a quarter turn at a time, clear of all but b, held there by
+// their attachment weld (Scene::attachments()); false when the scene has none
+// for the pair or no pose is clear.
+bool sample_attached(World& world, int a, int b, Rng& rng, const SampleOptions& options = {});
 // The robot's base at a collision-free pose in `room` (200 tries).
 bool sample_robot_in_room(World& world, int room, Rng& rng);
 // Sets an articulated object open (one joint, at random, between 30% and 100%

@@ -425,6 +425,23 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
                     "  <worldbody>\n" +
                     lights + world + "  </worldbody>\n";
   if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
+  // Attachments: a weld each, from the object's body to what it attaches to.
+  std::string attach_welds;
+  std::vector<std::pair<int, int>> attached;  // object indices, in weld order
+  const auto index_of = [&](const std::string& name) {
+    for (size_t i = 0; i < scene->objects_.size(); ++i) {
+      if (scene->objects_[i].name == name) return static_cast<int>(i);
+    }
+    throw Error(path + ": attachment names no object '" + name + "'");
+  };
+  for (const chore::Attachment& a : file.attachments) {
+    const int object = index_of(a.object), to = index_of(a.to);
+    if (in_static_body[object] || object == to) continue;  // welded to the world already
+    attach_welds += "    <weld name=\"attach_" + std::to_string(attached.size()) + "\" body1=\"" + holder_bodies[to] +
+                    "\" body2=\"" + holder_bodies[object] + "\" active=\"false\" solref=\"0.005 1\"/>\n";
+    attached.push_back({object, to});
+  }
+  if (!attach_welds.empty()) xml += "  <equality>\n" + attach_welds + "  </equality>\n";
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
     xml += robot_mjcf_children(read_text_file(robot_path, kMaxMjcfBytes, "a robot file"), robot_path);
@@ -496,6 +513,10 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
             options.robot ? mj_name2id(model, mjOBJ_EQUALITY, ("grasp_" + std::string(jname)).c_str()) : -1);
       }
     }
+  }
+  for (size_t k = 0; k < attached.size(); ++k) {
+    const int weld = mj_name2id(model, mjOBJ_EQUALITY, ("attach_" + std::to_string(k)).c_str());
+    scene->attachments_.push_back({attached[k].first, attached[k].second, weld});
   }
   for (const Room& room : scene->rooms_) {
     std::vector<int> floors;

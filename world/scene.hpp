@@ -99,6 +99,11 @@ class Scene {
   int camera() const { return camera_; }                    // the egocentric camera
   int overview_camera() const { return overview_camera_; }  // third-person, top-down
   const std::vector<int>& ceiling_lights() const { return ceiling_lights_; }
+  // SceneFile::attachments, resolved: objects() indices and the weld's equality id.
+  struct Attachment {
+    int object, to, weld;
+  };
+  const std::vector<Attachment>& attachments() const { return attachments_; }
   const std::string& mjcf() const { return mjcf_; }  // the generated MJCF text
 
  private:
@@ -114,6 +119,7 @@ class Scene {
   bool has_robot_ = true;
   int camera_ = -1, overview_camera_ = -1;
   std::vector<int> ceiling_lights_;
+  std::vector<Attachment> attachments_;
 };
 
 }  // namespace chore

@@ -85,6 +85,12 @@ struct CeilingLight {
   Rgb rgb;
 };
 
+// Two objects an activity may attach (BDDL's attached: a hanger in a
+// wardrobe, a rod on a wall nail): a weld between them, off at the start.
+struct Attachment {
+  std::string object, to;  // object names
+};
+
 struct SceneFile {
   std::string name, path;
   double wall_height = 2.6, wall_thickness = 0.1;
@@ -94,6 +100,7 @@ struct SceneFile {
   std::vector<ObjectPlacement> objects;
   std::map<std::string, ObjectModel> models;  // by ObjectPlacement::model
   Pose2 robot_start;
+  std::vector<Attachment> attachments;  // made by analogs; scene files have none
 };
 
 // `path` names the file in messages and anchors object models given as .json

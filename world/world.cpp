@@ -37,6 +37,9 @@ mjData* World::scratch() const {
 
 void World::reset(const Pose2& base) {
   release();
+  for (const Scene::Attachment& a : scene_->attachments()) {
+    if (a.weld >= 0) model_->eq_active[a.weld] = 0;
+  }
   sleeping_->wake_all();
   states_.reset();
   mj_resetData(model_, data_);
@@ -220,22 +223,36 @@ int World::grasped_body() const {
   return grasped_weld_ < 0 ? -1 : model_->eq_obj2id[grasped_weld_];
 }
 
-void World::attach(int object, int weld) {
-  const int hand = robot_->gripper_body, body = model_->eq_obj2id[weld];
-  // Weld error in MuJoCo 2.2.2: (x_hand + R_hand * relpos) - (x_body + R_body * anchor),
-  // orientation q_hand * relquat vs q_body. Zero error in the current pose:
+void World::hold_in_place(int weld) {
+  const int holder = model_->eq_obj1id[weld], body = model_->eq_obj2id[weld];
+  // Weld error in MuJoCo 2.2.2: (x_holder + R_holder * relpos) - (x_body + R_body * anchor),
+  // orientation q_holder * relquat vs q_body. Zero error in the current pose:
   mjtNum* eq = model_->eq_data + mjNEQDATA * weld;
-  mjtNum delta[3], relpos[3], hand_inverse[4];
+  mjtNum delta[3], relpos[3], holder_inverse[4];
   mju_zero3(eq);  // anchor at the body's origin
-  mju_sub3(delta, data_->xpos + 3 * body, data_->xpos + 3 * hand);
-  mju_rotVecMatT(relpos, delta, data_->xmat + 9 * hand);
+  mju_sub3(delta, data_->xpos + 3 * body, data_->xpos + 3 * holder);
+  mju_rotVecMatT(relpos, delta, data_->xmat + 9 * holder);
   mju_copy3(eq + 3, relpos);
-  mju_negQuat(hand_inverse, data_->xquat + 4 * hand);
-  mju_mulQuat(eq + 6, hand_inverse, data_->xquat + 4 * body);
+  mju_negQuat(holder_inverse, data_->xquat + 4 * holder);
+  mju_mulQuat(eq + 6, holder_inverse, data_->xquat + 4 * body);
   eq[10] = 1.0;  // torquescale
   model_->eq_active[weld] = 1;
+}
+
+void World::attach(int object, int weld) {
+  hold_in_place(weld);  // the grasp welds go from the gripper to the object
   grasped_ = object;
   grasped_weld_ = weld;
+}
+
+bool World::attach_objects(int object, int to) {
+  for (const Scene::Attachment& a : scene_->attachments()) {
+    if (a.object != object || a.to != to || a.weld < 0) continue;
+    mj_kinematics(model_, data_);
+    hold_in_place(a.weld);
+    return true;
+  }
+  return false;
 }
 
 bool World::hold(int object) {

@@ -118,6 +118,10 @@ class World {
   bool hold(int object);
   // Lets go of whatever the hand holds.
   void release();
+  // Attaches `object` to `to` where they are now, through their
+  // Scene::attachments() weld; false when the scene has none for the pair.
+  // reset() detaches all.
+  bool attach_objects(int object, int to);
   Pose2 base_pose() const;
   double time() const;
 
@@ -129,6 +133,8 @@ class World {
   // masked and the static geoms left out of its per-geom loops.
   void run_masked(void (*stage)(const mjModel_*, mjData_*));
   void attach(int object, int weld);
+  // Sets `weld` (body1 -> body2) to hold body2 where it is now relative to body1, and turns it on.
+  void hold_in_place(int weld);
 
   std::shared_ptr<const Scene> scene_;
   mjModel_* model_ = nullptr;
