@@ -29,8 +29,16 @@ bool touching(const World& w, int a, int b) {
   return in_contact(w, a, b);
 }
 
+namespace {
+// Where a lies: its box's centre; a cloth's middle tile (a towel hanging
+// over a washer's front has its box's centre below the top it lies on).
+Eigen::Vector3d lying_point(const World& w, int a) {
+  return w.scene().objects()[a].keypoints.empty() ? object_aabb(w, a).center() : object_frame(w, a).pos;
+}
+}  // namespace
+
 bool ontop(const World& w, int a, int b) {
-  const Eigen::Vector3d c = object_aabb(w, a).center();
+  const Eigen::Vector3d c = lying_point(w, a);
   return touching(w, a, b) && hits(w, b, c, kDown, kVerticalRange) && !hits(w, b, c, kUp, kVerticalRange);
 }
 

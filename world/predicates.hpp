@@ -12,7 +12,7 @@
 namespace chore {
 
 bool touching(const World& world, int a, int b);
-// a rests on b: in contact, b below a's centre and not above it.
+// a rests on b: in contact, b below a's centre (a cloth's middle) and not above it.
 bool ontop(const World& world, int a, int b);
 // a's centre is in b's box and b encloses it on both sides along at least two
 // of three axes (vertical, and two horizontal ones).

@@ -383,10 +383,12 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // object's 8 contacts, plus the robot's and joint limits, up to the
   // restaurant's 65 free objects: past that (generated scenes of hundreds)
   // the rows would cost gigabytes per env, and objects at rest sleep out of
-  // collision detection (world/sleeping.hpp), so only those awake need rows.
+  // collision detection (world/sleeping.hpp), so only those awake need rows;
+  // in such scenes they start asleep (World::reset).
   int free_objects = 0;
   for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
-  const int nconmax = 200 + 8 * std::min(free_objects, 65), njmax = 4 * nconmax;
+  scene->free_objects_ = free_objects;
+  const int nconmax = 200 + 8 * std::min(free_objects, kFreeObjectsWithRows), njmax = 4 * nconmax;
   std::string xml = "<mujoco model=\"" + scene->name_ +
                     "\">\n"
                     "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"

@@ -99,6 +99,10 @@ class Scene {
   int camera() const { return camera_; }                    // the egocentric camera
   int overview_camera() const { return overview_camera_; }  // third-person, top-down
   const std::vector<int>& ceiling_lights() const { return ceiling_lights_; }
+  // Contact rows are allocated for this many free objects at most (see
+  // scene.cpp's <size>); a scene with more starts them asleep.
+  static constexpr int kFreeObjectsWithRows = 65;
+  int free_objects() const { return free_objects_; }
   // SceneFile::attachments, resolved: objects() indices and the weld's equality id.
   struct Attachment {
     int object, to, weld;
@@ -120,6 +124,7 @@ class Scene {
   int camera_ = -1, overview_camera_ = -1;
   std::vector<int> ceiling_lights_;
   std::vector<Attachment> attachments_;
+  int free_objects_ = 0;
 };
 
 }  // namespace chore

@@ -217,6 +217,10 @@ void Sleeping::wake_all() {
   resting_.clear();
 }
 
+void Sleeping::all_at_rest() {
+  for (Object& o : objects_) o.still_steps = kStillSteps;
+}
+
 bool Sleeping::asleep(int object) const {
   const Object& o = objects_[static_cast<size_t>(object)];
   return o.static_body >= 0 ? static_asleep_[static_cast<size_t>(o.static_body)] : o.asleep;

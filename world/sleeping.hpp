@@ -63,6 +63,10 @@ class Sleeping {
   void append_resting_contacts(const mjModel_* m, mjData* d) const;
   // Everyone awake, nothing remembered.
   void wake_all();
+  // Everyone as if at rest already: each object sleeps at the next step
+  // unless it moves or something awake is near it (objects placed at rest,
+  // too many to be awake at once).
+  void all_at_rest();
 
   int sleepers() const;
   bool asleep(int object) const;

@@ -41,6 +41,9 @@ void World::reset(const Pose2& base) {
     if (a.weld >= 0) model_->eq_active[a.weld] = 0;
   }
   sleeping_->wake_all();
+  // Too many free objects to give each contact rows while they settle: they
+  // were placed at rest, and sleep from the first step.
+  if (scene_->free_objects() > Scene::kFreeObjectsWithRows) sleeping_->all_at_rest();
   states_.reset();
   mj_resetData(model_, data_);
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
