@@ -308,15 +308,31 @@ TEST(SceneAnalogs, AreSeededConnectedAndCollisionFree) {
   EXPECT_GT(free_objects, 5);
 }
 
+// A BEHAVIOR-1K activity written for a test: DIR/NAME/problem0.bddl in the
+// scratch folder SCRATCH, as BEHAVIOR-1K keeps its activities.
+fs::path write_activity(const std::string& scratch, const std::string& name, const std::string& bddl) {
+  const fs::path file = test::scratch_dir(scratch) / name / "problem0.bddl";
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << bddl;
+  return file;
+}
+
+// An env of it without pictures, its instance whether in reach or not.
+EnvConfig unpictured(const fs::path& activity) {
+  EnvConfig config;
+  config.activity = activity.string();
+  config.observations = {"proprio"};
+  config.reachable_instances = false;
+  return config;
+}
+
 // A BEHAVIOR-1K activity no scene file has: it gets the smallest inventory
 // with a kitchen, a countertop there, and its apple, plate and bowl as added
 // free objects, which its sampler puts on the countertop, the plate first
 // though the file names the apple's placement first (support first, as
 // BEHAVIOR samples: else the apple stays behind when the plate moves).
 TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
-  const fs::path file = test::scratch_dir("analog_activity") / "apple_on_counter" / "problem0.bddl";
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << R"((define (problem apple_on_counter-0)
+  const fs::path file = write_activity("analog_activity", "apple_on_counter", R"((define (problem apple_on_counter-0)
     (:domain omnigibson)
     (:objects
         countertop.n.01_1 - countertop.n.01
@@ -333,7 +349,7 @@ TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
         (inroom floor.n.01_1 kitchen)
         (ontop agent.n.01_1 floor.n.01_1))
     (:goal (and (inside ?apple.n.01_1 ?bowl.n.01_1))))
-)";
+)");
   const Problem problem = load_bddl(file.string());
   const SceneInventory& inventory = activity_inventory(problem);
   int smallest = 1 << 30;
@@ -373,9 +389,7 @@ TEST(SceneAnalogs, AnActivityIsInstantiatedInTheAnalogOfAScene) {
 // agent starts on, a small container grows to hold what :init puts in it,
 // and a goal may ask what a container contains.
 TEST(SceneAnalogs, AGardenHasItsLawnAndContainersHoldTheirContents) {
-  const fs::path file = test::scratch_dir("analog_garden") / "chorizo_on_lawn" / "problem0.bddl";
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << R"((define (problem chorizo_on_lawn-0)
+  const fs::path file = write_activity("analog_garden", "chorizo_on_lawn", R"((define (problem chorizo_on_lawn-0)
     (:domain omnigibson)
     (:objects
         lawn.n.01_1 - lawn.n.01
@@ -393,16 +407,12 @@ TEST(SceneAnalogs, AGardenHasItsLawnAndContainersHoldTheirContents) {
         (inroom floor.n.01_1 garden)
         (ontop agent.n.01_1 lawn.n.01_1))
     (:goal (and (contains ?bucket.n.01_1 ?water.n.06_1))))
-)";
+)");
   const CategoryModels& models = *CategoryModels::shipped();
   const Eigen::Vector3d chorizo = models.size("chorizo.n.01"), tupperware = models.size("tupperware.n.01");
   ASSERT_GT(chorizo.head<2>().norm(), tupperware.x()) << "the test needs a container too small of its own";
 
-  EnvConfig config;
-  config.activity = file.string();
-  config.observations = {"proprio"};
-  config.reachable_instances = false;
-  Env env(config);
+  Env env(unpictured(file));
   const auto reset = env.reset(0);
   EXPECT_EQ(reset.info.total, 1);
   EXPECT_EQ(reset.info.satisfied, 0) << "the bucket holds no water yet";
@@ -422,9 +432,7 @@ TEST(SceneAnalogs, AGardenHasItsLawnAndContainersHoldTheirContents) {
 // BDDL's attached: a rod attached to a wall nail is welded where it was
 // sampled, stays there as the world steps, and is let go at the next reset.
 TEST(SceneAnalogs, AttachedObjectsAreWeldedWhereSampled) {
-  const fs::path file = test::scratch_dir("analog_attached") / "rod_on_nail" / "problem0.bddl";
-  fs::create_directories(file.parent_path());
-  std::ofstream(file) << R"((define (problem rod_on_nail-0)
+  const fs::path file = write_activity("analog_attached", "rod_on_nail", R"((define (problem rod_on_nail-0)
     (:domain omnigibson)
     (:objects
         wall_nail.n.01_1 - wall_nail.n.01
@@ -437,12 +445,8 @@ TEST(SceneAnalogs, AttachedObjectsAreWeldedWhereSampled) {
         (inroom floor.n.01_1 living_room)
         (ontop agent.n.01_1 floor.n.01_1))
     (:goal (and (not (attached ?curtain_rod.n.01_1 ?wall_nail.n.01_1)))))
-)";
-  EnvConfig config;
-  config.activity = file.string();
-  config.observations = {"proprio"};
-  config.reachable_instances = false;
-  Env env(config);
+)");
+  Env env(unpictured(file));
   const auto reset = env.reset(0);
   EXPECT_EQ(reset.info.satisfied, 0) << "attached at the start";
   World& world = env.impl().world();
