@@ -53,11 +53,14 @@ const std::string& needs_model(const Needs& needs, const std::string& synset) {
 Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   const KnowledgeBase& dialect = *dialect_knowledge_base(problem.domain);
   std::map<std::string, std::string> room_of;
-  std::set<std::string> future, substances;
+  std::set<std::string> future, substances, placed;
   for (const Literal& l : problem.init) {
     if (l.negated) continue;
     if (l.predicate == "inroom" && l.args.size() == 2) room_of[l.args[0]] = l.args[1];
     if (l.predicate == "future" && l.args.size() == 1) future.insert(l.args[0]);
+    if (l.args.size() == 2 && (l.predicate == "ontop" || l.predicate == "inside" || l.predicate == "onfloor" ||
+                               l.predicate == "under" || l.predicate == "nextto"))
+      placed.insert(l.args[0]);
     if (l.args.size() == 2 && (l.predicate == "covered" || l.predicate == "filled" || l.predicate == "contains" ||
                                l.predicate == "saturated" || l.predicate == "insource"))
       substances.insert(l.args[1]);
@@ -66,7 +69,8 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   for (const auto& [instance, room] : room_of) needs.rooms.insert(room);
   for (const ObjectDecl& d : problem.objects) {
     if (d.type == "agent.n.01" || d.type == "floor.n.01" || future.contains(d.name)) continue;
-    if (substances.contains(d.name) || (dialect.contains(d.type) && dialect.is_substance(d.type))) continue;
+    const bool substance = dialect.contains(d.type) && dialect.is_substance(d.type) && !placed.contains(d.name);
+    if (substances.contains(d.name) || substance) continue;
     const std::string model = model_synset(d.type, kb, dialect);
     if (model.empty()) continue;
     if (model != d.type) needs.modelled_as[d.type] = model;

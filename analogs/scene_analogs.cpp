@@ -524,9 +524,17 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
         analog.left_out += !furnish(room, models, e.synset, extras.clear_tops, rng, builder);
         continue;
       }
-      // An object of no room given goes in the first room with space for it.
       Eigen::Vector3d at;
       int turns = 0;
+      if (!e.loose && kind_of(models, e.synset) == Kind::on_wall) {  // a window the room lacks: on its wall
+        if (place_on_wall(room, models.size(e.synset), false, rng, at, turns)) {
+          builder.add(e.synset, at, turns, true);
+        } else {
+          ++analog.left_out;
+        }
+        continue;
+      }
+      // An object of no room given goes in the first room with space for it.
       bool placed = place_small(room, models.size(e.synset), rng, at, turns);
       for (size_t r = 0; !placed && e.room.empty() && r < rooms.size(); ++r) {
         placed = place_small(rooms[r], models.size(e.synset), rng, at, turns);

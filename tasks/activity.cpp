@@ -110,7 +110,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   const std::string where = "activity '" + a->name_ + "' in scene '" + scene.name() + "'";
 
   std::map<std::string, std::string> rooms;  // instance -> BDDL room
-  std::set<std::string> substances;
+  std::set<std::string> substances, placed;
   auto check_predicate = [&](const Literal& l) {
     if (!kKinematic.count(l.predicate) && !kUnaryStates.count(l.predicate) && !kOther.count(l.predicate)) {
       throw Error(path + ": unsupported predicate '" + l.predicate + "' in " + to_bddl(l));
@@ -120,6 +120,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   for (const Literal& l : a->problem_.init) {
     check_predicate(l);
     if (l.predicate == "inroom" && l.args.size() == 2) rooms[l.args[0]] = l.args[1];
+    if (kKinematic.count(l.predicate) && !l.args.empty()) placed.insert(l.args[0]);
   }
   a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
@@ -143,7 +144,10 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
       }
       if (b.index < 0) throw Error(where + ": no room '" + room->second + "' for " + decl.name);
       b.kind = Binding::Kind::floor;
-    } else if (substances.count(decl.name) || (a->kb_->contains(decl.type) && a->kb_->is_substance(decl.type))) {
+    } else if (substances.count(decl.name) ||
+               // What :init places is an object, whatever the knowledge base
+               // (BEHAVIOR-100's soap on a shelf; its knowledge base calls soap a liquid).
+               (!placed.count(decl.name) && a->kb_->contains(decl.type) && a->kb_->is_substance(decl.type))) {
       b.kind = Binding::Kind::substance;
     } else {
       a->kb_->is_a(decl.type, decl.type);  // an unknown synset is an error here

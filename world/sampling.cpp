@@ -219,6 +219,7 @@ bool sample_attached(World& w, int a, int b, Rng& rng, const SampleOptions& opti
 void sample_open(World& w, int a, bool open, Rng& rng) {
   const SceneObject& o = w.scene().objects()[a];
   const mjModel* m = w.model();
+  if (o.joints.empty() && !open) return;  // closed already: nothing opens
   if (o.joints.empty()) throw Error("sampling: object '" + o.name + "' has no joints to open");
   for (int j : o.joints) w.data()->qpos[m->jnt_qposadr[j]] = m->jnt_range[2 * j];
   if (open) {

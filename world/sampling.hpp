@@ -31,7 +31,8 @@ bool sample_attached(World& world, int a, int b, Rng& rng, const SampleOptions& 
 // The robot's base at a collision-free pose in `room` (200 tries).
 bool sample_robot_in_room(World& world, int room, Rng& rng);
 // Sets an articulated object open (one joint, at random, between 30% and 100%
-// of its range) or closed (every joint at its lower limit).
+// of its range) or closed (every joint at its lower limit; an object without
+// joints is closed as it is). chore::Error for opening one without joints.
 void sample_open(World& world, int a, bool open, Rng& rng);
 
 // A unary predicate on extended states made `value`: cooked, burnt, frozen, hot,
