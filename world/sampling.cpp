@@ -73,14 +73,14 @@ std::vector<int> geoms_except(const World& w, int a, int b = -1) {
   return out;
 }
 
-// In contact with another object or the scene (a cloth's tiles touching
-// each other do not count).
-bool touches_anything(const World& w, int a) {
+// In contact with another object than `except`, or the scene (a cloth's
+// tiles touching each other do not count).
+bool touches_anything(const World& w, int a, int except = -1) {
   const mjData* d = w.data();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
     const int o1 = w.scene().object_of_geom(con.geom1), o2 = w.scene().object_of_geom(con.geom2);
-    if ((o1 == a) != (o2 == a)) return true;
+    if ((o1 == a) != (o2 == a) && (except < 0 || (o1 != except && o2 != except))) return true;
   }
   return false;
 }
@@ -198,20 +198,12 @@ bool sample_onfloor(World& w, int a, int room, Rng& rng, const SampleOptions& op
 bool sample_attached(World& w, int a, int b, Rng& rng, const SampleOptions& options) {
   const Footprint f = footprint(w, a);
   const Aabb box = object_aabb(w, b);
-  // Clear of everything but b (a rod along the wall its nail is on, not into
-  // it: a weld against a contact throws the object across the room).
-  const auto clear = [&] {
-    const mjData* d = w.data();
-    for (int c = 0; c < d->ncon; ++c) {
-      const int o1 = w.scene().object_of_geom(d->contact[c].geom1), o2 = w.scene().object_of_geom(d->contact[c].geom2);
-      if ((o1 == a) != (o2 == a) && o1 != b && o2 != b) return false;
-    }
-    return true;
-  };
   for (int attempt = 0; attempt < options.attempts; ++attempt) {
     const Eigen::Vector2d p = point_in(box, 0, rng);
     place(w, a, p.x(), p.y(), box.hi.z() + kDropHeight + f.bottom, uniform_index(rng, 4) * M_PI / 2);
-    if (clear()) return w.attach_objects(a, b);
+    // Clear of everything but b (a rod along the wall its nail is on, not into
+    // it: a weld against a contact throws the object across the room).
+    if (!touches_anything(w, a, b)) return w.attach_objects(a, b);
   }
   return false;
 }
