@@ -22,6 +22,7 @@ struct Needs {
   std::vector<std::string> loose;
   std::set<std::string> rooms;
   std::map<std::string, std::string> modelled_as;
+  std::set<std::string> floors;  // BDDL rooms whose floor a state is asked of (dirt)
 };
 
 // `synset` if the models' knowledge base has it as an object, else its
@@ -50,6 +51,24 @@ const std::string& needs_model(const Needs& needs, const std::string& synset) {
   return as == needs.modelled_as.end() ? synset : as->second;
 }
 
+// The predicates a placement names its support with: a floor there is the room's.
+bool places(const std::string& predicate) {
+  return predicate == "ontop" || predicate == "inside" || predicate == "onfloor" || predicate == "under" ||
+         predicate == "nextto";
+}
+
+// Calls `f` with every literal of `formula` and the variables in scope.
+template <typename F>
+void each_literal(const Formula& formula, std::vector<Variable>& scope, const F& f) {
+  if (formula.op == Op::literal) {
+    f(formula.literal, scope);
+    return;
+  }
+  scope.insert(scope.end(), formula.variables.begin(), formula.variables.end());
+  for (const Formula& child : formula.children) each_literal(child, scope, f);
+  scope.resize(scope.size() - formula.variables.size());
+}
+
 Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   const KnowledgeBase& dialect = *dialect_knowledge_base(problem.domain);
   std::map<std::string, std::string> room_of;
@@ -58,15 +77,30 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
     if (l.negated) continue;
     if (l.predicate == "inroom" && l.args.size() == 2) room_of[l.args[0]] = l.args[1];
     if (l.predicate == "future" && l.args.size() == 1) future.insert(l.args[0]);
-    if (l.args.size() == 2 && (l.predicate == "ontop" || l.predicate == "inside" || l.predicate == "onfloor" ||
-                               l.predicate == "under" || l.predicate == "nextto"))
-      placed.insert(l.args[0]);
+    if (l.args.size() == 2 && places(l.predicate)) placed.insert(l.args[0]);
     if (l.args.size() == 2 && (l.predicate == "covered" || l.predicate == "filled" || l.predicate == "contains" ||
                                l.predicate == "saturated" || l.predicate == "insource"))
       substances.insert(l.args[1]);
   }
   Needs needs;
   for (const auto& [instance, room] : room_of) needs.rooms.insert(room);
+  // A floor asked for a state ((covered floor dust), in :init or the goal)
+  // is an object; a quantified floor variable asks it of every floor.
+  std::map<std::string, std::string> type_of;
+  for (const ObjectDecl& d : problem.objects) type_of[d.name] = d.type;
+  const auto floor_state = [&](const Literal& l, const std::vector<Variable>& scope) {
+    if (l.args.empty() || l.predicate == "inroom" || places(l.predicate)) return;
+    const std::string& a = l.args[0];
+    const auto var = std::find_if(scope.rbegin(), scope.rend(), [&](const Variable& v) { return v.name == a; });
+    const std::string type = var != scope.rend() ? var->type : type_of.contains(a) ? type_of[a] : "";
+    if (type != "floor.n.01") return;
+    for (const auto& [instance, room] : room_of) {
+      if (var != scope.rend() ? type_of[instance] == "floor.n.01" : instance == a) needs.floors.insert(room);
+    }
+  };
+  std::vector<Variable> scope;
+  for (const Literal& l : problem.init) floor_state(l, scope);
+  each_literal(problem.goal, scope, floor_state);
   for (const ObjectDecl& d : problem.objects) {
     if (d.type == "agent.n.01" || d.type == "floor.n.01" || future.contains(d.name)) continue;
     const bool substance = dialect.contains(d.type) && dialect.is_substance(d.type) && !placed.contains(d.name);
@@ -185,7 +219,7 @@ std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, con
 
 }  // namespace
 
-const SceneInventory& activity_inventory(const Problem& problem, const std::string& scene) {
+SceneInventory activity_inventory(const Problem& problem, const std::string& scene) {
   const Needs needs = needs_of(problem, CategoryModels::shipped()->knowledge_base());
   if (!scene.empty()) {
     const SceneInventory& inventory = find_scene_inventory(scene);
@@ -202,16 +236,28 @@ const SceneInventory& activity_inventory(const Problem& problem, const std::stri
       }
     }
   }
+  // The fewest rooms missing, then the fewest objects; a room no inventory
+  // has (BEHAVIOR-100's home_office) is added empty, and the activity's
+  // objects furnish it.
   const SceneInventory* best = nullptr;
+  size_t best_missing = 0;
   for (const SceneInventory& inventory : shipped_scene_inventories()) {
-    if (!missing_rooms(inventory, needs.rooms).empty()) continue;
-    if (!best || inventory.object_count() < best->object_count()) best = &inventory;
+    const size_t missing = missing_rooms(inventory, needs.rooms).size();
+    if (!best || std::pair(missing, inventory.object_count()) < std::pair(best_missing, best->object_count())) {
+      best = &inventory;
+      best_missing = missing;
+    }
   }
-  if (!best) {
-    throw Error(problem.name + ": no BEHAVIOR-1K scene has rooms " +
-                joined(std::vector<std::string>(needs.rooms.begin(), needs.rooms.end())));
+  if (!best) throw Error(problem.name + ": no BEHAVIOR-1K scene inventories");
+  SceneInventory chosen = *best;
+  for (const std::string& room : missing_rooms(*best, needs.rooms)) {
+    // A room named TYPE_N keeps its name; a type names its first room.
+    const size_t cut = room.rfind('_');
+    const bool named = cut != std::string::npos && cut + 1 < room.size() &&
+                       room.find_first_not_of("0123456789", cut + 1) == std::string::npos;
+    chosen.rooms.push_back({named ? room : room + "_0", named ? room.substr(0, cut) : room, {}});
   }
-  return *best;
+  return chosen;
 }
 
 SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& inventory,
@@ -237,6 +283,7 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
   for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
   extras.least_sizes = support_sizes(problem, models);
   extras.modelled_as = needs.modelled_as;
+  extras.floors.assign(needs.floors.begin(), needs.floors.end());
   std::map<std::string, std::string> synset_of;
   for (const ObjectDecl& d : problem.objects) synset_of[d.name] = d.type;
   for (const Literal& l : problem.init) {

@@ -272,10 +272,22 @@ class Builder {
   // Adds an instance of `synset`: model once per synset, a BDDL-style name.
   void add(const std::string& synset, const Eigen::Vector3d& pos, int quarter_turns, bool fixed) {
     if (!out_.file.models.contains(synset)) out_.file.models[synset] = models_.model(synset);
+    add(synset, synset, pos, quarter_turns, fixed);
+  }
+  // Adds an instance with a model of its own (a room's floor), under `key`.
+  void add(const std::string& key, ObjectModel model, const Eigen::Vector3d& pos) {
+    const std::string synset = model.synset;
+    out_.file.models[key] = std::move(model);
+    add(synset, key, pos, 0, true);
+  }
+
+ private:
+  void add(const std::string& synset, const std::string& model, const Eigen::Vector3d& pos, int quarter_turns,
+           bool fixed) {
     const std::string category = synset.substr(0, synset.find('.'));
     ObjectPlacement p;
     p.name = category + "_" + std::to_string(++count_[category]);
-    p.model = synset;
+    p.model = model;
     p.synset = synset;
     p.fixed = fixed;
     p.pos = pos;
@@ -284,7 +296,6 @@ class Builder {
     ++out_.placed;
   }
 
- private:
   const Models& models_;
   SceneAnalog& out_;
   std::map<std::string, int> count_;
@@ -486,6 +497,17 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
     file.ceiling_lights.push_back({{(r.x0 + r.x1) / 2, (r.y0 + r.y1) / 2, file.wall_height - 0.1}, {0.5, 0.5, 0.5}});
   }
   Builder builder(models, analog);
+  // Floors asked for as objects: a slab over the room inside its walls, its
+  // top the floor's, in the floor's colour; under everything, taking no space.
+  for (const std::string& name : extras.floors) {
+    const RoomLayout& room = rooms[room_of(inventory, {name, "floor.n.01"})];
+    const Rect inner = room.rect.grown(-kWall / 2);
+    constexpr double kSlab = 0.002;
+    ObjectModel model = category_models.model("floor.n.01", {inner.width(), inner.depth(), kSlab});
+    for (GeomSpec& g : model.root.geoms) g.rgb = floor_colour(room.inventory->type);
+    builder.add("floor.n.01 " + room.inventory->name, std::move(model),
+                {(inner.x0 + inner.x1) / 2, (inner.y0 + inner.y1) / 2, -kSlab});
+  }
   // Per room: doors (the doorways stay open: a door of the inventory stands
   // closed against a wall, openable), then furniture, largest first, then what
   // goes on walls and surfaces.

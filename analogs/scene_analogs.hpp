@@ -19,6 +19,7 @@
 //   on the walls   windows, pictures, mirrors, switches: at their height
 //   small objects  (free) on the top of a table, counter, cabinet or shelf of
 //                  their room, else on its floor
+//   floors         the rooms' own; an object (a slab 2 mm high) where asked
 //   the robot      starts in the first room with floor 0.5 m clear of everything
 // What does not fit is left out and counted (SceneAnalog::left_out).
 #pragma once
@@ -85,6 +86,10 @@ struct AnalogExtras {
   // Synsets (object, to) an activity attaches: every object of the first
   // with every object of the second may be (SceneFile::attachments).
   std::vector<std::pair<std::string, std::string>> attachments;
+  // Rooms (name or type, as ExtraObject::room) whose floor is an object: a
+  // fixed slab of synset floor.n.01 over the room's floor, in its colour,
+  // that keeps states as objects do (dust on the floor).
+  std::vector<std::string> floors;
 };
 
 // chore::Error for an extra object's room the inventory lacks.

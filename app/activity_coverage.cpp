@@ -38,6 +38,7 @@ std::string failure_cause(const std::string& error) {
   // Synsets and instances, quoted names and paths, numbers.
   cause = std::regex_replace(cause, std::regex(R"([A-Za-z_]+\.n\.\d+(_\d+)?)"), "_");
   cause = std::regex_replace(cause, std::regex(R"('[^'\s]*[./][^'\s]*')"), "'_'");
+  cause = std::regex_replace(cause, std::regex(R"('[a-z][a-z_]*_\d+')"), "'_'");  // scene objects: 'sink_1'
   cause = std::regex_replace(cause, std::regex(R"(\b\d+(\.\d+)?\b)"), "N");
   return cause;
 }

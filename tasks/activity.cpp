@@ -144,6 +144,13 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
       }
       if (b.index < 0) throw Error(where + ": no room '" + room->second + "' for " + decl.name);
       b.kind = Binding::Kind::floor;
+      for (size_t i = 0; i < scene.objects().size() && b.object < 0; ++i) {
+        const SceneObject& o = scene.objects()[i];
+        if (taken[i] || o.synset != "floor.n.01") continue;
+        if (scene.room_at(o.pos[0], o.pos[1]) != &scene.rooms()[b.index]) continue;
+        b.object = static_cast<int>(i);
+        taken[i] = true;
+      }
     } else if (substances.count(decl.name) ||
                // What :init places is an object, whatever the knowledge base
                // (BEHAVIOR-100's soap on a shelf; its knowledge base calls soap a liquid).
@@ -154,7 +161,8 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
       std::string seen;
       for (size_t i = 0; i < scene.objects().size() && b.index < 0; ++i) {
         const SceneObject& o = scene.objects()[i];
-        if (taken[i] || !a->kb_->contains(o.synset) || !a->kb_->is_a(o.synset, decl.type)) continue;
+        const KnowledgeBase& kb = a->kb_of(o.synset);
+        if (taken[i] || !kb.contains(o.synset) || !kb.contains(decl.type) || !kb.is_a(o.synset, decl.type)) continue;
         if (room != rooms.end()) {
           const Room* r = scene.room_at(o.pos[0], o.pos[1]);
           if (!r || !room_matches(*r, room->second)) {
@@ -207,6 +215,10 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   return a;
 }
 
+const KnowledgeBase& Activity::kb_of(const std::string& synset) const {
+  return kb_->contains(synset) ? *kb_ : *dialect_knowledge_base(Domain::omnigibson);
+}
+
 const Binding& Activity::binding(const std::string& instance) const {
   for (const auto& [name, b] : bindings_) {
     if (name == instance) return b;
@@ -234,9 +246,10 @@ void Activity::configure(World& world) const {
   }
   for (const GroundLiteral& l : goal_.literals) holder(l);
   for (const auto& [instance, b] : bindings_) {
-    if (b.kind != Binding::Kind::object) continue;
-    const std::string& s = scene.objects()[b.index].synset;
-    const KnowledgeBase& kb = *kb_;
+    const int index = b.kind == Binding::Kind::object ? b.index : b.kind == Binding::Kind::floor ? b.object : -1;
+    if (index < 0) continue;
+    const std::string& s = scene.objects()[index].synset;
+    const KnowledgeBase& kb = kb_of(s);
     ObjectAbilities ab;
     const auto states = kb.extended_states(s);
     auto keeps = [&](ExtendedState e) { return std::find(states.begin(), states.end(), e) != states.end(); };
@@ -250,7 +263,7 @@ void Activity::configure(World& world) const {
     ab.breakable = keeps(ExtendedState::broken_state);
     ab.cleaning_tool = kb.is_cleaning_tool(s);
     ab.slicer = kb.is_slicer(s);
-    ab.holds_liquid = kb.has_property(s, "waterSource") || liquid_holders.count(b.index);
+    ab.holds_liquid = kb.has_property(s, "waterSource") || liquid_holders.count(index);
     for (const auto& [property, source] :
          {std::pair{"heatSource", &ab.heat_source}, std::pair{"coldSource", &ab.cold_source}}) {
       if (!kb.has_property(s, property)) continue;
@@ -266,7 +279,7 @@ void Activity::configure(World& world) const {
       t.requires_inside = flag("requires_inside", false);
       *source = t;
     }
-    world.states().configure(b.index, ab);
+    world.states().configure(index, ab);
   }
   // Stains need a soaked cleaning tool, dust any (iGibson's rules).
   world.states().add_substance({"stain", true});
@@ -291,35 +304,40 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     const Room* now = w.scene().room_at(base.x, base.y);
     return now == &w.scene().rooms()[room] || sample_robot_in_room(w, room, rng);
   }
-  // A floor or substance first (covered floor dust): what chore cannot sample
-  // must hold, and holds() names why it cannot.
-  if (first.kind != Binding::Kind::object) return holds(w, l);
+  // A state of a floor is its object's (dust on it). What chore cannot
+  // sample (a substance first, a floor without an object) must hold, and
+  // holds() names why it cannot.
+  const bool kinematic = kKinematic.count(l.predicate) > 0;
+  const int a = first.kind == Binding::Kind::object                ? first.index
+                : first.kind == Binding::Kind::floor && !kinematic ? first.object
+                                                                   : -1;
+  if (a < 0) return holds(w, l);
   const bool value = !l.negated;
-  if (kKinematic.count(l.predicate)) {
+  if (kinematic) {
     // Negated placements are not sampled (as BEHAVIOR's sampler); fixed
     // objects stay where the scene has them. Both must simply hold.
-    if (l.negated || w.scene().objects()[first.index].fixed || l.predicate == "nextto" || l.predicate == "touching") {
+    if (l.negated || w.scene().objects()[a].fixed || l.predicate == "nextto" || l.predicate == "touching") {
       return holds(w, l);
     }
     const Binding& second = binding(l.args.at(1));
-    if (second.kind == Binding::Kind::floor) return sample_onfloor(w, first.index, second.index, rng);
+    if (second.kind == Binding::Kind::floor) return sample_onfloor(w, a, second.index, rng);
     // A cloth laid over b settles into overlaid or draped (the checks say which).
     if (l.predicate == "ontop" || l.predicate == "overlaid" || l.predicate == "draped")
-      return sample_ontop(w, first.index, second.index, rng);
-    if (l.predicate == "inside") return sample_inside(w, first.index, second.index, rng);
-    return sample_under(w, first.index, second.index, rng);
+      return sample_ontop(w, a, second.index, rng);
+    if (l.predicate == "inside") return sample_inside(w, a, second.index, rng);
+    return sample_under(w, a, second.index, rng);
   }
   if (l.predicate == "attached" && value && binding(l.args.at(1)).kind == Binding::Kind::object) {
-    return sample_attached(w, first.index, binding(l.args[1]).index, rng);
+    return sample_attached(w, a, binding(l.args[1]).index, rng);
   } else if (l.predicate == "open") {
-    sample_open(w, first.index, value, rng);
+    sample_open(w, a, value, rng);
   } else if (l.predicate == "dusty" || l.predicate == "stained") {
-    return sample_covered(w, first.index, l.predicate == "dusty" ? "dust" : "stain", value, rng);
+    return sample_covered(w, a, l.predicate == "dusty" ? "dust" : "stain", value, rng);
   } else if (l.predicate == "covered") {
-    return sample_covered(w, first.index, lemma(type_of(l.args.at(1))), value, rng);
+    return sample_covered(w, a, lemma(type_of(l.args.at(1))), value, rng);
   } else if (kUnaryStates.count(l.predicate) || l.predicate == "saturated" || l.predicate == "filled" ||
              l.predicate == "contains") {
-    sample_state(w, l.predicate, first.index, value, liquid_of(l));
+    sample_state(w, l.predicate, a, value, liquid_of(l));
   } else {
     return holds(w, l);
   }
@@ -353,6 +371,7 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   auto arg = [&](size_t i) -> const Binding& { return binding(l.args.at(i)); };
   auto object_arg = [&](size_t i) {
     const Binding& b = arg(i);
+    if (b.kind == Binding::Kind::floor && b.object >= 0) return b.object;  // its states are its object's
     if (b.kind != Binding::Kind::object) {
       throw Error("activity '" + name_ + "': " + to_bddl(l) + ": '" + l.args.at(i) + "' is not an object");
     }
@@ -405,7 +424,8 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     value = dirty(w, object_arg(0), p == "dusty" ? "dust" : "stain");
   } else if (p == "insource") {
     // What the object is (a sink is a source of water), not a state: sampled by holding.
-    value = kb_->is_source_of(scene.objects()[object_arg(0)].synset, type_of(l.args.at(1)));
+    const std::string& source = scene.objects()[object_arg(0)].synset;
+    value = kb_of(source).is_source_of(source, type_of(l.args.at(1)));
   } else {
     static const std::map<std::string, bool (*)(const World&, int)> unary = {
         {"open", is_open},    {"cooked", cooked},         {"burnt", burnt},      {"frozen", frozen}, {"hot", hot},

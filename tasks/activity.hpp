@@ -35,6 +35,9 @@ struct Binding {
   enum class Kind { object, floor, agent, substance, future };
   Kind kind = Kind::object;
   int index = -1;  // object: index in scene().objects(); floor: index in scene().rooms()
+  // floor: the scene object of synset floor.n.01 in that room, which keeps
+  // the floor's states (dust on it), or -1 where the scene has none.
+  int object = -1;
 };
 
 // The scene an activity is set in (tasks/activities/scenes.json), or "" if
@@ -84,6 +87,10 @@ class Activity {
   std::string type_of(const std::string& instance) const;
   std::string liquid_of(const Literal& literal) const;
   int agent_room(const World& world, const Binding& where) const;
+  // What knows a scene object's synset: the activity's knowledge base, else
+  // BEHAVIOR-1K's, whose synsets scene analogs are built of (a BEHAVIOR-100
+  // activity meets their openable_window.n.01).
+  const KnowledgeBase& kb_of(const std::string& synset) const;
 
   std::string name_;
   Problem problem_;

@@ -22,6 +22,8 @@ TEST(ActivityCoverage, FailuresOfOneCauseReadAlike) {
             "no scene object for _ (_) that is free");
   EXPECT_EQ(failure_cause("env: no instance of activity 'polishing_shoes' in 100 samples"),
             "env: no instance of activity '_' in N samples");
+  EXPECT_EQ(failure_cause("pick(apple.n.01_1): no base pose the robot can drive to brings 'apple_1' within reach"),
+            "pick(_): no base pose the robot can drive to brings '_' within reach");
   EXPECT_EQ(failure_cause("unsupported predicate 'insource' in (insource sink.n.01_1 water.n.06_1)"),
             "unsupported predicate 'insource' in (insource _ _)");
 }
@@ -30,13 +32,14 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   const auto dir = test::scratch_dir("coverage");
   std::filesystem::copy_file(default_tasks_dir() + "/activities/collect_trash.bddl", dir / "collect_trash.bddl");
   // An activity of either dialect without a scene gets the analog of an
-  // inventory with its rooms, and none has a home office.
-  const std::string unknown_room =
-      "(define (problem r) (:domain igibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01)"
-      " (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 home_office)) (:goal (onfloor ?agent.n.01_1 "
-      "?floor.n.01_1)))";
-  test::write_file(dir / "a" / "problem0.bddl", unknown_room);
-  test::write_file(dir / "b" / "problem0.bddl", unknown_room);
+  // inventory with its rooms; a room none has (a home office, a hammam) is
+  // added. Opening an apple fails alike in both files that ask it.
+  const std::string apple_opened =
+      "(define (problem r) (:domain igibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01 "
+      "apple.n.01_1 - apple.n.01) (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 home_office) "
+      "(onfloor apple.n.01_1 floor.n.01_1) (open apple.n.01_1)) (:goal (onfloor ?agent.n.01_1 ?floor.n.01_1)))";
+  test::write_file(dir / "a" / "problem0.bddl", apple_opened);
+  test::write_file(dir / "b" / "problem0.bddl", apple_opened);
   test::write_file(dir / "c" / "problem0.bddl",
                    "(define (problem garage_spa-0) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 "
                    "floor.n.01_1 floor.n.01_2 - floor.n.01) (:init (ontop agent.n.01_1 floor.n.01_1) (inroom "
@@ -48,22 +51,21 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   const nlohmann::json c = activity_coverage({.dir = dir.string(), .threads = 2, .steps = 3, .sheet = sheet}, log);
   EXPECT_EQ(c["total"], 5);  // the domain file is not an activity
   EXPECT_EQ(c["parsed"], 4);
-  EXPECT_EQ(c["instantiated"], 1);
-  EXPECT_EQ(c["ran"], 1) << "collect_trash ran in a VectorEnv from the same instance";
-  ASSERT_EQ(c["causes"].size(), 3u) << c["causes"].dump(1);
+  EXPECT_EQ(c["instantiated"], 2);
+  EXPECT_EQ(c["ran"], 2) << "collect_trash and garage_spa ran in a VectorEnv from the same instance";
+  ASSERT_EQ(c["causes"].size(), 2u) << c["causes"].dump(1);
   EXPECT_EQ(c["causes"][0]["count"], 2);
-  EXPECT_EQ(c["causes"][0]["cause"], "instantiate: r: no BEHAVIOR-1K scene has rooms home_office");
+  EXPECT_EQ(c["causes"][0]["cause"], "instantiate: sampling: object '_' has no joints to open");
   EXPECT_EQ(c["causes"][0]["example"], "a");  // a folder's problem0.bddl is named by its folder
-  EXPECT_EQ(c["causes"][1]["cause"], "instantiate: garage_spa-N: no BEHAVIOR-1K scene has rooms garage, hammam")
-      << c["causes"].dump(1);
-  EXPECT_EQ(c["causes"][2]["cause"].get<std::string>().substr(0, 7), "parse: ");
-  EXPECT_NE(format_coverage(c).find("5 activities; parsed and grounded 4 (80.0%), instantiated 1 (20.0%)"),
+  EXPECT_EQ(c["causes"][1]["cause"].get<std::string>().substr(0, 7), "parse: ");
+  EXPECT_NE(format_coverage(c).find("5 activities; parsed and grounded 4 (80.0%), instantiated 2 (40.0%)"),
             std::string::npos)
       << format_coverage(c);
-  // The contact sheet: one picture, the head camera's and the top-down view, drawn.
+  // The contact sheet: a picture per instance, the head camera's and the top-down view, drawn.
   const cv::Mat picture = cv::imread(sheet);
   ASSERT_FALSE(picture.empty());
-  EXPECT_EQ(picture.cols, 64 + 128);
+  EXPECT_EQ(picture.cols, 2 * (64 + 128));  // side by side, each under its name
+  EXPECT_EQ(picture.rows, 128 + 12);
   cv::Scalar mean, spread;
   cv::meanStdDev(picture, mean, spread);
   EXPECT_GT(mean[0] + mean[1] + mean[2], 3 * 30) << "not black";

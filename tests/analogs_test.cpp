@@ -18,6 +18,8 @@
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
+#include "tasks/activity.hpp"
+#include "tasks/vocabulary.hpp"
 #include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
@@ -460,6 +462,61 @@ TEST(SceneAnalogs, AttachedObjectsAreWeldedWhereSampled) {
   EXPECT_LT((object_aabb(world, rod).center() - before).norm(), 0.03) << "held (a soft weld sags), not fallen";
   world.reset(scene.robot_start());
   EXPECT_FALSE(attached(world, rod, nail));
+}
+
+// A BEHAVIOR-100 activity with a dusty floor in a room no inventory has (a
+// home office, added to the analog): the floor is an object of its room that
+// keeps the dust, laid where the floor lies exposed, and a floor nothing is
+// asked of stays the room's. A window of the inventory's, whose synset
+// (openable_window.n.01) BEHAVIOR-100 lacks, is its window.n.01 by
+// BEHAVIOR-1K's hierarchy.
+TEST(SceneAnalogs, AFloorKeepsDustAndSceneObjectsAreKnownByBehavior1kSynsets) {
+  const fs::path file = write_activity("analog_floor", "dusty_office", R"((define (problem dusty_office_0)
+    (:domain igibson)
+    (:objects
+        floor.n.01_1 floor.n.01_2 - floor.n.01
+        window.n.01_1 - window.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (dusty floor.n.01_1)
+        (not (open window.n.01_1))
+        (inroom floor.n.01_1 home_office)
+        (inroom floor.n.01_2 bedroom)
+        (inroom window.n.01_1 bedroom)
+        (onfloor agent.n.01_1 floor.n.01_2))
+    (:goal (and (not (dusty ?floor.n.01_1)) (open ?window.n.01_1))))
+)");
+  Env env(unpictured(file));
+  const auto reset = env.reset(0);
+  EXPECT_EQ(reset.info.total, 2);
+  EXPECT_EQ(reset.info.satisfied, 0) << "the floor is dusty and the window closed";
+  const World& world = env.world();
+  const Scene& scene = world.scene();
+  const Activity& activity = *env.activity();
+  const Binding& office = activity.binding("floor.n.01_1");
+  ASSERT_EQ(office.kind, Binding::Kind::floor);
+  EXPECT_EQ(scene.rooms()[office.index].type, "home_office");
+  ASSERT_GE(office.object, 0);
+  const SceneObject& slab = scene.objects()[office.object];
+  EXPECT_EQ(slab.synset, "floor.n.01");
+  EXPECT_TRUE(slab.fixed);
+  const Aabb box = object_aabb(world, office.object);
+  EXPECT_NEAR(box.hi.z(), 0, 1e-9) << "its top is the floor's";
+  const std::vector<Eigen::Vector3d>& dust = world.states().state(office.object).dirt.at("dust");
+  EXPECT_FALSE(dust.empty());
+  const Room& room = scene.rooms()[office.index];
+  for (const Eigen::Vector3d& local : dust) {
+    const Eigen::Vector3d p = object_frame(world, office.object).to_world(local);
+    EXPECT_NEAR(p.z(), 0, 1e-6);
+    EXPECT_EQ(scene.room_at(p.x(), p.y()), &room);
+  }
+  EXPECT_TRUE(dirty(world, office.object, "dust"));
+  EXPECT_EQ(activity.binding("floor.n.01_2").object, -1) << "nothing is asked of the bedroom's floor";
+
+  const std::string& window = scene.objects()[activity.object("window.n.01_1")].synset;
+  EXPECT_FALSE(dialect_knowledge_base(Domain::igibson)->contains(window))
+      << window << ": the inventory's window, not one added in BEHAVIOR-100's synset";
+  EXPECT_TRUE(dialect_knowledge_base(Domain::omnigibson)->is_a(window, "window.n.01"));
 }
 
 }  // namespace
