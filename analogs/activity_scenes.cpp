@@ -84,18 +84,20 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   }
   Needs needs;
   for (const auto& [instance, room] : room_of) needs.rooms.insert(room);
-  // A floor asked for a state ((covered floor dust), in :init or the goal)
-  // is an object; a quantified floor variable asks it of every floor.
+  // A floor a state or relation is asked of ((covered floor dust), (touching
+  // shoe floor); in :init or the goal) is an object; a quantified floor
+  // variable asks it of every floor.
   std::map<std::string, std::string> type_of;
   for (const ObjectDecl& d : problem.objects) type_of[d.name] = d.type;
   const auto floor_state = [&](const Literal& l, const std::vector<Variable>& scope) {
-    if (l.args.empty() || l.predicate == "inroom" || places(l.predicate)) return;
-    const std::string& a = l.args[0];
-    const auto var = std::find_if(scope.rbegin(), scope.rend(), [&](const Variable& v) { return v.name == a; });
-    const std::string type = var != scope.rend() ? var->type : type_of.contains(a) ? type_of[a] : "";
-    if (type != "floor.n.01") return;
-    for (const auto& [instance, room] : room_of) {
-      if (var != scope.rend() ? type_of[instance] == "floor.n.01" : instance == a) needs.floors.insert(room);
+    if (l.predicate == "inroom" || places(l.predicate)) return;
+    for (const std::string& a : l.args) {
+      const auto var = std::find_if(scope.rbegin(), scope.rend(), [&](const Variable& v) { return v.name == a; });
+      const std::string type = var != scope.rend() ? var->type : type_of.contains(a) ? type_of[a] : "";
+      if (type != "floor.n.01") continue;
+      for (const auto& [instance, room] : room_of) {
+        if (var != scope.rend() ? type_of[instance] == "floor.n.01" : instance == a) needs.floors.insert(room);
+      }
     }
   };
   std::vector<Variable> scope;

@@ -10,6 +10,7 @@
 #include "base/error.hpp"
 #include "base/random.hpp"
 #include "training/trainer.hpp"
+#include "world/model_cache.hpp"
 
 namespace chore {
 namespace {
@@ -68,6 +69,7 @@ struct CommandLineParser::Impl {
     CommandLine c;
     std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119";
     int64_t train_steps = 0;
+    std::string model_cache = default_model_cache_dir();
   } values;
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
   CLI::App *bench_cmd, *check_cmd, *sample_cmd, *coverage_cmd, *scene_list_cmd, *scene_build_cmd, *expert_cmd,
@@ -145,6 +147,8 @@ CommandLineParser::Impl::Impl() {
       ->check(seed_number())
       ->capture_default_str();
   scene_build_cmd->add_option("--out", c.scene_build.out, "Top-down picture to write (.png)");
+  scene_build_cmd->add_option("--cache", values.model_cache, "Folder compiled models are kept in (empty: none)")
+      ->capture_default_str();
   scene_build_cmd->add_flag("--json", c.json, "Print the results as JSON");
   sample_cmd->add_option("--seeds", values.sample_seeds, "A range A-B: instantiate each, no picture")
       ->excludes(out_option);
@@ -328,7 +332,10 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
     if (*check_cmd) c.command = Command::activity_check;
     if (*coverage_cmd) c.command = Command::activity_coverage;
     if (*scene_list_cmd) c.command = Command::scene_list;
-    if (*scene_build_cmd) c.command = Command::scene_build;
+    if (*scene_build_cmd) {
+      c.command = Command::scene_build;
+      c.scene_build.model_cache = values.model_cache;
+    }
     if (*sample_cmd) {
       c.command = Command::activity_sample;
       if (!values.sample_seeds.empty()) c.sample.seeds = seed_range(values.sample_seeds, "--seeds");

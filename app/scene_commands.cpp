@@ -36,7 +36,7 @@ nlohmann::json build_scene(const SceneBuildOptions& o) {
   const SceneAnalog analog = generate_scene_analog(inventory, *CategoryModels::shipped(), o.seed);
   const double generate_s = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  const auto scene = Scene::build(analog.file);
+  const auto scene = Scene::build(analog.file, {.model_cache = o.model_cache});
   const double compile_s = seconds_since(start);
   double x1 = 0, y1 = 0;
   for (const Room& r : analog.file.rooms) {
@@ -53,7 +53,8 @@ nlohmann::json build_scene(const SceneBuildOptions& o) {
                            {"bodies", scene->model()->nbody},
                            {"geoms", scene->model()->ngeom},
                            {"generate_s", generate_s},
-                           {"compile_s", compile_s}};
+                           {"compile_s", compile_s},
+                           {"from_cache", scene->from_cache()}};
   if (!o.out.empty()) {
     constexpr int kSize = 1024;
     World world(scene);
@@ -78,7 +79,9 @@ std::string format_scene_build(const nlohmann::json& r) {
     << r["size_m"][0].get<double>() << " x " << r["size_m"][1].get<double>() << " m; " << r["placed"] << " of "
     << r["inventory_objects"] << " inventory objects placed (" << r["left_out"] << " left out), " << r["models"]
     << " models; " << r["bodies"] << " bodies, " << r["geoms"] << " geoms; generated in "
-    << r["generate_s"].get<double>() << " s, compiled in " << r["compile_s"].get<double>() << " s";
+    << r["generate_s"].get<double>() << " s, "
+    << (r["from_cache"].get<bool>() ? "loaded from the model cache in " : "compiled in ")
+    << r["compile_s"].get<double>() << " s";
   if (r.contains("picture")) s << "; picture: " << r["picture"].get<std::string>();
   return s.str() + "\n";
 }

@@ -16,11 +16,13 @@ void list_scenes(std::ostream& out);
 struct SceneBuildOptions {
   std::string name;
   uint64_t seed = 0;
-  std::string out;  // top-down picture (.png); empty: none
+  std::string out;          // top-down picture (.png); empty: none
+  std::string model_cache;  // compiled models kept here (world/model_cache.hpp); empty: none
 };
-// Generates the analog, compiles it and, with `out`, draws it from above.
-// Returns what it measured: rooms, size, objects placed and left out, bodies
-// and geoms of the compiled model, seconds to generate and to compile.
+// Generates the analog, compiles it (or loads it from the model cache) and,
+// with `out`, draws it from above. Returns what it measured: rooms, size,
+// objects placed and left out, bodies and geoms of the model, seconds to
+// generate and to compile or load, and whether it came from the cache.
 nlohmann::json build_scene(const SceneBuildOptions& options);
 std::string format_scene_build(const nlohmann::json& result);
 

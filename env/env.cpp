@@ -10,6 +10,7 @@
 #include "env/observations.hpp"
 #include "env/rewards.hpp"
 #include "primitives/primitive.hpp"
+#include "world/model_cache.hpp"
 
 namespace chore {
 namespace {
@@ -40,7 +41,8 @@ EnvAssets load_assets(const EnvConfig& config) {
   if (problem) {
     const SceneInventory& chosen = activity_inventory(*problem, scene);
     assets.scene = Scene::build(activity_scene_analog(*problem, chosen, *CategoryModels::shipped()).file, options);
-  } else if (inventory) {
+  } else if (inventory) {  // the model `chore scene build` keeps
+    options.model_cache = default_model_cache_dir();
     assets.scene =
         Scene::build(generate_scene_analog(find_scene_inventory(scene), *CategoryModels::shipped(), 0).file, options);
   } else {

@@ -144,12 +144,11 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
       }
       if (b.index < 0) throw Error(where + ": no room '" + room->second + "' for " + decl.name);
       b.kind = Binding::Kind::floor;
+      // Floors of one room (floor.n.01_1 and floor.n.01_* in a garden) share its object.
       for (size_t i = 0; i < scene.objects().size() && b.object < 0; ++i) {
         const SceneObject& o = scene.objects()[i];
-        if (taken[i] || o.synset != "floor.n.01") continue;
-        if (scene.room_at(o.pos[0], o.pos[1]) != &scene.rooms()[b.index]) continue;
-        b.object = static_cast<int>(i);
-        taken[i] = true;
+        if (o.synset == "floor.n.01" && scene.room_at(o.pos[0], o.pos[1]) == &scene.rooms()[b.index])
+          b.object = static_cast<int>(i);
       }
     } else if (substances.count(decl.name) ||
                // What :init places is an object, whatever the knowledge base

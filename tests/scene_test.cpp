@@ -3,13 +3,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <set>
 
 #include "base/error.hpp"
 #include "base/json_file.hpp"
 #include "test_util.hpp"
+#include "world/model_cache.hpp"
 #include "world/scene.hpp"
+#include "world/scene_file.hpp"
 
 namespace chore {
 namespace {
@@ -227,6 +231,66 @@ TEST(Scene, WithoutRobotAFixedCameraStandsIn) {
   EXPECT_EQ(mj_name2id(scene->model(), mjOBJ_BODY, "robot"), -1);
   ASSERT_GE(scene->camera(), 0);
   EXPECT_STREQ(mj_id2name(scene->model(), mjOBJ_CAMERA, scene->camera()), "scene_camera");
+}
+
+// MuJoCo's binary form of a model, to compare two models byte for byte.
+std::string model_bytes(const mjModel* m) {
+  std::string bytes(static_cast<size_t>(mj_sizeModel(m)), '\0');
+  mj_saveModel(m, nullptr, bytes.data(), static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+std::vector<std::filesystem::path> cached_files(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& f : std::filesystem::directory_iterator(dir)) files.push_back(f.path());
+  return files;
+}
+
+// A scene compiled once loads from the model cache after, the same model byte
+// for byte; a cache file cut short or altered is compiled afresh and replaced,
+// a folder that cannot be written leaves it uncached, and the folder keeps the
+// most recently used files.
+TEST(Scene, CompiledModelsAreCachedByTheirMjcf) {
+  const auto dir = test::scratch_dir("model_cache");
+  SceneOptions options;
+  options.robot = false;
+  options.model_cache = (dir / "models").string();
+  const SceneFile file = read_scene_file(test::box_room(), default_assets_dir());
+  const auto compiled = Scene::build(file, options);
+  EXPECT_FALSE(compiled->from_cache());
+  const auto loaded = Scene::build(file, options);
+  EXPECT_TRUE(loaded->from_cache());
+  EXPECT_EQ(model_bytes(loaded->model()), model_bytes(compiled->model()));
+  EXPECT_EQ(loaded->objects().size(), compiled->objects().size());
+
+  const std::vector<std::filesystem::path> files = cached_files(dir / "models");
+  ASSERT_EQ(files.size(), 1u);
+  const std::filesystem::path cached = files[0];
+  const std::string whole = read_text_file(cached.string(), 1 << 28, "the cached model");
+  for (const std::string& bad : {whole.substr(0, whole.size() / 2), [&] {
+                                   std::string altered = whole;
+                                   altered[altered.size() - 100] ^= 1;
+                                   return altered;
+                                 }()}) {
+    std::ofstream(cached, std::ios::binary | std::ios::trunc) << bad;
+    const auto again = Scene::build(file, options);
+    EXPECT_FALSE(again->from_cache()) << "a damaged file is not loaded";
+    EXPECT_EQ(model_bytes(again->model()), model_bytes(compiled->model()));
+    EXPECT_EQ(read_text_file(cached.string(), 1 << 28, "the cached model"), whole) << "and is replaced";
+  }
+
+  options.model_cache = (dir / "models" / cached.filename() / "x").string();  // below a file
+  EXPECT_FALSE(Scene::build(file, options)->from_cache());
+
+  // Other documents (the room a little wider each) fill the folder to its bound.
+  options.model_cache = (dir / "models").string();
+  SceneFile wider = file;
+  for (int i = 0; i < kModelCacheFiles + 3; ++i) {
+    wider.rooms[0].rects[0][2] += 0.01;
+    EXPECT_FALSE(Scene::build(wider, options)->from_cache());
+  }
+  EXPECT_EQ(cached_files(dir / "models").size(), static_cast<size_t>(kModelCacheFiles));
+  EXPECT_TRUE(Scene::build(wider, options)->from_cache()) << "the most recent stays";
 }
 
 }  // namespace

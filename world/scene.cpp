@@ -16,6 +16,7 @@
 
 #include "base/error.hpp"
 #include "base/json_file.hpp"
+#include "world/model_cache.hpp"
 #include "world/mujoco_errors.hpp"
 #include "world/robot.hpp"
 #include "world/static_mesh.hpp"
@@ -39,7 +40,7 @@ namespace {
 constexpr double kTimestep = 1.0 / 120.0;
 constexpr double kExtent = 10.0;       // metres; sets the depth range with znear/zfar below
 constexpr double kZNear = 0.005;       // near plane = 0.05 m
-constexpr double kZFar = 5.0;          // far plane = 50 m
+constexpr double kZFar = 5.0;          // far plane = 50 m, or beyond the overview camera's floor
 constexpr double kCameraHeight = 1.1;  // the robot-less stand-in camera, like Tiago's head
 const Rgb kWallColor = {0.86, 0.84, 0.80};
 
@@ -371,6 +372,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   const double overview_height = wall_height + 0.5 * std::max(span.x(), span.y()) / std::tan(30.0 * M_PI / 180.0);
   world += "    <camera name=\"overview\" pos=\"" + fmt(Eigen::Vector3d(center.x(), center.y(), overview_height)) +
            "\" xyaxes=\"1 0 0 0 1 0\" fovy=\"60\"/>\n";
+  const double zfar = std::max(kZFar, 1.1 * overview_height / kExtent);  // a large garden's floor in view
   if (!options.robot) {
     const Pose2& p = scene->robot_start_;
     world += "    <camera name=\"scene_camera\" pos=\"" + fmt(Eigen::Vector3d(p.x, p.y, kCameraHeight)) +
@@ -403,7 +405,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
                     "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
                     "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"
                     "    <map znear=\"" +
-                    fmt(kZNear) + "\" zfar=\"" + fmt(kZFar) +
+                    fmt(kZNear) + "\" zfar=\"" + fmt(zfar) +
                     "\"/>\n"
                     "    <headlight ambient=\"0.25 0.25 0.25\" diffuse=\"0 0 0\" specular=\"0 0 0\"/>\n"
                     "  </visual>\n"
@@ -452,7 +454,8 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";
   scene->mjcf_ = xml;
 
-  mjModel* model = load_mjcf(xml, path + ": MuJoCo rejected the compiled scene");
+  mjModel* model =
+      load_mjcf_cached(xml, path + ": MuJoCo rejected the compiled scene", options.model_cache, &scene->from_cache_);
   scene->model_ = model;  // owned from here: ~Scene frees it on any later error
   mesh.paint_palette(model);
   ceilings.paint_palette(model);

@@ -54,9 +54,10 @@ struct SceneObject {
 };
 
 struct SceneOptions {
-  bool robot = true;       // false: no robot, a fixed camera stands in (Table A.10 "- Robot")
-  bool cloth = true;       // false: cloths become rigid flat boxes (Table A.10 "- Fluid and Cloth")
-  std::string assets_dir;  // empty: default_assets_dir()
+  bool robot = true;        // false: no robot, a fixed camera stands in (Table A.10 "- Robot")
+  bool cloth = true;        // false: cloths become rigid flat boxes (Table A.10 "- Fluid and Cloth")
+  std::string assets_dir;   // empty: default_assets_dir()
+  std::string model_cache;  // a folder compiled models are kept in (world/model_cache.hpp); "": none
 };
 
 class Scene {
@@ -109,6 +110,7 @@ class Scene {
   };
   const std::vector<Attachment>& attachments() const { return attachments_; }
   const std::string& mjcf() const { return mjcf_; }  // the generated MJCF text
+  bool from_cache() const { return from_cache_; }    // loaded from SceneOptions::model_cache, not compiled
 
  private:
   Scene() = default;
@@ -125,6 +127,7 @@ class Scene {
   std::vector<int> ceiling_lights_;
   std::vector<Attachment> attachments_;
   int free_objects_ = 0;
+  bool from_cache_ = false;
 };
 
 }  // namespace chore

@@ -1,0 +1,27 @@
+// Compiled models kept on disk by their MJCF: MuJoCo's binary form (MJB) in a
+// folder, under a hash of the document and MuJoCo's version, with a checksum
+// of its bytes. The largest scene analog compiles in about a second and loads
+// from here in a tenth of that (docs/activities.md). A file that is not what
+// its name says (cut short, altered, another MuJoCo) is compiled afresh and
+// replaced; a folder that cannot be written leaves models uncached. The
+// folder keeps the kModelCacheFiles most recently used files.
+#pragma once
+
+#include <string>
+
+struct mjModel_;
+
+namespace chore {
+
+inline constexpr int kModelCacheFiles = 32;
+
+// load_mjcf (world/mujoco_errors.hpp) through the cache in `dir` ("": none);
+// `from_cache` (optional) says whether it was loaded rather than compiled.
+mjModel_* load_mjcf_cached(const std::string& xml, const std::string& what, const std::string& dir,
+                           bool* from_cache = nullptr);
+
+// $CHORE_CACHE, else $XDG_CACHE_HOME/chore, else $HOME/.cache/chore, with
+// "/models" after it; "" when none of them is set.
+std::string default_model_cache_dir();
+
+}  // namespace chore
