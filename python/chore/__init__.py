@@ -1,0 +1,209 @@
+"""chore from Python: BEHAVIOR-style household activities as fast RL
+environments, in Gymnasium's shape.
+
+    import chore
+    envs = chore.make("store_decoration", num_envs=8, num_threads=2, seed=0)
+    obs, info = envs.reset(seed=0)
+    obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
+
+Observations are NumPy arrays that view chore's own buffers (no copy): as
+EnvPool's, they hold until the next reset/step/recv of the same env, which
+writes over them. Pass copy=True to get arrays of your own instead.
+"""
+
+import numpy as np
+
+from . import spaces
+from ._chore import Error
+from ._chore import Env as _Env
+from ._chore import VectorEnv as _VectorEnv
+
+__all__ = ["Env", "VectorEnv", "Error", "make", "spaces"]
+
+_CONFIG_KEYS = ("width", "height", "observations", "max_episode_steps", "reward", "reachable_instances",
+                "robot", "object_states", "cloth")
+
+
+def _config(task, scene, action_space, mode, observations, options):
+    """EnvConfig's fields from make()'s arguments: a task is an activity (a
+    name or a .bddl path), or with scene= alone a scene."""
+    unknown = sorted(set(options) - set(_CONFIG_KEYS))
+    if unknown:
+        raise Error(f"unknown option(s) {', '.join(unknown)} (known: {', '.join(_CONFIG_KEYS)})")
+    config = dict(options)
+    if task is not None:
+        config["activity"] = str(task)
+    if scene is not None:
+        config["scene"] = str(scene)
+    config["action_space"] = action_space
+    config["mode"] = mode
+    if observations is not None:
+        config["observations"] = list(observations)
+    return config
+
+
+def _seed(seed):
+    if seed is None:
+        return None
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**63:
+        raise Error(f"seed {seed!r}: expected an integer in [0, 2^63)")
+    return int(seed)
+
+
+def _copied(obs):
+    return {k: np.array(v) for k, v in obs.items()}
+
+
+class Env:
+    """One environment with Gymnasium's Env API: reset(seed=, options=) ->
+    (obs, info), step(action) -> (obs, reward, terminated, truncated, info)."""
+
+    metadata = {"render_modes": []}
+    render_mode = None
+
+    def __init__(self, task=None, *, scene=None, action_space="low_level", mode="physical", observations=None,
+                 copy=False, **options):
+        self._env = _Env(_config(task, scene, action_space, mode, observations, options))
+        self._copy = copy
+        self.observation_space = spaces.from_description(self._env.observation_space)
+        self.action_space = spaces.from_description(self._env.action_space)
+        self.primitive_actions = self._env.primitive_actions
+        self.spec = None
+
+    def reset(self, *, seed=None, options=None):
+        obs, info = self._env.reset(_seed(seed))
+        if seed is not None:
+            self.action_space.seed(int(seed))
+        return (_copied(obs) if self._copy else obs), info
+
+    def step(self, action):
+        obs, reward, terminated, truncated, info = self._env.step(action)
+        return (_copied(obs) if self._copy else obs), reward, terminated, truncated, info
+
+    def close(self):
+        self._env.close()
+
+    @property
+    def unwrapped(self):
+        return self
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class VectorEnv:
+    """num_envs environments stepped by num_threads C++ workers with
+    Gymnasium's VectorEnv API (env i is seeded seed + i), and EnvPool's
+    send(actions, env_ids) / recv() when batch_size < num_envs. Autoreset as
+    Gymnasium's NEXT_STEP or SAME_STEP (metadata["autoreset_mode"]); with
+    SAME_STEP, info["final_obs"] and info["final_info"] hold the ended
+    episodes' last observations (rows where info["_final_obs"] is True)."""
+
+    def __init__(self, task=None, *, scene=None, num_envs=1, num_threads=1, batch_size=None,
+                 action_space="low_level", mode="physical", observations=None, autoreset_mode="next_step",
+                 seed=None, copy=False, **options):
+        autoreset_mode = getattr(autoreset_mode, "name", autoreset_mode)  # gymnasium.vector.AutoresetMode
+        autoreset_mode = str(autoreset_mode).lower()
+        config = _config(task, scene, action_space, mode, observations, options)
+        self._envs = _VectorEnv(config, int(num_envs), int(num_threads), int(batch_size or 0), autoreset_mode)
+        self._copy = copy
+        self._seed = _seed(seed)
+        self.num_envs = self._envs.num_envs
+        self.batch_size = self._envs.batch_size
+        self.metadata = {"autoreset_mode": _autoreset_mode(autoreset_mode)}
+        self.single_observation_space = spaces.from_description(self._envs.single_observation_space)
+        self.single_action_space = spaces.from_description(self._envs.single_action_space)
+        self.observation_space = spaces.batched(self.single_observation_space, self.num_envs)
+        self.action_space = spaces.batched(self.single_action_space, self.num_envs)
+        self.primitive_actions = self._envs.primitive_actions
+        self.closed = False
+
+    def reset(self, *, seed=None, options=None):
+        seed = _seed(seed) if seed is not None else self._seed
+        self._seed = None  # make(seed=) seeds the first reset only
+        obs, info = self._envs.reset(seed)
+        if seed is not None:
+            self.action_space.seed(seed)
+        return self._obs(obs), info
+
+    def step(self, actions):
+        return self._results(self._envs.step(self._actions(actions, self.num_envs)))
+
+    def send(self, actions, env_ids=None):
+        """Starts those envs stepping (all when env_ids is None)."""
+        ids = np.arange(self.num_envs, dtype=np.int32) if env_ids is None else np.asarray(env_ids)
+        if ids.ndim != 1 or ids.dtype.kind not in "ui":
+            raise Error("send: env_ids: expected a list of integer env ids")
+        self._envs.send(self._actions(actions, len(ids)), ids.astype(np.int32))
+
+    def recv(self):
+        """The first batch_size envs to finish: (obs, rewards, terminated,
+        truncated, info), info["env_id"] saying whose each row is."""
+        return self._results(self._envs.recv())
+
+    def close(self, **kwargs):
+        if not self.closed:
+            self._envs.close()
+            self.closed = True
+
+    @property
+    def unwrapped(self):
+        return self
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _actions(self, actions, rows):
+        a = np.asarray(actions)
+        if a.dtype.kind not in "uif":
+            raise Error(f"actions of dtype {a.dtype}: expected numbers")
+        if a.dtype.kind == "f" and not np.all(np.isfinite(a)):
+            raise Error("actions: NaN or infinite values")
+        size = int(np.prod(self.single_action_space.shape)) if self.single_action_space.shape else 1
+        if a.size != rows * size or (a.ndim > 0 and a.shape[0] != rows):
+            raise Error(f"actions of shape {a.shape}: expected {rows} rows of {size}")
+        return np.ascontiguousarray(a, dtype=np.float32).reshape(rows * size)
+
+    def _obs(self, obs):
+        return _copied(obs) if self._copy else obs
+
+    def _results(self, results):
+        obs, rewards, terminated, truncated, info = results
+        if "final_obs" in info:
+            ended = terminated | truncated
+            info["_final_obs"] = ended.copy()
+            info["_final_info"] = ended.copy()
+        if self._copy:
+            if "final_obs" in info:
+                info["final_obs"] = _copied(info["final_obs"])
+            rewards, terminated, truncated = rewards.copy(), terminated.copy(), truncated.copy()
+        return self._obs(obs), rewards, terminated, truncated, info
+
+
+def _autoreset_mode(name):
+    try:  # Gymnasium's own enum where it is importable
+        from gymnasium.vector import AutoresetMode
+        return AutoresetMode.NEXT_STEP if name == "next_step" else AutoresetMode.SAME_STEP
+    except ImportError:
+        return name
+
+
+def make(task=None, *, num_envs=None, **kwargs):
+    """EnvPool's entry point: a VectorEnv of num_envs envs, or a single Env
+    when num_envs is None. kwargs: scene, num_threads, batch_size,
+    observations, action_space ("low_level" | "primitives"), mode ("physical"
+    | "symbolic"), autoreset_mode ("next_step" | "same_step"), seed, copy, and
+    the env options width, height, max_episode_steps, reward,
+    reachable_instances, robot, object_states, cloth."""
+    if num_envs is None:
+        for vector_only in ("num_threads", "batch_size", "autoreset_mode", "seed"):
+            if vector_only in kwargs:
+                raise Error(f"make: {vector_only} needs num_envs")
+        return Env(task, **kwargs)
+    return VectorEnv(task, num_envs=num_envs, **kwargs)

@@ -1,0 +1,228 @@
+"""The Python package against Gymnasium's contract and chore's C++ Env."""
+
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import chore
+
+ACTIVITY = "collect_trash"
+
+
+def low_level_actions(t, rows=None):
+    """The actions tests/env_replay.cpp takes: ((7t + 3j) mod 21 - 10) / 10."""
+    a = np.array([((7 * t + 3 * j) % 21 - 10) / 10 for j in range(14)], dtype=np.float32)
+    return a if rows is None else np.tile(a, (rows, 1))
+
+
+def episode_bytes(env, seed, steps):
+    obs, _ = env.reset(seed=seed)
+    chunks = [b"".join(np.ascontiguousarray(v).tobytes() for v in obs.values())]
+    for t in range(steps):
+        obs, reward, _, _, _ = env.step(low_level_actions(t))
+        chunks.append(b"".join(np.ascontiguousarray(v).tobytes() for v in obs.values()))
+        chunks.append(np.float64(reward).tobytes())
+    return b"".join(chunks)
+
+
+def test_spaces_hold_what_reset_and_step_return():
+    with chore.make(ACTIVITY, observations=["rgb", "depth", "proprio", "is_grasping"]) as env:
+        obs, info = env.reset(seed=0)
+        assert env.observation_space.contains(obs)
+        assert set(obs) == {"rgb", "depth", "proprio", "is_grasping"}
+        assert obs["rgb"].shape == (128, 128, 3) and obs["rgb"].dtype == np.uint8
+        assert info["elapsed_step"] == 0 and info["total"] > 0
+        obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
+        assert env.observation_space.contains(obs)
+        assert isinstance(reward, float) and not terminated and not truncated
+        assert info["elapsed_step"] == 1
+    with chore.make(ACTIVITY, num_envs=3, action_space="primitives", observations=["rgb", "action_mask"],
+                    mode="symbolic") as envs:
+        obs, info = envs.reset(seed=5)
+        assert envs.observation_space.contains(obs)
+        assert list(info["episode_seed"]) == [5, 6, 7]
+        assert envs.single_action_space.n == len(envs.primitive_actions) > 0
+        obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
+        assert envs.observation_space.contains(obs)
+        assert rewards.shape == (3,) and terminated.dtype == np.bool_ and list(info["env_id"]) == [0, 1, 2]
+
+
+def test_a_seed_fixes_an_episode_bit_for_bit_as_the_cpp_env_plays_it():
+    observations = ["rgb", "depth", "proprio"]
+    with chore.make(ACTIVITY, observations=observations) as env:
+        first = episode_bytes(env, 7, 5)
+        assert episode_bytes(env, 7, 5) == first
+        assert episode_bytes(env, 8, 5) != first
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "replay.bin")
+        subprocess.run([os.environ["CHORE_ENV_REPLAY"], ACTIVITY, "7", "5", out] + observations, check=True)
+        with open(out, "rb") as f:
+            assert f.read() == first, "the C++ Env played the same episode"
+    # A vector env's env i is the env seeded seed + i, whatever the thread count.
+    rows = []
+    for threads in (1, 2):
+        with chore.make(ACTIVITY, num_envs=2, num_threads=threads, observations=observations, seed=6) as envs:
+            obs, _ = envs.reset()
+            for t in range(5):
+                obs, _, _, _, _ = envs.step(low_level_actions(t, 2))
+            rows.append(np.array(obs["rgb"][1]))
+    assert np.array_equal(rows[0], rows[1])
+
+
+def test_autoreset_next_step_and_same_step():
+    with chore.make(ACTIVITY, num_envs=2, observations=["proprio"], max_episode_steps=2) as envs:
+        assert str(envs.metadata["autoreset_mode"]).lower().endswith("next_step")  # Gymnasium's enum or its name
+        envs.reset(seed=0)
+        for _ in range(2):
+            _, _, _, truncated, info = envs.step(low_level_actions(0, 2))
+        assert truncated.all() and list(info["elapsed_step"]) == [2, 2]
+        obs, rewards, terminated, truncated, info = envs.step(low_level_actions(1, 2))
+        assert list(info["elapsed_step"]) == [0, 0], "NEXT_STEP: this step reset them"
+        assert not truncated.any() and not rewards.any()
+    with chore.make(ACTIVITY, num_envs=2, observations=["proprio"], max_episode_steps=2,
+                    autoreset_mode="same_step") as envs:
+        assert str(envs.metadata["autoreset_mode"]).lower().endswith("same_step")
+        envs.reset(seed=0)
+        _, _, _, truncated, info = envs.step(low_level_actions(0, 2))
+        assert not info["_final_obs"].any()
+        obs, _, _, truncated, info = envs.step(low_level_actions(1, 2))
+        assert truncated.all() and info["_final_obs"].all()
+        assert list(info["elapsed_step"]) == [0, 0], "SAME_STEP: the new episode's first observation"
+        assert list(info["final_info"]["elapsed_step"]) == [2, 2]
+        assert not np.array_equal(info["final_obs"]["proprio"], obs["proprio"])
+
+
+def test_send_recv_returns_batch_size_envs_with_their_ids():
+    with chore.make(ACTIVITY, num_envs=4, num_threads=2, batch_size=2, observations=["proprio"]) as envs:
+        envs.reset(seed=0)
+        envs.send(low_level_actions(0, 4), np.arange(4))
+        seen = []
+        for _ in range(2):
+            obs, rewards, _, _, info = envs.recv()
+            assert obs["proprio"].shape[0] == 2 and rewards.shape == (2,)
+            seen += list(info["env_id"])
+        assert sorted(seen) == [0, 1, 2, 3]
+        envs.send(low_level_actions(1, 2), [3, 1])
+        _, _, _, _, info = envs.recv()
+        assert sorted(info["env_id"]) == [1, 3]
+        with pytest.raises(chore.Error, match="recv"):
+            envs.recv()  # nothing in flight
+
+
+@pytest.mark.parametrize("bad, message", [
+    (np.full((2, 14), np.nan, np.float32), "NaN"),
+    (np.zeros((2, 13), np.float32), "shape"),
+    (np.zeros((3, 14), np.float32), "shape"),
+    (np.array([["a"] * 14] * 2), "dtype"),
+])
+def test_bad_actions_raise_chore_error_and_leave_the_env_usable(bad, message):
+    with chore.make(ACTIVITY, num_envs=2, observations=["proprio"]) as envs:
+        envs.reset(seed=0)
+        with pytest.raises(chore.Error, match=message):
+            envs.step(bad)
+        _, _, _, _, info = envs.step(low_level_actions(0, 2))
+        assert list(info["elapsed_step"]) == [1, 1]
+    with chore.make(ACTIVITY, observations=["proprio"]) as env:
+        env.reset(seed=0)
+        with pytest.raises(chore.Error):
+            env.step(np.full(14, np.nan, np.float32))
+        with pytest.raises(chore.Error, match="14 values"):
+            env.step(np.zeros(3, np.float32))
+        assert env.step(low_level_actions(0))[4]["elapsed_step"] == 1
+
+
+def test_bad_configs_raise_chore_error_with_chores_message():
+    with pytest.raises(chore.Error, match="unknown option"):
+        chore.make(ACTIVITY, colour="red")
+    with pytest.raises(chore.Error, match="no_such_activity"):
+        chore.make("no_such_activity")
+    with pytest.raises(chore.Error, match="width"):
+        chore.make(ACTIVITY, width=-1)
+    with pytest.raises(chore.Error, match="num_threads"):
+        chore.make(ACTIVITY, num_envs=2, num_threads=3)
+    with pytest.raises(chore.Error, match="seed"):
+        chore.make(ACTIVITY, num_envs=1, seed=-1)
+
+
+def test_observations_view_chores_buffers_and_steps_write_in_place():
+    with chore.make(ACTIVITY, observations=["rgb", "proprio"]) as env:
+        obs, _ = env.reset(seed=0)
+        rgb = obs["rgb"]
+        assert not rgb.flags.owndata and not rgb.flags.writeable
+        before = rgb.copy()
+        obs, _, _, _, _ = env.step(low_level_actions(0))
+        assert obs["rgb"].__array_interface__["data"][0] == rgb.__array_interface__["data"][0]
+        assert not np.array_equal(rgb, before), "the step wrote into the array we hold"
+    with chore.make(ACTIVITY, num_envs=2, observations=["proprio"]) as envs:
+        envs.reset(seed=0)
+        held = envs.step(low_level_actions(0, 2))[0]["proprio"]
+        addresses = {held.__array_interface__["data"][0]}
+        for t in range(1, 6):
+            latest = envs.step(low_level_actions(t, 2))[0]["proprio"]
+            addresses.add(latest.__array_interface__["data"][0])
+            if latest.__array_interface__["data"][0] == held.__array_interface__["data"][0]:
+                assert np.array_equal(held, latest), "a later step rewrote the buffer we hold"
+        assert len(addresses) < 6, "results cycle through chore's own buffers"
+    with chore.make(ACTIVITY, observations=["proprio"], copy=True) as env:
+        obs, _ = env.reset(seed=0)
+        kept = obs["proprio"]
+        assert kept.flags.owndata
+        env.step(low_level_actions(0))
+        assert np.array_equal(kept, env.reset(seed=0)[0]["proprio"])
+
+
+def test_the_gil_is_released_while_envs_step():
+    # A thread stepping primitives (tens of ms each) while this one counts:
+    # with the GIL held through a step the count would stall for its length.
+    with chore.make("store_decoration", num_envs=1, action_space="primitives", observations=["proprio"]) as envs:
+        envs.reset(seed=0)
+        stop = threading.Event()
+        stepped = []
+
+        def step_loop():
+            while not stop.is_set():
+                t = time.perf_counter()
+                envs.step(np.zeros(1, np.int64))
+                stepped.append(time.perf_counter() - t)
+
+        worker = threading.Thread(target=step_loop)
+        worker.start()
+        longest_gap, last = 0.0, time.perf_counter()
+        deadline = last + 2.0
+        while time.perf_counter() < deadline:
+            now = time.perf_counter()
+            longest_gap, last = max(longest_gap, now - last), now
+        stop.set()
+        worker.join()
+    assert stepped, "the worker stepped"
+    # Python switches threads every 5 ms; a held GIL would stall this loop a whole step.
+    assert longest_gap < max(0.5 * max(stepped), 0.02), (longest_gap, max(stepped))
+
+
+def test_ctrl_c_interrupts_a_step_loop_cleanly():
+    script = (
+        "import chore, numpy as np, sys\n"
+        f"envs = chore.make('{ACTIVITY}', num_envs=2, observations=['proprio'])\n"
+        "envs.reset(seed=0)\n"
+        "print('stepping', flush=True)\n"
+        "try:\n"
+        "    while True:\n"
+        "        envs.step(np.zeros((2, 14), np.float32))\n"
+        "except KeyboardInterrupt:\n"
+        "    envs.close()\n"
+        "    print('interrupted', flush=True)\n"
+        "    sys.exit(3)\n")
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "stepping"
+    time.sleep(0.3)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=30)
+    assert p.returncode == 3, err
+    assert "interrupted" in out
