@@ -1,7 +1,7 @@
 // Compiled models kept on disk by their MJCF: MuJoCo's binary form (MJB) in a
 // folder, under a hash of the document and MuJoCo's version, with a checksum
 // of its bytes. The largest scene analog compiles in about a second and loads
-// from here in a tenth of that (docs/activities.md). A file that is not what
+// from here in about an eighth of that (docs/activities.md). A file that is not what
 // its name says (cut short, altered, another MuJoCo) is compiled afresh and
 // replaced; a folder that cannot be written leaves models uncached. The
 // folder keeps the kModelCacheFiles most recently used files.
