@@ -1,7 +1,9 @@
 """PPO over action primitives on a chore vector env, CleanRL-style: one file,
 read top to bottom. The policy sees which primitives can run now
-(action_mask) and whether the robot holds something, and picks one; invalid
-primitives are masked out of its distribution.
+(action_mask), whether the robot holds something, and its own last few
+primitives (as RL-Prim.Hist keeps a history: the mask alone does not say what
+is done already), and picks one; invalid primitives are masked out of its
+distribution.
 
     /usr/bin/python3 examples/python/ppo_primitives.py --activity store_decoration --mode symbolic \
         --total-steps 20000 --out ppo.pt
@@ -33,16 +35,27 @@ def parse_args(argv=None):
     p.add_argument("--minibatches", type=int, default=4)
     p.add_argument("--clip", type=float, default=0.2)
     p.add_argument("--entropy", type=float, default=0.01)
+    p.add_argument("--history", type=int, default=4, help="last primitives the policy sees")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--out", default="", help="where to save the trained agent (torch.save of its state dict)")
     return p.parse_args(argv)
 
 
-def features(obs):
-    """What the agent sees: the action mask and the grasp flag, as floats."""
-    mask = torch.as_tensor(np.asarray(obs["action_mask"]), dtype=torch.float32)
-    grasping = torch.as_tensor(np.asarray(obs["is_grasping"]), dtype=torch.float32).reshape(len(mask), -1)
-    return torch.cat([mask, grasping], dim=1), mask.bool()
+def features(obs, history):
+    """What the agent sees: the action mask, the grasp flag and the one-hot
+    history of its last primitives (rows: envs), as floats."""
+    # chore's arrays are read-only views of its buffers: torch.tensor copies them.
+    mask = torch.tensor(obs["action_mask"], dtype=torch.float32)
+    grasping = torch.tensor(obs["is_grasping"], dtype=torch.float32).reshape(len(mask), -1)
+    return torch.cat([mask, grasping, history.flatten(1)], dim=1), mask.bool()
+
+
+def remember(history, actions, ended):
+    """Shifts each env's history by its action; an ended episode's is cleared."""
+    history = torch.roll(history, 1, dims=1)
+    history[:, 0] = nn.functional.one_hot(actions, history.shape[2]).float()
+    history[torch.as_tensor(ended)] = 0
+    return history
 
 
 class Agent(nn.Module):
@@ -59,12 +72,25 @@ class Agent(nn.Module):
         logits = self.actor(x).masked_fill(~mask, -1e8)  # primitives that cannot run now are never drawn
         return torch.distributions.Categorical(logits=logits)
 
-    def act(self, obs, greedy=True):
-        """A chore.evaluate policy: actions for a batch of observations."""
+
+
+class Player:
+    """The trained agent as a chore.evaluate policy: greedy actions, a history
+    per env, cleared when chore says an env starts a new episode."""
+
+    def __init__(self, agent, envs, actions, history):
+        self.agent, self.history = agent, torch.zeros(envs, history, actions)
+
+    def reset(self, env_ids):
+        self.history[env_ids] = 0
+
+    def __call__(self, obs, info):
+        ids = torch.as_tensor(info["env_id"], dtype=torch.long)
         with torch.no_grad():
-            x, mask = features(obs)
-            d = self.distribution(x, mask)
-            return (d.probs.argmax(-1) if greedy else d.sample()).numpy()
+            x, mask = features(obs, self.history[ids])
+            a = self.agent.distribution(x, mask).probs.argmax(-1)
+        self.history[ids] = remember(self.history[ids], a, np.zeros(len(ids), bool))
+        return a.numpy()
 
 
 def train(args):
@@ -75,7 +101,8 @@ def train(args):
                       max_episode_steps=args.episode_steps, seed=args.seed)
     n_actions = envs.single_action_space.n
     obs, _ = envs.reset()
-    x, mask = features(obs)
+    history = torch.zeros(args.envs, args.history, n_actions)
+    x, mask = features(obs, history)
     agent = Agent(x.shape[1], n_actions)
     optimizer = torch.optim.Adam(agent.parameters(), lr=args.lr, eps=1e-5)
 
@@ -96,12 +123,13 @@ def train(args):
                 logprobs[t], values[t] = d.log_prob(a), agent.value(x)
             actions[t] = a
             obs, reward, terminated, truncated, info = envs.step(a.numpy())
-            rewards[t] = torch.as_tensor(reward)
+            rewards[t] = torch.tensor(reward)
             ended = terminated | truncated
             done = torch.as_tensor(ended, dtype=torch.float32)
             episodes += int(ended.sum())
             successes += int(info["success"][ended].sum())
-            x, mask = features(obs)
+            history = remember(history, a, ended)
+            x, mask = features(obs, history)
         # Generalised advantage estimation, bootstrapped from the last value.
         with torch.no_grad():
             advantages = torch.zeros(T, N)
@@ -133,14 +161,15 @@ def train(args):
         print(f"update {update + 1}/{updates}: {steps} steps, {steps / (time.perf_counter() - start):.0f} steps/s, "
               f"success {successes}/{episodes} episodes so far", flush=True)
     envs.close()
-    return agent
+    return agent, n_actions
 
 
 def main(argv=None):
     args = parse_args(argv)
-    agent = train(args)
-    report = chore.evaluate(lambda obs, info: agent.act(obs), args.activity, seeds="0-4", episodes=4,
-                            mode=args.mode, observations=["action_mask", "is_grasping"],
+    agent, n_actions = train(args)
+    threads = 2
+    report = chore.evaluate(Player(agent, threads, n_actions, args.history), args.activity, seeds="0-4", episodes=4,
+                            threads=threads, mode=args.mode, observations=["action_mask", "is_grasping"],
                             max_steps=args.episode_steps)
     print(chore.format_evaluation(report))
     if args.out:
