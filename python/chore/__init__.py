@@ -128,7 +128,7 @@ class VectorEnv:
         obs, info = self._envs.reset(seed)
         if seed is not None:
             self.action_space.seed(seed)
-        return self._obs(obs), info
+        return self._obs(obs), _with_masks(info)
 
     def step(self, actions):
         return self._results(self._envs.step(self._actions(actions, self.num_envs)))
@@ -178,13 +178,22 @@ class VectorEnv:
         obs, rewards, terminated, truncated, info = results
         if "final_obs" in info:
             ended = terminated | truncated
-            info["_final_obs"] = ended.copy()
+            info["_final_obs"] = ended
             info["_final_info"] = ended.copy()
         if self._copy:
             if "final_obs" in info:
                 info["final_obs"] = _copied(info["final_obs"])
             rewards, terminated, truncated = rewards.copy(), terminated.copy(), truncated.copy()
-        return self._obs(obs), rewards, terminated, truncated, info
+        return self._obs(obs), rewards, terminated, truncated, _with_masks(info)
+
+
+def _with_masks(info):
+    """Gymnasium's vector info: beside each field, "_field" says which rows
+    have it (every row has chore's fields)."""
+    rows = len(info["env_id"])
+    for key in [k for k in info if not k.startswith("_") and k not in ("final_obs", "final_info")]:
+        info["_" + key] = np.ones(rows, dtype=bool)
+    return info
 
 
 def _autoreset_mode(name):

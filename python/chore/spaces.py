@@ -1,6 +1,6 @@
 """Spaces as Gymnasium has them: gymnasium.spaces objects when Gymnasium is
 importable, else local classes with the same attributes and methods
-(shape, dtype, low, high, n, spaces, sample, contains, seed), so code written
+(shape, dtype, low, high, n, nvec, spaces, sample, contains, seed), so code written
 against Gymnasium's spaces runs either way."""
 
 from collections import OrderedDict
@@ -76,6 +76,34 @@ class Discrete:
         return f"Discrete({self.n})"
 
 
+class MultiDiscrete:
+    """Gymnasium's MultiDiscrete: integers 0 .. nvec[i]-1 per element."""
+
+    def __init__(self, nvec):
+        self.nvec = np.asarray(nvec, dtype=np.int64)
+        self.start = np.zeros_like(self.nvec)
+        self.shape = self.nvec.shape
+        self.dtype = np.dtype(np.int64)
+        self._rng = np.random.default_rng()
+
+    def seed(self, seed=None):
+        self._rng = np.random.default_rng(seed)
+        return [seed]
+
+    def sample(self):
+        return self._rng.integers(self.nvec).astype(self.dtype)
+
+    def contains(self, x):
+        x = np.asarray(x)
+        return x.shape == self.shape and x.dtype.kind in "ui" and bool(np.all((x >= 0) & (x < self.nvec)))
+
+    def __contains__(self, x):
+        return self.contains(x)
+
+    def __repr__(self):
+        return f"MultiDiscrete({self.nvec})"
+
+
 class Dict:
     """Gymnasium's Dict: named spaces, in a fixed order."""
 
@@ -134,5 +162,5 @@ def batched(space, n):
         b.high = np.broadcast_to(space.high, b.shape).copy()
         return b
     if isinstance(space, Discrete):
-        return Box(0, space.n - 1, (n,), np.int64)
+        return MultiDiscrete(np.full(n, space.n))
     return Dict([(k, batched(s, n)) for k, s in space.spaces.items()])

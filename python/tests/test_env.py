@@ -52,6 +52,8 @@ def test_spaces_hold_what_reset_and_step_return():
         obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
         assert envs.observation_space.contains(obs)
         assert rewards.shape == (3,) and terminated.dtype == np.bool_ and list(info["env_id"]) == [0, 1, 2]
+        assert info["_success"].all() and info["_env_id"].dtype == np.bool_  # Gymnasium's masks
+        assert type(envs.action_space).__name__ == "MultiDiscrete" and list(envs.action_space.nvec) == [envs.single_action_space.n] * 3
 
 
 def test_a_seed_fixes_an_episode_bit_for_bit_as_the_cpp_env_plays_it():
