@@ -55,7 +55,21 @@ def _copied(obs):
     return {k: np.array(v) for k, v in obs.items()}
 
 
-class Env:
+class _Closing:
+    """What both envs share: `with chore.make(...) as env:` closes it; no wrappers."""
+
+    @property
+    def unwrapped(self):
+        return self
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class Env(_Closing):
     """One environment with Gymnasium's Env API: reset(seed=, options=) ->
     (obs, info), step(action) -> (obs, reward, terminated, truncated, info)."""
 
@@ -84,18 +98,8 @@ class Env:
     def close(self):
         self._env.close()
 
-    @property
-    def unwrapped(self):
-        return self
 
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-
-class VectorEnv:
+class VectorEnv(_Closing):
     """num_envs environments stepped by num_threads C++ workers with
     Gymnasium's VectorEnv API (env i is seeded seed + i), and EnvPool's
     send(actions, env_ids) / recv() when batch_size < num_envs. Autoreset as
@@ -149,16 +153,6 @@ class VectorEnv:
         if not self.closed:
             self._envs.close()
             self.closed = True
-
-    @property
-    def unwrapped(self):
-        return self
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
 
     def _actions(self, actions, rows):
         a = np.asarray(actions)

@@ -13,7 +13,26 @@ except ImportError:
     _gym_spaces = None
 
 
-class Box:
+class _Space:
+    """What the local spaces share: a seedable random stream, `x in space`."""
+
+    _rng = None
+
+    def seed(self, seed=None):
+        self._rng = np.random.default_rng(seed)
+        return [seed]
+
+    @property
+    def np_random(self):
+        if self._rng is None:
+            self._rng = np.random.default_rng()
+        return self._rng
+
+    def __contains__(self, x):
+        return self.contains(x)
+
+
+class Box(_Space):
     """Gymnasium's Box: values in [low, high] of one shape and dtype."""
 
     def __init__(self, low, high, shape, dtype):
@@ -21,32 +40,26 @@ class Box:
         self.shape = tuple(shape)
         self.low = np.full(self.shape, low, dtype=self.dtype)
         self.high = np.full(self.shape, high, dtype=self.dtype)
-        self._rng = np.random.default_rng()
 
-    def seed(self, seed=None):
-        self._rng = np.random.default_rng(seed)
-        return [seed]
 
     def sample(self):
         if self.dtype.kind in "ui":
-            return self._rng.integers(self.low, self.high, endpoint=True, dtype=self.dtype)
+            return self.np_random.integers(self.low, self.high, endpoint=True, dtype=self.dtype)
         low = np.where(np.isfinite(self.low), self.low, -1.0)
         high = np.where(np.isfinite(self.high), self.high, 1.0)
-        return self._rng.uniform(low, high).astype(self.dtype)
+        return self.np_random.uniform(low, high).astype(self.dtype)
 
     def contains(self, x):
         x = np.asarray(x)
         return (x.shape == self.shape and np.can_cast(x.dtype, self.dtype)
                 and bool(np.all(x >= self.low)) and bool(np.all(x <= self.high)))
 
-    def __contains__(self, x):
-        return self.contains(x)
 
     def __repr__(self):
         return f"Box({self.low.flat[0] if self.low.size else ''}, {self.high.flat[0] if self.high.size else ''}, {self.shape}, {self.dtype})"
 
 
-class Discrete:
+class Discrete(_Space):
     """Gymnasium's Discrete: integers 0 .. n-1."""
 
     def __init__(self, n):
@@ -54,14 +67,10 @@ class Discrete:
         self.start = np.int64(0)
         self.shape = ()
         self.dtype = np.dtype(np.int64)
-        self._rng = np.random.default_rng()
 
-    def seed(self, seed=None):
-        self._rng = np.random.default_rng(seed)
-        return [seed]
 
     def sample(self):
-        return np.int64(self._rng.integers(self.n))
+        return np.int64(self.np_random.integers(self.n))
 
     def contains(self, x):
         if isinstance(x, (int, np.integer)):
@@ -69,14 +78,12 @@ class Discrete:
         x = np.asarray(x)
         return x.shape == () and x.dtype.kind in "ui" and 0 <= int(x) < self.n
 
-    def __contains__(self, x):
-        return self.contains(x)
 
     def __repr__(self):
         return f"Discrete({self.n})"
 
 
-class MultiDiscrete:
+class MultiDiscrete(_Space):
     """Gymnasium's MultiDiscrete: integers 0 .. nvec[i]-1 per element."""
 
     def __init__(self, nvec):
@@ -84,27 +91,21 @@ class MultiDiscrete:
         self.start = np.zeros_like(self.nvec)
         self.shape = self.nvec.shape
         self.dtype = np.dtype(np.int64)
-        self._rng = np.random.default_rng()
 
-    def seed(self, seed=None):
-        self._rng = np.random.default_rng(seed)
-        return [seed]
 
     def sample(self):
-        return self._rng.integers(self.nvec).astype(self.dtype)
+        return self.np_random.integers(self.nvec).astype(self.dtype)
 
     def contains(self, x):
         x = np.asarray(x)
         return x.shape == self.shape and x.dtype.kind in "ui" and bool(np.all((x >= 0) & (x < self.nvec)))
 
-    def __contains__(self, x):
-        return self.contains(x)
 
     def __repr__(self):
         return f"MultiDiscrete({self.nvec})"
 
 
-class Dict:
+class Dict(_Space):
     """Gymnasium's Dict: named spaces, in a fixed order."""
 
     def __init__(self, spaces):
@@ -125,8 +126,6 @@ class Dict:
         return (isinstance(x, dict) and set(x) == set(self.spaces)
                 and all(self.spaces[k].contains(v) for k, v in x.items()))
 
-    def __contains__(self, x):
-        return self.contains(x)
 
     def __getitem__(self, key):
         return self.spaces[key]
