@@ -2,7 +2,13 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <filesystem>
+
+#include "analogs/scene_analogs.hpp"
 #include "base/error.hpp"
+#include "tasks/activity.hpp"
+#include "world/scene.hpp"
 
 namespace chore::python {
 namespace {
@@ -39,6 +45,15 @@ void each_info_field(F&& f) {
   f("physics_steps", [](const Info& i) -> int64_t { return i.physics_steps; });
 }
 
+// A scene file (a .json path, or assets/scenes/NAME.json) or an inventory scene.
+bool is_scene(const std::string& name) {
+  namespace fs = std::filesystem;
+  if (name.ends_with(".json")) return fs::exists(name);
+  if (fs::exists(fs::path(default_assets_dir()) / "scenes" / (name + ".json"))) return true;
+  const auto& inventories = shipped_scene_inventories();
+  return std::any_of(inventories.begin(), inventories.end(), [&](const SceneInventory& s) { return s.name == name; });
+}
+
 }  // namespace
 
 EnvConfig env_config(const py::dict& d) {
@@ -64,7 +79,17 @@ EnvConfig env_config(const py::dict& d) {
   for (const auto& [k, v] : d) {
     if (!py::isinstance<py::str>(k)) throw Error("config: keys must be strings");
     const std::string key = k.cast<std::string>();
-    if (key == "activity") {
+    if (key == "task") {  // an activity, else a scene
+      const std::string task = text(v, key);
+      try {
+        resolve_activity_path(task);
+        c.activity = task;
+      } catch (const Error& not_activity) {
+        if (!is_scene(task)) throw Error("'" + task + "' is neither an activity nor a scene: " + not_activity.what());
+        if (d.contains("scene")) throw Error("'" + task + "' is a scene, and scene= names another");
+        c.scene = task;
+      }
+    } else if (key == "activity") {
       c.activity = text(v, key);
     } else if (key == "scene") {
       c.scene = text(v, key);
@@ -95,7 +120,7 @@ EnvConfig env_config(const py::dict& d) {
       c.cloth = flag(v, key);
     } else {
       throw Error("config: unknown key '" + key +
-                  "' (known: activity, scene, width, height, observations, action_space, mode, "
+                  "' (known: task, activity, scene, width, height, observations, action_space, mode, "
                   "max_episode_steps, reward, reachable_instances, robot, object_states, cloth)");
     }
   }

@@ -26,14 +26,15 @@ _CONFIG_KEYS = ("width", "height", "observations", "max_episode_steps", "reward"
 
 
 def _config(task, scene, action_space, mode, observations, options):
-    """EnvConfig's fields from make()'s arguments: a task is an activity (a
-    name or a .bddl path), or with scene= alone a scene."""
+    """EnvConfig's fields from make()'s arguments: the task is an activity (a
+    name or a .bddl path) or a scene (a scene file or a BEHAVIOR-1K inventory
+    scene); scene= sets an activity's scene."""
     unknown = sorted(set(options) - set(_CONFIG_KEYS))
     if unknown:
         raise Error(f"unknown option(s) {', '.join(unknown)} (known: {', '.join(_CONFIG_KEYS)})")
     config = dict(options)
     if task is not None:
-        config["activity"] = str(task)
+        config["task"] = str(task)
     if scene is not None:
         config["scene"] = str(scene)
     config["action_space"] = action_space

@@ -140,10 +140,21 @@ def test_bad_actions_raise_chore_error_and_leave_the_env_usable(bad, message):
         assert env.step(low_level_actions(0))[4]["elapsed_step"] == 1
 
 
+def test_a_task_is_an_activity_or_a_scene():
+    with chore.make("apartment", observations=["proprio"]) as env:  # a scene: no activity, reward 0
+        _, info = env.reset(seed=0)
+        assert info["total"] == 0
+        assert env.step(low_level_actions(0))[1] == 0.0
+    with chore.make("Rs_int", observations=["proprio"]) as env:  # a BEHAVIOR-1K scene's analog
+        assert env.reset(seed=0)[1]["total"] == 0
+    with pytest.raises(chore.Error, match="neither an activity nor a scene"):
+        chore.make("kitchen_of_nowhere")
+
+
 def test_bad_configs_raise_chore_error_with_chores_message():
     with pytest.raises(chore.Error, match="unknown option"):
         chore.make(ACTIVITY, colour="red")
-    with pytest.raises(chore.Error, match="no_such_activity"):
+    with pytest.raises(chore.Error, match="unknown activity 'no_such_activity'"):
         chore.make("no_such_activity")
     with pytest.raises(chore.Error, match="width"):
         chore.make(ACTIVITY, width=-1)
