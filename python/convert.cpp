@@ -65,10 +65,11 @@ EnvConfig env_config(const py::dict& d) {
   const auto integer = [](const py::handle& v, const std::string& key, long lo, long hi) {
     if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
       throw Error("config '" + key + "': expected an integer");
-    const long long n = v.cast<long long>();
-    if (n < lo || n > hi) {
-      throw Error("config '" + key + "' = " + std::to_string(n) + ": expected " + std::to_string(lo) + ".." +
-                  std::to_string(hi));
+    int overflow = 0;
+    const long long n = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+    if (overflow || n < lo || n > hi) {
+      throw Error("config '" + key + "' = " + py::str(v).cast<std::string>() + ": expected " + std::to_string(lo) +
+                  ".." + std::to_string(hi));
     }
     return static_cast<int>(n);
   };

@@ -40,6 +40,8 @@ def _config(task, scene, action_space, mode, observations, options):
     config["action_space"] = action_space
     config["mode"] = mode
     if observations is not None:
+        if isinstance(observations, str):
+            raise Error(f"observations={observations!r}: expected a list of names, e.g. [{observations!r}]")
         config["observations"] = list(observations)
     return config
 

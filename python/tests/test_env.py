@@ -158,6 +158,10 @@ def test_bad_configs_raise_chore_error_with_chores_message():
         chore.make("no_such_activity")
     with pytest.raises(chore.Error, match="width"):
         chore.make(ACTIVITY, width=-1)
+    with pytest.raises(chore.Error, match="max_episode_steps"):
+        chore.make(ACTIVITY, max_episode_steps=10**30)
+    with pytest.raises(chore.Error, match="a list of names"):
+        chore.make(ACTIVITY, observations="rgb")
     with pytest.raises(chore.Error, match="num_threads"):
         chore.make(ACTIVITY, num_envs=2, num_threads=3)
     with pytest.raises(chore.Error, match="seed"):
