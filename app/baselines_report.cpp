@@ -8,8 +8,10 @@
 #include <sstream>
 #include <thread>
 
+#include "app/interval_estimates.hpp"
 #include "app/plot.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
 #include "base/json_file.hpp"
 #include "world/scene.hpp"
 
@@ -103,6 +105,40 @@ nlohmann::json read_cell_summary(const fs::path& path) {
   return summary;
 }
 
+nlohmann::json to_json(const Interval& i) {
+  return {{"point", i.point}, {"lo", i.lo}, {"hi", i.hi}};
+}
+
+// A bootstrap's seed of its own per quantity, so each reads the same in every report.
+uint64_t stream(const std::string& name) {
+  return fnv1a(name);
+}
+
+// IQM and mean with 95% bootstrap intervals of one cell's runs ({} without runs).
+nlohmann::json intervals(const std::vector<double>& runs, const std::string& name) {
+  if (runs.empty()) return nullptr;
+  return {{"iqm", to_json(bootstrap_interval(runs, interquartile_mean, stream(name + "/iqm")))},
+          {"mean", to_json(bootstrap_interval(runs, mean, stream(name + "/mean")))}};
+}
+
+// The paper's ordering (Table A.13: RL-Prim.Hist. above RL-Prim. above RL-VMC),
+// pair by pair, in the words the intervals allow.
+const std::vector<std::pair<std::string, std::string>> kOrdering = {{"rl-prim-hist", "rl-prim"}, {"rl-prim", "rl-vmc"}};
+std::string verdict(const Interval& p) {
+  return p.lo > 0.5 ? "holds" : p.hi < 0.5 ? "does not hold" : "cannot tell at 95%";
+}
+
+// Fraction of runs above each Q in [0, 1], per method, as a CSV the curve plot reads.
+void write_profile(const fs::path& path, const std::vector<double>& runs) {
+  std::ofstream csv(path);
+  csv << "Q,fraction_of_runs\n";
+  std::vector<double> thresholds;
+  for (int i = 0; i <= 100; ++i) thresholds.push_back(i / 100.0);
+  const std::vector<double> f = performance_profile(runs, thresholds);
+  for (size_t i = 0; i < f.size(); ++i) csv << thresholds[i] << "," << f[i] << "\n";
+  if (!csv) throw Error(path.string() + ": cannot write the performance profile");
+}
+
 nlohmann::json baselines_report(const std::vector<TableCell>& cells, const ReproduceOptions& o, std::ostream& log) {
   const fs::path out(o.out);
   nlohmann::json rows = nlohmann::json::array(), runs = nlohmann::json::array(), missing = nlohmann::json::array();
@@ -154,10 +190,51 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                       {"success_seed0", to_json(mean_std(s0))},
                       {"q_generalisation", to_json(mean_std(qg))},
                       {"success_generalisation", to_json(mean_std(sg))},
+                      {"q_seed0_intervals", intervals(q0, a + "/" + m + "/q_seed0")},
+                      {"q_generalisation_intervals", intervals(qg, a + "/" + m + "/q_generalisation")},
                       {"paper_q", {{"mean", paper.mean}, {"std", paper.std}}},
                       {"failed_primitives", failed},
                       {"episodes_ended_by", ended}});
     }
+  }
+
+  // Per activity, the paper's ordering pair by pair: P(first > second) of Q at
+  // evaluation seed 0 over runs, its interval and the verdict; and the
+  // performance profiles (fraction of runs above each Q) of the methods.
+  nlohmann::json orderings = nlohmann::json::array(), profiles = nlohmann::json::object();
+  const auto q_runs = [&](const std::string& a, const std::string& m) {
+    std::vector<double> q;
+    for (const nlohmann::json& c : by[{a, m}]) q.push_back(c["seed0"]["q"]["mean"]);
+    return q;
+  };
+  for (const std::string& a : o.activities) {
+    for (const auto& [better, worse] : kOrdering) {
+      const std::vector<double> x = q_runs(a, better), y = q_runs(a, worse);
+      if (x.empty() || y.empty()) continue;
+      const Interval p = probability_of_improvement(x, y, stream(a + "/" + better + ">" + worse));
+      orderings.push_back({{"activity", a},
+                           {"better", better},
+                           {"worse", worse},
+                           {"probability_of_improvement", to_json(p)},
+                           {"verdict", verdict(p)}});
+    }
+    PlotOptions plot;
+    fs::create_directories(out / "profiles");
+    for (const std::string& m : o.methods) {
+      const std::vector<double> q = q_runs(a, m);
+      if (q.empty()) continue;
+      const fs::path csv = out / "profiles" / (a + "_" + m + ".csv");
+      write_profile(csv, q);
+      plot.runs.push_back(method_title(m) + "=" + csv.string());
+    }
+    if (plot.runs.empty()) continue;
+    plot.out = (out / "profiles" / (a + ".png")).string();
+    plot.x = "Q";
+    plot.y = "fraction_of_runs";
+    plot.count_runs = false;  // a file per method, each over all its runs
+    plot.title = activity_title(a) + ": fraction of runs with Q at evaluation seed 0 above each Q";
+    plot_curves(plot);
+    profiles[a] = plot.out;
   }
 
   // Curves: Q over training steps per activity, the methods overlaid.
@@ -202,6 +279,8 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                            {"runs", runs},
                            {"missing", missing},
                            {"curves", curves},
+                           {"orderings", orderings},
+                           {"profiles", profiles},
                            {"train_wall_s", train_s},
                            {"eval_wall_s", eval_s}};
   return result;
@@ -308,6 +387,53 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   table("Success score Q over fresh instances (seeds " + std::to_string(o.generalisation_first) + "-" +
             std::to_string(o.generalisation_last) + ")",
         "q_generalisation", false);
+
+  // Interval estimates (Agarwal et al., NeurIPS 2021): what the runs can tell.
+  md << "## Interval estimates of Q at evaluation seed 0\n\n"
+     << "Interquartile mean (IQM) and mean over training runs, each with its 95% bootstrap confidence interval "
+        "(runs resampled with replacement, "
+     << kBootstrapReps
+     << " times, percentile interval; Agarwal et al., \"Deep Reinforcement Learning at the Edge of the Statistical "
+        "Precipice\", NeurIPS 2021, as their rliable library computes them).\n\n| Method |";
+  for (const std::string& a : o.activities) md << " " << activity_title(a) << " |";
+  md << "\n|---|";
+  for (size_t i = 0; i < o.activities.size(); ++i) md << "---|";
+  md << "\n";
+  const auto bracket = [](const nlohmann::json& i) {
+    return fixed(i["point"].get<double>()) + " [" + fixed(i["lo"].get<double>()) + ", " + fixed(i["hi"].get<double>()) +
+           "]";
+  };
+  for (const std::string& method : o.methods) {
+    md << "| " << method_title(method) << " |";
+    for (const std::string& a : o.activities) {
+      for (const nlohmann::json& row : r["rows"]) {
+        if (row["activity"] != a || row["method"] != method) continue;
+        const nlohmann::json& i = row["q_seed0_intervals"];
+        md << " "
+           << (i.is_null() ? std::string("not run") : "IQM " + bracket(i["iqm"]) + "; mean " + bracket(i["mean"]))
+           << " |";
+      }
+    }
+    md << "\n";
+  }
+  if (!r["orderings"].empty()) {
+    md << "\nThe paper's ordering, pair by pair: the probability that a run of the first method scores a higher Q "
+          "at evaluation seed 0 than a run of the second (ties count one half), its 95% bootstrap interval, and "
+          "the verdict (holds: the interval lies above 0.5; does not hold: below; else the runs cannot tell).\n\n"
+          "| Activity | Ordering | P(first > second) | Verdict |\n|---|---|---|---|\n";
+    for (const nlohmann::json& c : r["orderings"]) {
+      md << "| " << activity_title(c["activity"]) << " | " << method_title(c["better"]) << " > "
+         << method_title(c["worse"]) << " | " << bracket(c["probability_of_improvement"]) << " | "
+         << c["verdict"].get<std::string>() << " |\n";
+    }
+  }
+  if (!r["profiles"].empty()) {
+    md << "\nPerformance profiles (the fraction of runs whose Q at evaluation seed 0 lies above each Q):\n\n";
+    for (const auto& [a, file] : r["profiles"].items()) {
+      md << "![" << activity_title(a) << "](" << fs::relative(file.get<std::string>(), o.out).string() << ")\n";
+    }
+  }
+  md << "\n";
 
   md << "## How episodes ended and which primitives failed (all evaluation episodes, summed over runs)\n\n"
      << "| Activity | Method | success | policy failure (same invalid action 3x) | time limit | motion planning "

@@ -251,7 +251,9 @@ nlohmann::json plot_curves(const PlotOptions& options) {
   int widest = 0;
   std::vector<std::string> entries;
   for (const Group& g : groups) {
-    entries.push_back(g.label + " (" + std::to_string(g.runs.size()) + (g.runs.size() == 1 ? " run)" : " runs)"));
+    entries.push_back(options.count_runs
+                          ? g.label + " (" + std::to_string(g.runs.size()) + (g.runs.size() == 1 ? " run)" : " runs)")
+                          : g.label);
     widest = std::max(widest, cv::getTextSize(entries.back(), kFont, 0.45, 1, &base).width);
   }
   const cv::Rect legend(area.x + 10, area.y + 10, widest + 50, 22 * static_cast<int>(groups.size()) + 8);

@@ -26,6 +26,7 @@ struct PlotOptions {
   std::string x = "env_steps", y = "success_rate";
   std::string title;  // empty: "<y> over <x>"
   int width = 960, height = 600;
+  bool count_runs = true;  // the legend says how many runs each group has
 };
 
 // Draws the PNG. Returns the groups (label, runs, points) and the plot frame

@@ -90,6 +90,16 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   EXPECT_NE(md.find("(paper 0.49 ± 0.04)"), std::string::npos) << md;
   EXPECT_NE(md.find("| RL-Prim. |"), std::string::npos) << md;
   EXPECT_GT(fs::file_size(out / "curves" / "collect_trash.png"), 1000u);
+  // Interval estimates over the runs: the statistic itself, and a bootstrap
+  // interval around it within the runs' range; the performance profile drawn.
+  const nlohmann::json& mean = row["q_seed0_intervals"]["mean"];
+  EXPECT_NEAR(mean["point"].get<double>(), (q[0] + q[1]) / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(mean["lo"].get<double>(), std::min(q[0], q[1]));  // both runs drawn alike: 1/4 of resamples
+  EXPECT_DOUBLE_EQ(mean["hi"].get<double>(), std::max(q[0], q[1]));
+  EXPECT_NEAR(row["q_seed0_intervals"]["iqm"]["point"].get<double>(), (q[0] + q[1]) / 2, 1e-12);  // n < 4
+  EXPECT_TRUE(table["orderings"].empty()) << "one method: nothing to order";
+  EXPECT_NE(md.find("## Interval estimates of Q at evaluation seed 0"), std::string::npos) << md;
+  EXPECT_GT(fs::file_size(out / "profiles" / "collect_trash.png"), 1000u);
 
   // Seed 1 loses its evaluations (a stop before they ended): the next
   // invocation leaves seed 0 alone and evaluates seed 1's trained policy again,
