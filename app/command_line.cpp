@@ -15,6 +15,9 @@
 namespace chore {
 namespace {
 
+// A table's training seeds at most (each is a run of every cell).
+constexpr uint64_t kMaxTableSeeds = 1000;
+
 // "A-B" (or "A") as a seed range, each seed in [0, kMaxSeed].
 std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::string& option) {
   std::smatch m;
@@ -68,6 +71,7 @@ struct CommandLineParser::Impl {
   struct Values {
     CommandLine c;
     std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119";
+    std::vector<std::string> reproduce_seeds = {"0", "1", "2"};
     int64_t train_steps = 0;
     std::string model_cache = default_model_cache_dir();
   } values;
@@ -273,8 +277,7 @@ CommandLineParser::Impl::Impl() {
   reproduce_cmd->add_option("--methods", c.reproduce.methods, "Methods (baselines)")
       ->check(CLI::IsMember(baseline_names))
       ->capture_default_str();
-  reproduce_cmd->add_option("--seeds", c.reproduce.seeds, "Training seeds")
-      ->check(seed_number())
+  reproduce_cmd->add_option("--seeds", values.reproduce_seeds, "Training seeds: seeds or ranges A-B (0-9)")
       ->capture_default_str();
   reproduce_cmd->add_option("--steps", c.reproduce.steps, "Training env steps per run")
       ->check(integer_in(1, 10000000000))
@@ -358,6 +361,13 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
     }
     if (*reproduce_cmd) {
       c.command = Command::reproduce;
+      c.reproduce.seeds.clear();
+      for (const std::string& text : values.reproduce_seeds) {
+        const auto [first, last] = seed_range(text, "--seeds");
+        if (last - first >= kMaxTableSeeds || c.reproduce.seeds.size() + (last - first) >= kMaxTableSeeds)
+          throw Error("--seeds: at most " + std::to_string(kMaxTableSeeds) + " training seeds");
+        for (uint64_t s = first; s <= last; ++s) c.reproduce.seeds.push_back(s);
+      }
       std::tie(c.reproduce.generalisation_first, c.reproduce.generalisation_last) =
           seed_range(values.generalisation_seeds, "--generalisation-seeds");
       c.reproduce.command_line = "scripts/reproduce";

@@ -159,6 +159,10 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
       throw Error("env config: the primitive action space needs an activity and the robot");
     }
     if (config_.policy_failure_repeats < 1) throw Error("env config: policy_failure_repeats must be >= 1");
+    if (config_.policy_failure_rule != "precondition" && config_.policy_failure_rule != "paper") {
+      throw Error("env config: unknown policy_failure_rule '" + config_.policy_failure_rule +
+                  "' (known: precondition, paper)");
+    }
     primitive_actions_ = chore::primitive_actions(*activity_, *world_);
     action_space_ = Space::discrete(static_cast<int64_t>(primitive_actions_.size()));
   } else {
@@ -346,7 +350,8 @@ int64_t Env::Impl::act_primitive(std::span<const float> action, World::StepRepor
   report.grasp_refused = result.grasp_refused;
   last_primitive_status_ = static_cast<int>(result.status);
   ++primitive_counts_[last_primitive_status_];
-  if (result.status == PrimitiveStatus::precondition_failure) {
+  const bool paper = config_.policy_failure_rule == "paper";
+  if (result.status == PrimitiveStatus::precondition_failure || (paper && result.status != PrimitiveStatus::success)) {
     invalid_repeats_ = index == last_invalid_action_ ? invalid_repeats_ + 1 : 1;
     last_invalid_action_ = index;
   } else {

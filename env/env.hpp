@@ -72,9 +72,16 @@ struct EnvConfig {
   // primitive action space, but picks of what :init puts inside something.
   // Whatever the action space, so that both see the same instances.
   bool reachable_instances = true;
-  // The seed's policy failure: this many identical actions in a row that fail
-  // their precondition end the episode (terminated, info.policy_failure).
+  // The seed's policy failure: this many identical invalid actions in a row
+  // end the episode (terminated, info.policy_failure). What is invalid:
+  //   "precondition"  a primitive whose precondition fails (chore's rule; a
+  //                   navigate to what is already within reach is one: the
+  //                   paper's example, "requesting to navigate to the bin
+  //                   when it is already in front of the bin")
+  //   "paper"         as the paper's words read too: any primitive that
+  //                   fails (planning, grasp, place failures as well)
   int policy_failure_repeats = 3;
+  std::string policy_failure_rule = "precondition";
   // "activity": BEHAVIOR's potential reward (0 without an activity). "reach": a
   // dense task for testing continuous-control learners, minus the distance (m)
   // from the gripper to `reach_target`, a point fixed in the robot's base frame

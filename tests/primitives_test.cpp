@@ -222,6 +222,30 @@ TEST(Primitives, TheSameInvalidActionThreeTimesInARowEndsTheEpisode) {
   EXPECT_FALSE(r.info.success);
 }
 
+// The paper's words read as a rule: any failed primitive is invalid, not only
+// one whose precondition fails. Picking a pumpkin out of reach fails its
+// motion planning: three in a row end the episode under the paper's rule only.
+TEST(Primitives, ThePapersPolicyFailureRuleCountsEveryFailedPrimitive) {
+  for (const std::string rule : {"precondition", "paper"}) {
+    EnvConfig config = primitive_config("store_decoration", ExecutionMode::symbolic);
+    config.policy_failure_rule = rule;
+    Env env(config);
+    env.reset(1);
+    Env::Impl::Outcome r;
+    for (int k = 1; k <= 3; ++k) {
+      r = act(env, "pick(pumpkin.n.02_1)");
+      ASSERT_EQ(r.info.primitive_status, static_cast<int>(PrimitiveStatus::motion_planning_failure))
+          << env.last_primitive().reason;
+      if (k < 3) EXPECT_FALSE(r.terminated) << rule << k;
+    }
+    EXPECT_EQ(r.info.policy_failure, rule == "paper") << rule;
+    EXPECT_EQ(r.terminated, rule == "paper") << rule;
+  }
+  EnvConfig bad = primitive_config("store_decoration", ExecutionMode::symbolic);
+  bad.policy_failure_rule = "strict";
+  EXPECT_THROW(Env{bad}, Error);
+}
+
 TEST(Primitives, TheExpertStoresBothPumpkinsInTheRightOrder) {
   Env env(primitive_config("store_decoration", ExecutionMode::symbolic));
   bool success = false;

@@ -72,6 +72,7 @@ nlohmann::json to_json(const EnvConfig& c) {
                       {"action_space", c.action_space},
                       {"primitive_mode", to_string(c.primitive_mode)},
                       {"policy_failure_repeats", c.policy_failure_repeats},
+                      {"policy_failure_rule", c.policy_failure_rule},
                       {"reward", c.reward},
                       {"reach_target", c.reach_target}};
   j.update(sensors);
@@ -97,6 +98,8 @@ EnvConfig env_config_from_json(const nlohmann::json& j) {
     c.action_space = j.at("action_space").get<std::string>();
     c.primitive_mode = parse_execution_mode(j.at("primitive_mode").get<std::string>());
     c.policy_failure_repeats = j.at("policy_failure_repeats").get<int>();
+    // Runs written before the rule was a setting ran chore's.
+    c.policy_failure_rule = j.value("policy_failure_rule", std::string("precondition"));
     c.reward = j.at("reward").get<std::string>();
     c.reach_target = j.at("reach_target").get<std::array<double, 3>>();
     sensor_fields(c, [&](const char* group, const char* name, auto& value) {
