@@ -473,6 +473,13 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   }
   EXPECT_NE(load_error(write("text.pt", "hello")).find("not a chore checkpoint"), std::string::npos);
   EXPECT_NE(load_error((dir / "missing.pt").string()).find("cannot open"), std::string::npos);
+  // Not read at all: a device that never ends, a directory, a file over the bound (sparse: no disk used).
+  EXPECT_NE(load_error("/dev/zero").find("not a regular file"), std::string::npos);
+  EXPECT_NE(load_error(dir.string()).find("not a regular file"), std::string::npos);
+  const std::string huge = write("huge.pt", "");
+  std::filesystem::resize_file(huge, kMaxCheckpointBytes + 1);
+  EXPECT_NE(load_error(huge).find("more than " + std::to_string(kMaxCheckpointBytes)), std::string::npos);
+  std::filesystem::remove(huge);
 
   std::string future = bytes;
   future[8] = 99;  // the version field

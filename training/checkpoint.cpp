@@ -172,11 +172,23 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
 }
 
 CheckpointFile read_checkpoint(const std::string& path) {
+  // A file of known size only: a device or a pipe (/dev/zero) would be read
+  // without end, and a file beyond the bound is refused before it is read.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw Error("checkpoint " + path + (std::filesystem::exists(path, ec) ? ": not a regular file" : ": cannot open"));
+  }
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw Error("checkpoint " + path + ": cannot open");
+  if (size > kMaxCheckpointBytes) {
+    throw Error("checkpoint " + path + ": " + std::to_string(size) + " bytes, more than " +
+                std::to_string(kMaxCheckpointBytes));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("checkpoint " + path + ": cannot open");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_checkpoint(buffer.str(), path);
+  std::string bytes(size, '\0');
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) throw Error("checkpoint " + path + ": cannot read");
+  return parse_checkpoint(bytes, path);
 }
 
 CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& path) {

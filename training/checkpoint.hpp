@@ -59,7 +59,13 @@ struct CheckpointFile {
   const TensorRecord& tensor(const std::string& name) const;
 };
 
+// The largest checkpoint read: a SAC run's replay buffer of the paper's 300
+// transitions at 128x128 is ~36 MB; 16 GiB leaves room for far larger
+// buffers (--set sac.buffer=...) while bounding what a wrong path can cost.
+inline constexpr uint64_t kMaxCheckpointBytes = uint64_t{16} << 30;
+
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint);
+// A regular file of at most kMaxCheckpointBytes; chore::Error otherwise.
 CheckpointFile read_checkpoint(const std::string& path);
 // The same for a file's bytes; `path` names it in messages.
 CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& path);
