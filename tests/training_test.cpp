@@ -476,10 +476,10 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   // Not read at all: a device that never ends, a directory, a file over the bound (sparse: no disk used).
   EXPECT_NE(load_error("/dev/zero").find("not a regular file"), std::string::npos);
   EXPECT_NE(load_error(dir.string()).find("not a regular file"), std::string::npos);
-  const std::string huge = write("huge.pt", "");
-  std::filesystem::resize_file(huge, kMaxCheckpointBytes + 1);
-  EXPECT_NE(load_error(huge).find("more than " + std::to_string(kMaxCheckpointBytes)), std::string::npos);
-  std::filesystem::remove(huge);
+  const std::string oversized = write("oversized.pt", "");
+  std::filesystem::resize_file(oversized, kMaxCheckpointBytes + 1);
+  EXPECT_NE(load_error(oversized).find("more than " + std::to_string(kMaxCheckpointBytes)), std::string::npos);
+  std::filesystem::remove(oversized);
 
   std::string future = bytes;
   future[8] = 99;  // the version field
