@@ -245,7 +245,7 @@ void Activity::configure(World& world) const {
   }
   for (const GroundLiteral& l : goal_.literals) holder(l);
   for (const auto& [instance, b] : bindings_) {
-    const int index = b.kind == Binding::Kind::object ? b.index : b.kind == Binding::Kind::floor ? b.object : -1;
+    const int index = b.state_object();
     if (index < 0) continue;
     const std::string& s = scene.objects()[index].synset;
     const KnowledgeBase& kb = kb_of(s);
@@ -307,9 +307,7 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   // sample (a substance first, a floor without an object) must hold, and
   // holds() names why it cannot.
   const bool kinematic = kKinematic.count(l.predicate) > 0;
-  const int a = first.kind == Binding::Kind::object                ? first.index
-                : first.kind == Binding::Kind::floor && !kinematic ? first.object
-                                                                   : -1;
+  const int a = first.kind == Binding::Kind::object || !kinematic ? first.state_object() : -1;
   if (a < 0) return holds(w, l);
   const bool value = !l.negated;
   if (kinematic) {
@@ -370,11 +368,11 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   auto arg = [&](size_t i) -> const Binding& { return binding(l.args.at(i)); };
   auto object_arg = [&](size_t i) {
     const Binding& b = arg(i);
-    if (b.kind == Binding::Kind::floor && b.object >= 0) return b.object;  // its states are its object's
-    if (b.kind != Binding::Kind::object) {
+    const int object = b.state_object();  // a floor's states are its object's
+    if (object < 0) {
       throw Error("activity '" + name_ + "': " + to_bddl(l) + ": '" + l.args.at(i) + "' is not an object");
     }
-    return b.index;
+    return object;
   };
   const std::string& p = l.predicate;
   bool value = false;

@@ -38,6 +38,8 @@ struct Binding {
   // floor: the scene object of synset floor.n.01 in that room, which keeps
   // the floor's states (dust on it), or -1 where the scene has none.
   int object = -1;
+  // The scene object whose states it has: an object's own, a floor's object; -1 for none.
+  int state_object() const { return kind == Kind::object ? index : kind == Kind::floor ? object : -1; }
 };
 
 // The scene an activity is set in (tasks/activities/scenes.json), or "" if

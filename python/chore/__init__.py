@@ -11,6 +11,8 @@ EnvPool's, they hold until the next reset/step/recv of the same env, which
 writes over them. Pass copy=True to get arrays of your own instead.
 """
 
+import functools
+
 import numpy as np
 
 from . import spaces
@@ -187,10 +189,18 @@ class VectorEnv(_Closing):
 def _with_masks(info):
     """Gymnasium's vector info: beside each field, "_field" says which rows
     have it (every row has chore's fields)."""
-    rows = len(info["env_id"])
+    every_row = _all_rows(len(info["env_id"]))
     for key in [k for k in info if not k.startswith("_") and k not in ("final_obs", "final_info")]:
-        info["_" + key] = np.ones(rows, dtype=bool)
+        info["_" + key] = every_row
     return info
+
+
+@functools.lru_cache(maxsize=None)
+def _all_rows(rows):
+    """One read-only mask of True per batch size, shared by every field and step."""
+    mask = np.ones(rows, dtype=bool)
+    mask.flags.writeable = False
+    return mask
 
 
 def _autoreset_mode(name):
