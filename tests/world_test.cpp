@@ -326,6 +326,75 @@ TEST(Sleeping, AMovingObjectWakesWhatItWouldHit) {
   EXPECT_GT(object_qpos(w, "small_block_1")[1], 1.85);
 }
 
+// The degrees of freedom MuJoCo's step sees, read from inside it (mjcb_control
+// runs mid-step).
+int dofs_seen_in_step = 0;
+void record_dofs(const mjModel* m, mjData*) {
+  dofs_seen_in_step = m->nv;
+}
+int dofs_in_a_step(World& w) {
+  mjcb_control = record_dofs;
+  w.step(1);
+  mjcb_control = nullptr;
+  return dofs_seen_in_step;
+}
+
+TEST(Sleeping, APhysicsStepLeavesTheDofsOfTheLastSleepersOut) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.impl().world();
+  const mjModel* m = w.model();
+  const int full = m->nv, nq = m->nq, njnt = m->njnt;
+  const auto dof_of = [&](const char* name) {
+    return m->jnt_dofadr[m->body_jntadr[w.scene().find_object(name)->body]];
+  };
+  const int small = dof_of("small_block_1"), heavy = dof_of("heavy_block_1");
+  // The robot's dofs come first: every joint before the blocks' is the robot's.
+  ASSERT_LT(small, heavy);
+  for (int j = 0; j < m->njnt && m->jnt_dofadr[j] < small; ++j) {
+    EXPECT_LT(w.scene().object_of_body(m->jnt_bodyid[j]), 0) << j;
+  }
+  w.step(120);
+  ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
+  ASSERT_TRUE(w.asleep(object_index(w, "heavy_block_1")));
+  EXPECT_EQ(dofs_in_a_step(w), small);  // the robot's only
+  EXPECT_EQ(m->nv, full);               // the whole model outside a step
+  EXPECT_EQ(m->nq, nq);
+  EXPECT_EQ(m->njnt, njnt);
+
+  // Held, the small block is kept (its grasp weld ties it to the hand); the
+  // heavy one, asleep and last, is still left out.
+  ASSERT_TRUE(w.hold(object_index(w, "small_block_1")));
+  EXPECT_EQ(dofs_in_a_step(w), heavy);
+  w.release();
+
+  // Falling with the heavy block's dofs left out, the small block follows
+  // the same steps as with everyone awake and in the step: free fall,
+  // semi-implicit Euler, bit for bit.
+  auto fall = [&](bool sleeping) {
+    env.reset(0);
+    w.step(120);
+    w.set_sleeping(sleeping);
+    double* q = w.data()->qpos + m->jnt_qposadr[m->body_jntadr[w.scene().find_object("small_block_1")->body]];
+    q[2] += 0.3;
+    mj_forward(w.model(), w.data());
+    std::vector<double> z;
+    for (int k = 0; k < 20; ++k) {
+      if (sleeping)
+        EXPECT_EQ(dofs_in_a_step(w), heavy) << k;
+      else
+        w.step(1);
+      z.push_back(q[2]);
+    }
+    w.set_sleeping(true);
+    return z;
+  };
+  const std::vector<double> cut = fall(true), whole = fall(false);
+  EXPECT_EQ(cut, whole);
+  const double h = m->opt.timestep, g = -m->opt.gravity[2];
+  EXPECT_NEAR(whole[0] - whole[19], g * h * h * (2 + 20) * 19 / 2, 1e-9);  // sum of k g h^2, k = 2..20
+}
+
 TEST(World, ZeroActionHoldsTheRobotStill) {
   Env env(box_room_config());
   auto start = env.reset(0);

@@ -266,6 +266,9 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   std::vector<std::optional<ClothSpec>> cloths;               // per object: its cloth, if simulated
   std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
   std::vector<std::string> static_roots;                      // fixed objects with moving parts: their static roots
+  // Bodies that move, in the order the physics step cuts them (World): cloths
+  // (their tendons always count), free objects, then fixed ones with links.
+  std::string cloth_bodies, free_bodies, linked_bodies;
   for (const ObjectPlacement& placement : file.objects) {
     const auto found = file.models.find(placement.model);
     if (found == file.models.end()) {
@@ -313,6 +316,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
     holder_bodies.push_back(body);
     in_static_body.push_back(0);
     cloths.push_back(model.cloth && options.cloth ? model.cloth : std::nullopt);
+    std::string& world = model.cloth ? cloth_bodies : object.fixed ? linked_bodies : free_bodies;
     world += "    <body name=\"" + body + "\" " + pose_attributes(pose) + ">\n";
     if (!object.fixed) {
       world += "      <freejoint name=\"" + object.name + "\"/>\n";
@@ -339,6 +343,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
     scene->objects_.push_back(std::move(object));
   }
 
+  world += cloth_bodies + free_bodies + linked_bodies;
   // The static bodies, and the pairs among what never moves (the world, the
   // static bodies, the roots of fixed objects with moving parts) excluded:
   // MuJoCo 2.2.2 pairs the world body with every body and would otherwise
@@ -424,10 +429,14 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
                     "\"/></default>\n"
                     "  </default>\n"
                     "  <asset>\n" +
-                    mesh.mjcf_assets() + ceilings.mjcf_assets() +
-                    "  </asset>\n"
-                    "  <worldbody>\n" +
-                    lights + world + "  </worldbody>\n";
+                    mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n";
+  // The robot first: its bodies and degrees of freedom are the model's first
+  // (the physics step keeps the dofs up to the last awake one, World).
+  if (options.robot) {
+    const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
+    xml += robot_mjcf_children(read_text_file(robot_path, kMaxMjcfBytes, "a robot file"), robot_path);
+  }
+  xml += "  <worldbody>\n" + lights + world + "  </worldbody>\n";
   if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
   // Attachments: a weld each, from the object's body to what it attaches to.
   std::string attach_welds;
@@ -447,8 +456,6 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   }
   if (!attach_welds.empty()) xml += "  <equality>\n" + attach_welds + "  </equality>\n";
   if (options.robot) {
-    const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
-    xml += robot_mjcf_children(read_text_file(robot_path, kMaxMjcfBytes, "a robot file"), robot_path);
     if (!welds.empty()) xml += "  <equality>\n" + welds + "  </equality>\n";
   }
   xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";

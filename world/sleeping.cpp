@@ -18,6 +18,10 @@ void add_geom(Aabb& box, const mjModel* m, const mjData* d, int g) {
   box.grow(sphere.grown(m->geom_rbound[g]));
 }
 
+int dof_count(int joint_type) {
+  return joint_type == mjJNT_FREE ? 6 : joint_type == mjJNT_BALL ? 3 : 1;
+}
+
 }  // namespace
 
 Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
@@ -47,12 +51,24 @@ Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
       o.bodies.push_back(b);
       for (int j = m->body_jntadr[b]; j >= 0 && j < m->body_jntadr[b] + m->body_jntnum[b]; ++j) {
         const int nq = m->jnt_type[j] == mjJNT_FREE ? 7 : m->jnt_type[j] == mjJNT_BALL ? 4 : 1;
-        const int nv = m->jnt_type[j] == mjJNT_FREE ? 6 : m->jnt_type[j] == mjJNT_BALL ? 3 : 1;
         for (int k = 0; k < nq; ++k) o.qpos.push_back(m->jnt_qposadr[j] + k);
-        for (int k = 0; k < nv; ++k) o.dofs.push_back(m->jnt_dofadr[j] + k);
+        for (int k = 0; k < dof_count(m->jnt_type[j]); ++k) o.dofs.push_back(m->jnt_dofadr[j] + k);
       }
     }
     objects_.push_back(std::move(o));
+  }
+  // Per body, one past the last dof of its tree (each object is a tree of its own).
+  body_dof_end_.assign(m->nbody, 0);
+  for (int j = 0; j < m->njnt; ++j) {
+    const int body = m->jnt_bodyid[j], end = m->jnt_dofadr[j] + dof_count(m->jnt_type[j]);
+    int& tree_end = body_dof_end_[m->body_rootid[body]];
+    tree_end = std::max(tree_end, end);
+    if (scene.object_of_body(body) < 0) always_dofs_ = std::max(always_dofs_, end);  // the robot's
+  }
+  for (int b = 0; b < m->nbody; ++b) body_dof_end_[b] = body_dof_end_[m->body_rootid[b]];
+  for (int w = 0; w < m->nwrap; ++w) {
+    if (m->wrap_type[w] != mjWRAP_JOINT) continue;
+    always_dofs_ = std::max(always_dofs_, body_dof_end_[m->jnt_bodyid[m->wrap_objid[w]]]);
   }
 }
 
@@ -156,6 +172,24 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
     for (int b : o.bodies) m->body_geomnum[b] = 0;
   }
   keep_resting_contacts(d);
+  // The dofs physics must keep: the robot's, tendons', awake objects', and
+  // those of bodies an active equality ties (a grasp, an attachment).
+  awake_dofs_ = always_dofs_;
+  for (const Object& o : objects_) {
+    if (!o.asleep && !o.dofs.empty()) awake_dofs_ = std::max(awake_dofs_, o.dofs.back() + 1);
+  }
+  for (int e = 0; e < m->neq; ++e) {
+    if (!m->eq_active[e]) continue;
+    for (int id : {m->eq_obj1id[e], m->eq_obj2id[e]}) {
+      if (id < 0) continue;
+      const mjtEq type = static_cast<mjtEq>(m->eq_type[e]);
+      const int body = type == mjEQ_JOINT      ? m->jnt_bodyid[id]
+                       : type == mjEQ_DISTANCE ? m->geom_bodyid[id]
+                       : type == mjEQ_TENDON   ? 0  // tendons' joints are always kept
+                                               : id;
+      awake_dofs_ = std::max(awake_dofs_, body_dof_end_[body]);
+    }
+  }
 }
 
 void Sleeping::keep_resting_contacts(const mjData* d) {

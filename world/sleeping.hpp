@@ -68,6 +68,11 @@ class Sleeping {
   // too many to be awake at once).
   void all_at_rest();
 
+  // After mask(): the degrees of freedom physics must keep (a prefix of the
+  // model's); those past it are sleepers' only. The scene's model puts the
+  // robot's and cloths' first.
+  int awake_dofs() const { return awake_dofs_; }
+
   int sleepers() const;
   bool asleep(int object) const;
 
@@ -99,6 +104,9 @@ class Sleeping {
   std::vector<Aabb> static_boxes_;  // made on the first mask()
   std::vector<char> static_asleep_;
   std::vector<mjContact> resting_;  // contacts of sleepers, kept
+  int always_dofs_ = 0;             // one past the robot's and tendons' dofs
+  std::vector<int> body_dof_end_;   // per body: one past the last dof of its tree
+  int awake_dofs_ = 0;
 };
 
 }  // namespace chore

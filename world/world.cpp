@@ -341,11 +341,48 @@ class SleepersMasked {
   bool physics_;
 };
 
+// The degrees of freedom from `nv` on (sleepers' only: Sleeping::awake_dofs)
+// out of the model's counts while this lives: MuJoCo's per-dof work
+// (inertia, its factorisation, the Newton solver's dense nv x nv Hessian,
+// integration) ends before them, while its per-body work (kinematics) still
+// poses them where they sleep. Their bodies have no geoms then, so no contact
+// or Jacobian reaches their dofs. The solver's tolerance is relative to
+// meaninertia x nv: meaninertia is scaled so that it stays the same.
+class DofsCut {
+ public:
+  DofsCut(mjModel* m, int nv)
+      : m_(m), nv_(m->nv), nq_(m->nq), njnt_(m->njnt), nM_(m->nM), meaninertia_(m->stat.meaninertia) {
+    if (nv <= 0 || nv >= m->nv) return;
+    int j = 0;
+    while (j < m->njnt && m->jnt_dofadr[j] < nv) ++j;
+    m->njnt = j;
+    m->nq = m->jnt_qposadr[j];
+    m->nM = m->dof_Madr[nv];  // rows of the inertia matrix are stored in dof order
+    m->nv = nv;
+    m->stat.meaninertia = meaninertia_ * nv_ / nv;
+  }
+  ~DofsCut() {
+    m_->nv = nv_;
+    m_->nq = nq_;
+    m_->njnt = njnt_;
+    m_->nM = nM_;
+    m_->stat.meaninertia = meaninertia_;
+  }
+  DofsCut(const DofsCut&) = delete;
+  DofsCut& operator=(const DofsCut&) = delete;
+
+ private:
+  mjModel* m_;
+  int nv_, nq_, njnt_, nM_;
+  double meaninertia_;
+};
+
 }  // namespace
 
 void World::run_masked(void (*stage)(const mjModel*, mjData*)) {
   const SleepersMasked masked(sleeping_on_ ? &*sleeping_ : nullptr, model_, data_, grasped_body(), stage == mj_step);
   const StaticGeomsLeftOut out(model_, *scene_);
+  const DofsCut cut(model_, sleeping_on_ ? sleeping_->awake_dofs() : 0);
   stage(model_, data_);
 }
 
