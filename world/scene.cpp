@@ -266,8 +266,10 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   std::vector<std::optional<ClothSpec>> cloths;               // per object: its cloth, if simulated
   std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
   std::vector<std::string> static_roots;                      // fixed objects with moving parts: their static roots
-  // Bodies that move, in the order the physics step cuts them (World): cloths
-  // (their tendons always count), free objects, then fixed ones with links.
+  // Bodies that move, ordered for the physics step, which keeps the degrees of
+  // freedom up to the last awake one (World): cloths (their tendons always
+  // count), fixed objects' links (a dof or two each, often awake beside the
+  // robot), then free objects (six each).
   std::string cloth_bodies, free_bodies, linked_bodies;
   for (const ObjectPlacement& placement : file.objects) {
     const auto found = file.models.find(placement.model);
@@ -343,7 +345,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
     scene->objects_.push_back(std::move(object));
   }
 
-  world += cloth_bodies + free_bodies + linked_bodies;
+  world += cloth_bodies + linked_bodies + free_bodies;
   // The static bodies, and the pairs among what never moves (the world, the
   // static bodies, the roots of fixed objects with moving parts) excluded:
   // MuJoCo 2.2.2 pairs the world body with every body and would otherwise
