@@ -395,6 +395,34 @@ TEST(Sleeping, APhysicsStepLeavesTheDofsOfTheLastSleepersOut) {
   EXPECT_NEAR(whole[0] - whole[19], g * h * h * (2 + 20) * 19 / 2, 1e-9);  // sum of k g h^2, k = 2..20
 }
 
+// Each body's geom count as MuJoCo's step sees it.
+std::vector<int> geomnum_seen_in_step;
+void record_geomnum(const mjModel* m, mjData*) {
+  geomnum_seen_in_step.assign(m->body_geomnum, m->body_geomnum + m->nbody);
+}
+
+TEST(World, AStepLeavesOutOnlyGeomsThatCannotCollide) {
+  Env env(box_room_config());
+  env.reset(0);
+  World& w = env.impl().world();
+  const mjModel* m = w.model();
+  const std::vector<int> geomnum(m->body_geomnum, m->body_geomnum + m->nbody);
+  const auto& cut = w.scene().colliding_geoms();
+  ASSERT_FALSE(cut.empty());  // the robot's drawn geoms
+  for (const Scene::CollidingGeoms& c : cut) {
+    EXPECT_LT(w.scene().object_of_body(c.body), 0);  // the robot's
+    for (int g = m->body_geomadr[c.body] + c.count; g < m->body_geomadr[c.body] + m->body_geomnum[c.body]; ++g) {
+      EXPECT_EQ(m->geom_contype[g], 0) << g;
+      EXPECT_EQ(m->geom_conaffinity[g], 0) << g;
+    }
+  }
+  mjcb_control = record_geomnum;
+  w.step(1);
+  mjcb_control = nullptr;
+  for (const Scene::CollidingGeoms& c : cut) EXPECT_EQ(geomnum_seen_in_step[c.body], c.count) << c.body;
+  EXPECT_EQ(std::vector<int>(m->body_geomnum, m->body_geomnum + m->nbody), geomnum);  // all back after it
+}
+
 TEST(World, ZeroActionHoldsTheRobotStill) {
   Env env(box_room_config());
   auto start = env.reset(0);

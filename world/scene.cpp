@@ -507,6 +507,12 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   while (scene->first_static_geom_ > 0 && model->geom_bodyid[scene->first_static_geom_ - 1] >= visuals) {
     --scene->first_static_geom_;
   }
+  for (int b = 0; b < visuals; ++b) {
+    const auto drawn_only = [&](int g) { return model->geom_contype[g] == 0 && model->geom_conaffinity[g] == 0; };
+    int count = model->body_geomnum[b];
+    while (count > 0 && drawn_only(model->body_geomadr[b] + count - 1)) --count;
+    if (count < model->body_geomnum[b]) scene->colliding_geoms_.push_back({b, count});
+  }
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];
     if (const auto& cloth = cloths[i]) {

@@ -91,6 +91,15 @@ class Scene {
   // them out of MuJoCo's per-geom loops (World does).
   int first_static_geom() const { return first_static_geom_; }
   static constexpr double kStaticCell = 2.0;
+  // Bodies whose last geoms are only drawn (contype and conaffinity 0), with
+  // how many of their geoms come before those: a physics step may leave the
+  // drawn ones out of collision detection (World does), where MuJoCo 2.2.2
+  // would test each against every geom of each body near. The robot's MJCF
+  // lists each body's collision geoms first.
+  struct CollidingGeoms {
+    int body, count;
+  };
+  const std::vector<CollidingGeoms>& colliding_geoms() const { return colliding_geoms_; }
   // Collision geoms of each room's floor, in rooms() order.
   const std::vector<int>& floor_geoms(int room) const { return floor_geoms_[room]; }
   // The room whose floor contains (x, y), or nullptr outside every room.
@@ -120,6 +129,7 @@ class Scene {
   std::vector<SceneObject> objects_;
   std::vector<int> body_object_, geom_object_, static_bodies_;
   int first_static_geom_ = 0;
+  std::vector<CollidingGeoms> colliding_geoms_;
   std::vector<std::vector<int>> floor_geoms_;
   Pose2 robot_start_;
   bool has_robot_ = true;

@@ -320,6 +320,30 @@ class StaticGeomsLeftOut {
   int ngeom_;
 };
 
+// Geoms that are only drawn out of collision detection while this lives:
+// each body's count ends before them (Scene::colliding_geoms; only ever
+// lowered, so that a sleeper's stays 0).
+class DrawnGeomsLeftOut {
+ public:
+  DrawnGeomsLeftOut(mjModel* m, const Scene& scene, std::vector<int>& saved) : m_(m), scene_(scene), saved_(saved) {
+    saved_.clear();
+    for (const Scene::CollidingGeoms& c : scene_.colliding_geoms()) {
+      saved_.push_back(m_->body_geomnum[c.body]);
+      m_->body_geomnum[c.body] = std::min(m_->body_geomnum[c.body], c.count);
+    }
+  }
+  ~DrawnGeomsLeftOut() {
+    for (size_t k = 0; k < saved_.size(); ++k) m_->body_geomnum[scene_.colliding_geoms()[k].body] = saved_[k];
+  }
+  DrawnGeomsLeftOut(const DrawnGeomsLeftOut&) = delete;
+  DrawnGeomsLeftOut& operator=(const DrawnGeomsLeftOut&) = delete;
+
+ private:
+  mjModel* m_;
+  const Scene& scene_;
+  std::vector<int>& saved_;
+};
+
 // Sleepers out of the model while this lives, back in however the stage
 // ends: a MuJoCo error throws through it (mujoco_errors.hpp).
 class SleepersMasked {
@@ -382,6 +406,7 @@ class DofsCut {
 void World::run_masked(void (*stage)(const mjModel*, mjData*)) {
   const SleepersMasked masked(sleeping_on_ ? &*sleeping_ : nullptr, model_, data_, grasped_body(), stage == mj_step);
   const StaticGeomsLeftOut out(model_, *scene_);
+  const DrawnGeomsLeftOut drawn(model_, *scene_, drawn_geoms_);
   const DofsCut cut(model_, sleeping_on_ ? sleeping_->awake_dofs() : 0);
   stage(model_, data_);
 }

@@ -149,6 +149,7 @@ class World {
   int texture_version_ = 0;
   mutable mjData_* scratch_ = nullptr;
   std::vector<double> payload_jacobian_;
+  std::vector<int> drawn_geoms_;          // run_masked's scratch: body_geomnum of Scene::colliding_geoms' bodies
   std::vector<double> velocity_command_;  // per actuator, m/s or rad/s  // 3 x nv, for the load's gravity compensation
 };
 
