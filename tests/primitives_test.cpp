@@ -440,6 +440,24 @@ TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) 
   EXPECT_TRUE(both.ok()) << both.reason;
 }
 
+// wipe presses the tool in before its strokes: at seed 77 the second wipe,
+// from where the first left the robot, cannot follow its first stroke far
+// (the arm's reach); when that stroke carried the 1 cm press, the tool moved
+// along the table without touching it and the wipe, repeated, removed
+// nothing to the step limit.
+TEST(Primitives, AWipeWhoseFirstStrokeIsCutShortStillPresses) {
+  Env env(primitive_config("clean_table", ExecutionMode::symbolic));
+  env.reset(77);
+  for (const char* a : {"navigate(rag.n.01_1)", "pick(rag.n.01_1)", "navigate(bucket.n.01_1)", "dip(bucket.n.01_1)",
+                        "navigate(table.n.02_1)", "wipe(table.n.02_1)"}) {
+    ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
+  }
+  const int table = env.activity()->object("table.n.02_1");
+  const size_t before = env.world().states().state(table).dirt.at("stain").size();
+  ASSERT_EQ(act(env, "wipe(table.n.02_1)").info.primitive_status, 0);
+  EXPECT_LT(env.world().states().state(table).dirt.at("stain").size(), before);
+}
+
 // navigate keeps base poses where the arm, as it drives, touches nothing: the
 // footprint's disks missed the elbow, and beside the wall by the bucket the
 // carry pose had no room (seed 60: the dip that followed found no arm path).
