@@ -89,10 +89,15 @@ bool act(Executor& e) {
   const double yaw = w.base_pose().yaw;
   const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
   constexpr double kHalfWidth = 0.22;
-  // Pressed in first, so that a stroke the arm cannot follow far still wipes
-  // where it goes; each stroke goes as far as the arm reaches along it.
-  m.line(kDown * 0.01, false, 0.25, 0.0);
-  m.line(forward * kFarRow - left * kHalfWidth, false, 0.25, 0.0);
+  // Pressed 1 cm in along the first stroke. Symbolic: before it, as a line of
+  // its own: a rigid tool held kinematically presses only as far as the arm
+  // follows that stroke, and a stroke cut short left it above the table.
+  // (Physical: the rag drapes onto the table, and a press of its own would
+  // wait out the settling of an arm the table stops.) Each stroke goes as far
+  // as the arm reaches along it.
+  const Eigen::Vector3d press = kDown * 0.01;
+  if (!m.physical()) m.line(press, false, 0.25, 0.0);
+  m.line(forward * kFarRow - left * kHalfWidth + (m.physical() ? press : Eigen::Vector3d::Zero()), false, 0.25, 0.0);
   for (int row = 0; row < kRows; ++row) {
     const double side = row % 2 == 0 ? 1.0 : -1.0;
     m.line(left * (2 * kHalfWidth * side), false, 0.3, 0.0);

@@ -55,6 +55,7 @@ Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
         for (int k = 0; k < dof_count(m->jnt_type[j]); ++k) o.dofs.push_back(m->jnt_dofadr[j] + k);
       }
     }
+    if (o.static_body < 0) moving_.push_back(static_cast<int>(objects_.size()));
     objects_.push_back(std::move(o));
   }
   // Per body, one past the last dof of its tree (each object is a tree of its own).
@@ -99,9 +100,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
     for (int g : robot_geoms_) add_geom(robot, m, d, g);
     regions_.push_back(robot.grown(kRobotMargin));
   }
-  for (size_t i = 0; i < n; ++i) {
+  for (const int i : moving_) {  // furniture in a static body: its static body's region decides
     const Object& o = objects_[i];
-    if (o.static_body >= 0) continue;  // its static body's region decides
     int& still = objects_[i].still_steps;
     for (int g : o.geoms) add_geom(boxes_[i], m, d, g);
     if (o.never || o.geoms.empty()) {
@@ -135,8 +135,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   // plate, and the table, awake), until nothing changes.
   for (bool changed = true; changed;) {
     changed = false;
-    for (size_t i = 0; i < n; ++i) {
-      if (awake_[i] || objects_[i].static_body >= 0) continue;
+    for (const int i : moving_) {
+      if (awake_[i]) continue;
       for (const Aabb& r : regions_) {
         if (!boxes_[i].overlaps(r)) continue;
         awake_[i] = 1;
@@ -159,9 +159,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
     if (static_asleep_[k]) m->body_geomnum[static_bodies_[k]] = 0;
   }
   fell_asleep_.assign(n, 0);
-  for (size_t i = 0; i < n; ++i) {
+  for (const int i : moving_) {
     Object& o = objects_[i];
-    if (o.static_body >= 0) continue;
     fell_asleep_[i] = !awake_[i] && !o.asleep;
     o.asleep = !awake_[i];
     if (!o.asleep) continue;
@@ -175,7 +174,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   // The dofs physics must keep: the robot's, tendons', awake objects', and
   // those of bodies an active equality ties (a grasp, an attachment).
   awake_dofs_ = always_dofs_;
-  for (const Object& o : objects_) {
+  for (const int i : moving_) {
+    const Object& o = objects_[i];
     if (!o.asleep && !o.dofs.empty()) awake_dofs_ = std::max(awake_dofs_, o.dofs.back() + 1);
   }
   for (int e = 0; e < m->neq; ++e) {
@@ -221,12 +221,13 @@ void Sleeping::keep_resting_contacts(const mjData* d) {
 
 void Sleeping::unmask(mjModel* m, mjData* d, bool physics) {
   for (int b : static_bodies_) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
-  for (Object& o : objects_) {
+  for (const int i : moving_) {
+    Object& o = objects_[i];
     if (o.asleep) {
       for (int b : o.bodies) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
       for (size_t k = 0; k < o.qpos.size(); ++k) d->qpos[o.qpos[k]] = o.rest_qpos[k];
       for (int v : o.dofs) d->qvel[v] = 0;
-    } else if (physics && o.static_body < 0) {
+    } else if (physics) {
       o.step_qpos.resize(o.qpos.size());
       for (size_t k = 0; k < o.qpos.size(); ++k) o.step_qpos[k] = d->qpos[o.qpos[k]];
     }

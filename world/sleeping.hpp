@@ -94,6 +94,7 @@ class Sleeping {
   void keep_resting_contacts(const mjData* d);
 
   std::vector<Object> objects_;
+  std::vector<int> moving_;       // objects with bodies of their own (not in a static body), in order
   std::vector<int> geom_object_;  // Scene::object_of_geom, copied
   std::vector<int> robot_geoms_;
   std::vector<char> robot_geom_;       // per geom
