@@ -261,10 +261,13 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     }
   }
 
+  nlohmann::json seeds_by_method = nlohmann::json::object();
+  for (const std::string& m : o.methods) seeds_by_method[m] = seeds_of(o, m);
   nlohmann::json result = {{"protocol",
                             {{"activities", o.activities},
                              {"methods", o.methods},
                              {"training_seeds", o.seeds},
+                             {"training_seeds_by_method", seeds_by_method},
                              {"steps", o.steps},
                              {"mode", o.mode},
                              {"eval_seed", 0},
@@ -342,6 +345,11 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
      << " GiB, no GPU\n"
      << "- Protocol: " << o.steps << " training steps per run, training seeds";
   for (uint64_t s : o.seeds) md << " " << s;
+  for (const auto& [method, seeds] : o.seeds_for) {
+    md << " (" << method_title(method) << ":";
+    for (uint64_t s : seeds) md << " " << s;
+    md << ")";
+  }
   md << "; " << o.mode << " primitive execution; evaluation at seed 0 (" << o.eval_episodes
      << " episodes) and over seeds " << o.generalisation_first << "-" << o.generalisation_last
      << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as "
@@ -370,7 +378,8 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
           if (row["activity"] != a || row["method"] != method) continue;
           Stat s{row[key]["mean"].get<double>(), row[key]["std"].get<double>(), row[key]["runs"].get<int>()};
           md << " " << (s.n ? "**" + format(s) + "**" : std::string("not run"));
-          if (s.n && s.n < static_cast<int>(o.seeds.size())) md << " (" << s.n << " of " << o.seeds.size() << " seeds)";
+          const size_t seeds = seeds_of(o, method).size();
+          if (s.n && s.n < static_cast<int>(seeds)) md << " (" << s.n << " of " << seeds << " seeds)";
           if (with_paper && row["paper_q"]["mean"].is_number() && !std::isnan(row["paper_q"]["mean"].get<double>())) {
             md << " (paper " << fixed(row["paper_q"]["mean"].get<double>()) << " ± "
                << fixed(row["paper_q"]["std"].get<double>()) << ")";

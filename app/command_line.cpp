@@ -35,6 +35,18 @@ std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::str
   return {first, last};
 }
 
+// Seeds and ranges A-B, in order, as a table's training seeds.
+std::vector<uint64_t> table_seeds(const std::vector<std::string>& texts, const std::string& option) {
+  std::vector<uint64_t> seeds;
+  for (const std::string& text : texts) {
+    const auto [first, last] = seed_range(text, option);
+    if (last - first >= kMaxTableSeeds || seeds.size() + (last - first) >= kMaxTableSeeds)
+      throw Error(option + ": at most " + std::to_string(kMaxTableSeeds) + " training seeds");
+    for (uint64_t s = first; s <= last; ++s) seeds.push_back(s);
+  }
+  return seeds;
+}
+
 void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
   auto* checkpoint =
       cmd->add_option("--checkpoint", a.checkpoints, "Checkpoint(s) of chore train (their env, greedy policy)");
@@ -71,7 +83,7 @@ struct CommandLineParser::Impl {
   struct Values {
     CommandLine c;
     std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119";
-    std::vector<std::string> reproduce_seeds = {"0", "1", "2"};
+    std::vector<std::string> reproduce_seeds = {"0", "1", "2"}, reproduce_seeds_for;
     int64_t train_steps = 0;
     std::string model_cache = default_model_cache_dir();
   } values;
@@ -279,6 +291,8 @@ CommandLineParser::Impl::Impl() {
       ->capture_default_str();
   reproduce_cmd->add_option("--seeds", values.reproduce_seeds, "Training seeds: seeds or ranges A-B (0-9)")
       ->capture_default_str();
+  reproduce_cmd->add_option("--seeds-for", values.reproduce_seeds_for,
+                            "METHOD=SEEDS: that method's own training seeds (rl-vmc=0-2)");
   reproduce_cmd->add_option("--steps", c.reproduce.steps, "Training env steps per run")
       ->check(integer_in(1, 10000000000))
       ->capture_default_str();
@@ -361,12 +375,13 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
     }
     if (*reproduce_cmd) {
       c.command = Command::reproduce;
-      c.reproduce.seeds.clear();
-      for (const std::string& text : values.reproduce_seeds) {
-        const auto [first, last] = seed_range(text, "--seeds");
-        if (last - first >= kMaxTableSeeds || c.reproduce.seeds.size() + (last - first) >= kMaxTableSeeds)
-          throw Error("--seeds: at most " + std::to_string(kMaxTableSeeds) + " training seeds");
-        for (uint64_t s = first; s <= last; ++s) c.reproduce.seeds.push_back(s);
+      c.reproduce.seeds = table_seeds(values.reproduce_seeds, "--seeds");
+      for (const std::string& text : values.reproduce_seeds_for) {
+        const size_t eq = text.find('=');
+        if (eq == std::string::npos) throw Error("--seeds-for '" + text + "': expected METHOD=SEEDS, e.g. rl-vmc=0-2");
+        const std::string method = text.substr(0, eq);
+        if (c.reproduce.seeds_for.contains(method)) throw Error("--seeds-for " + method + ": given twice");
+        c.reproduce.seeds_for[method] = table_seeds({text.substr(eq + 1)}, "--seeds-for " + method);
       }
       std::tie(c.reproduce.generalisation_first, c.reproduce.generalisation_last) =
           seed_range(values.generalisation_seeds, "--generalisation-seeds");

@@ -29,6 +29,12 @@ extern char** environ;
 
 namespace chore {
 namespace fs = std::filesystem;
+
+const std::vector<uint64_t>& seeds_of(const ReproduceOptions& o, const std::string& method) {
+  const auto it = o.seeds_for.find(method);
+  return it == o.seeds_for.end() ? o.seeds : it->second;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -259,6 +265,12 @@ void validate(const ReproduceOptions& o) {
     }
     resolve_activity_path(a);  // throws naming the known ones
   }
+  for (const auto& [m, seeds] : o.seeds_for) {
+    if (std::find(o.methods.begin(), o.methods.end(), m) == o.methods.end()) {
+      throw Error("reproduce: --seeds-for " + m + ": not one of the table's --methods");
+    }
+    if (seeds.empty()) throw Error("reproduce: --seeds-for " + m + ": give at least one seed");
+  }
   if (o.mode != "physical" && o.mode != "symbolic") throw Error("reproduce: --mode is physical or symbolic");
   if (o.steps < 1) throw Error("reproduce: --steps must be at least 1");
   if (o.jobs < 1) throw Error("reproduce: --jobs must be at least 1");
@@ -275,7 +287,7 @@ std::vector<Cell> cells_of(const ReproduceOptions& o) {
   std::vector<Cell> cells;
   for (const std::string& a : o.activities) {
     for (const std::string& m : o.methods) {
-      for (uint64_t s : o.seeds) {
+      for (uint64_t s : seeds_of(o, m)) {
         cells.push_back({a, m, s, fs::path(o.out) / "runs" / o.mode / a / (m + "_seed" + std::to_string(s))});
       }
     }

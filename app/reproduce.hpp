@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ struct ReproduceOptions {
   std::vector<std::string> activities = {"store_decoration", "collect_trash", "clean_table"};
   std::vector<std::string> methods = {"rl-vmc", "rl-prim", "rl-prim-hist"};
   std::vector<uint64_t> seeds = {0, 1, 2};
+  // A method's own training seeds where they differ from `seeds` (`--seeds-for
+  // rl-vmc=0-2`: a method whose runs all score 0 may stay at fewer seeds).
+  std::map<std::string, std::vector<uint64_t>> seeds_for;
   int64_t steps = 30000;                                           // training env steps per run (the paper's)
   std::string mode = "physical";                                   // primitive execution (the paper's)
   int jobs = 2;                                                    // runs at once
@@ -46,6 +50,9 @@ struct ReproduceOptions {
   std::vector<std::string> settings;
   std::string command_line;  // as typed, for the report
 };
+
+// The training seeds of `method`'s runs.
+const std::vector<uint64_t>& seeds_of(const ReproduceOptions& options, const std::string& method);
 
 // Runs the cells not done yet, then writes the report; returns baselines.json's
 // content. chore::Error for bad options; a failed run is reported (its log's

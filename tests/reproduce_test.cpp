@@ -31,12 +31,13 @@ nlohmann::json read_json(const fs::path& path) {
   return nlohmann::json::parse(read_text(path));
 }
 
-// Runs `chore reproduce` on the small table; returns its exit status, its log in `log`.
-int reproduce_small_table(const fs::path& out, std::string& log, bool videos = false, const std::string& extra = "") {
+// Runs `chore reproduce` on the small table (`cells`: its methods and seeds);
+// returns its exit status, its log in `log`.
+int reproduce_small_table(const fs::path& out, std::string& log, bool videos = false, const std::string& extra = "",
+                          const std::string& cells = " --methods rl-prim --seeds 0 1") {
   const fs::path log_file = out.string() + ".log";
-  const std::string command = std::string(CHORE_BINARY) +
-                              " reproduce --activities collect_trash --methods rl-prim --seeds 0 1 --steps 60"
-                              " --mode symbolic --eval-episodes 2 --generalisation-seeds 100-101" +
+  const std::string command = std::string(CHORE_BINARY) + " reproduce --activities collect_trash" + cells +
+                              " --steps 60 --mode symbolic --eval-episodes 2 --generalisation-seeds 100-101" +
                               (videos ? "" : " --no-videos") + extra + " --out " + out.string() + " 2> " +
                               log_file.string();
   const int status = std::system(command.c_str());
@@ -199,6 +200,45 @@ TEST(Reproduce, SettingsReachTheirMethodsRunsAndGuardResuming) {
   ASSERT_EQ(reproduce_small_table(out, log, false, settings), 0) << log;
   EXPECT_EQ(read_text(seed1 / "metrics.csv"), metrics);
   EXPECT_TRUE(fs::exists(seed1 / "cell.json"));
+  fs::remove_all(out);
+}
+
+// --seeds-for gives one method its own training seeds (RL-VMC may stay at
+// three while the primitive methods run more): its runs are the table's, none
+// is missing, and the report says which seeds each method has.
+TEST(Reproduce, AMethodMayHaveItsOwnSeeds) {
+  const fs::path out = fs::path(CHORE_TEST_OUTPUT) / ("reproduce_seeds_for_" + std::to_string(getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out.parent_path());
+  std::string log;
+  const std::string cells = " --methods rl-prim rl-prim-hist --seeds 0 --seeds-for rl-prim=0-1";
+  ASSERT_EQ(reproduce_small_table(out, log, false, "", cells), 0) << log;
+  const nlohmann::json table = read_json(out / "baselines.json");
+  EXPECT_EQ(table["runs"].size(), 3u);
+  EXPECT_TRUE(table["missing"].empty()) << table["missing"];
+  EXPECT_EQ(table["protocol"]["training_seeds_by_method"],
+            nlohmann::json({{"rl-prim", {0, 1}}, {"rl-prim-hist", {0}}}));
+  ASSERT_EQ(table["rows"].size(), 2u);
+  EXPECT_EQ(table["rows"][0]["runs"], 2);
+  EXPECT_EQ(table["rows"][1]["runs"], 1);
+  EXPECT_TRUE(fs::exists(out / "runs" / "symbolic" / "collect_trash" / "rl-prim_seed1" / "cell.json"));
+  EXPECT_FALSE(fs::exists(out / "runs" / "symbolic" / "collect_trash" / "rl-prim-hist_seed1"));
+  ASSERT_EQ(table["orderings"].size(), 1u);  // RL-Prim.Hist. against RL-Prim., one run against two
+  const std::string md = read_text(out / "baselines.md");
+  EXPECT_NE(md.find("training seeds 0 (RL-Prim.: 0 1);"), std::string::npos) << md;
+  EXPECT_EQ(md.find(" seeds)"), std::string::npos) << "no cell is short of its seeds:\n" << md;
+
+  // Bad --seeds-for: exit 2 naming it, nothing run.
+  const fs::path other = out / "other";
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {" --seeds-for rl-vmc=0", "--seeds-for rl-vmc: not one of the table's --methods"},
+           {" --seeds-for rl-prim", "--seeds-for 'rl-prim': expected METHOD=SEEDS"},
+           {" --seeds-for rl-prim=0 --seeds-for rl-prim=1", "--seeds-for rl-prim: given twice"},
+           {" --seeds-for rl-prim=3-1", "--seeds-for rl-prim '3-1': B is below A"}}) {
+    EXPECT_EQ(reproduce_small_table(other, log, false, bad), 2) << bad << "\n" << log;
+    EXPECT_NE(log.find(message), std::string::npos) << bad << "\n" << log;
+    EXPECT_FALSE(fs::exists(other / "runs")) << bad;
+  }
   fs::remove_all(out);
 }
 
