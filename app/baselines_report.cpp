@@ -124,9 +124,6 @@ nlohmann::json intervals(const std::vector<double>& runs, const std::string& nam
 // The paper's ordering (Table A.13: RL-Prim.Hist. above RL-Prim. above RL-VMC),
 // pair by pair, in the words the intervals allow.
 const std::vector<std::pair<std::string, std::string>> kOrdering = {{"rl-prim-hist", "rl-prim"}, {"rl-prim", "rl-vmc"}};
-std::string verdict(const Interval& p) {
-  return p.lo > 0.5 ? "holds" : p.hi < 0.5 ? "does not hold" : "cannot tell at 95%";
-}
 
 // Fraction of runs above each Q in [0, 1], per method, as a CSV the curve plot reads.
 void write_profile(const fs::path& path, const std::vector<double>& runs) {
@@ -216,7 +213,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                            {"better", better},
                            {"worse", worse},
                            {"probability_of_improvement", to_json(p)},
-                           {"verdict", verdict(p)}});
+                           {"verdict", improvement_verdict(p, std::min(x.size(), y.size()))}});
     }
     PlotOptions plot;
     fs::create_directories(out / "profiles");
@@ -428,7 +425,8 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   if (!r["orderings"].empty()) {
     md << "\nThe paper's ordering, pair by pair: the probability that a run of the first method scores a higher Q "
           "at evaluation seed 0 than a run of the second (ties count one half), its 95% bootstrap interval, and "
-          "the verdict (holds: the interval lies above 0.5; does not hold: below; else the runs cannot tell).\n\n"
+          "the verdict (holds: the interval lies above 0.5; does not hold: below; else the runs cannot tell; a method "
+          "with fewer than 3 runs: too few runs to tell).\n\n"
           "| Activity | Ordering | P(first > second) | Verdict |\n|---|---|---|---|\n";
     for (const nlohmann::json& c : r["orderings"]) {
       md << "| " << activity_title(c["activity"]) << " | " << method_title(c["better"]) << " > "

@@ -74,6 +74,11 @@ Interval probability_of_improvement(const std::vector<double>& x, const std::vec
   return percentiles(p(x, y), std::move(draws));
 }
 
+std::string improvement_verdict(const Interval& p, size_t fewest_runs) {
+  if (fewest_runs < kMinVerdictRuns) return "too few runs to tell";
+  return p.lo > 0.5 ? "holds" : p.hi < 0.5 ? "does not hold" : "cannot tell at 95%";
+}
+
 std::vector<double> performance_profile(const std::vector<double>& scores, const std::vector<double>& thresholds) {
   std::vector<double> fractions;
   for (double t : thresholds) {

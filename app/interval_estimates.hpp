@@ -8,7 +8,9 @@
 // the same every time it is written.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace chore {
@@ -32,6 +34,13 @@ Interval bootstrap_interval(const std::vector<double>& scores, double (*statisti
 // independently for the interval.
 Interval probability_of_improvement(const std::vector<double>& x, const std::vector<double>& y, uint64_t seed,
                                     int reps = kBootstrapReps);
+// The verdict on "X is better than Y" that P(X > Y)'s interval allows: "holds"
+// (above 0.5), "does not hold" (below), "cannot tell at 95%" (0.5 inside it),
+// or "too few runs to tell" where a method has fewer than kMinVerdictRuns runs
+// (a bootstrap over one or two runs cannot see their spread: one run against
+// one gives the interval [P, P]).
+inline constexpr size_t kMinVerdictRuns = 3;
+std::string improvement_verdict(const Interval& p, size_t fewest_runs);
 // The fraction of runs scoring above each threshold.
 std::vector<double> performance_profile(const std::vector<double>& scores, const std::vector<double>& thresholds);
 

@@ -11,10 +11,10 @@ namespace chore {
 namespace {
 
 TEST(IntervalEstimates, InterquartileMeanDropsAQuarterAtEachEndAsScipyTrimMean) {
-  EXPECT_DOUBLE_EQ(interquartile_mean({8, 1, 7, 2, 6, 3, 5, 4}), 4.5);                // 3, 4, 5, 6
+  EXPECT_DOUBLE_EQ(interquartile_mean({8, 1, 7, 2, 6, 3, 5, 4}), 4.5);            // 3, 4, 5, 6
   EXPECT_DOUBLE_EQ(interquartile_mean({0, 0, 1, 1, 1, 1, 1, 1, 100, 100}), 1.0);  // drops 2 at each end
-  EXPECT_DOUBLE_EQ(interquartile_mean({0.0, 0.3, 0.9}), 0.4);                         // n < 4: the mean
-  EXPECT_DOUBLE_EQ(interquartile_mean({2, 9, 4, 1, 100}), 5.0);                       // n = 5: drops 1 each end
+  EXPECT_DOUBLE_EQ(interquartile_mean({0.0, 0.3, 0.9}), 0.4);                     // n < 4: the mean
+  EXPECT_DOUBLE_EQ(interquartile_mean({2, 9, 4, 1, 100}), 5.0);                   // n = 5: drops 1 each end
 }
 
 TEST(IntervalEstimates, BootstrapIntervalsHaveTheirStatisticsWidth) {
@@ -52,6 +52,18 @@ TEST(IntervalEstimates, ProbabilityOfImprovementCountsTiesAsHalf) {
   // Separated runs: every resample says X is better.
   const Interval sure = probability_of_improvement({0.8, 0.9, 0.7}, {0.1, 0.2, 0.0}, 0, 1000);
   EXPECT_DOUBLE_EQ(sure.lo, 1.0);
+}
+
+TEST(IntervalEstimates, AVerdictIsWhatTheIntervalAllows) {
+  EXPECT_EQ(improvement_verdict({0.9, 0.6, 1.0}, 3), "holds");
+  EXPECT_EQ(improvement_verdict({0.1, 0.0, 0.4}, 5), "does not hold");
+  EXPECT_EQ(improvement_verdict({0.6, 0.3, 0.9}, 10), "cannot tell at 95%");
+  EXPECT_EQ(improvement_verdict({0.5, 0.5, 0.5}, 10), "cannot tell at 95%");  // every run tied
+  // One run against one: the bootstrap's interval is the point, whatever the runs.
+  const Interval one = probability_of_improvement({0.2}, {0.1}, 0, 100);
+  EXPECT_DOUBLE_EQ(one.lo, 1.0);
+  EXPECT_EQ(improvement_verdict(one, 1), "too few runs to tell");
+  EXPECT_EQ(improvement_verdict({1.0, 1.0, 1.0}, 2), "too few runs to tell");
 }
 
 TEST(IntervalEstimates, PerformanceProfilesCountRunsAboveEachThreshold) {

@@ -224,6 +224,7 @@ TEST(Reproduce, AMethodMayHaveItsOwnSeeds) {
   EXPECT_TRUE(fs::exists(out / "runs" / "symbolic" / "collect_trash" / "rl-prim_seed1" / "cell.json"));
   EXPECT_FALSE(fs::exists(out / "runs" / "symbolic" / "collect_trash" / "rl-prim-hist_seed1"));
   ASSERT_EQ(table["orderings"].size(), 1u);  // RL-Prim.Hist. against RL-Prim., one run against two
+  EXPECT_EQ(table["orderings"][0]["verdict"], "too few runs to tell");
   const std::string md = read_text(out / "baselines.md");
   EXPECT_NE(md.find("training seeds 0 (RL-Prim.: 0 1);"), std::string::npos) << md;
   EXPECT_EQ(md.find(" seeds)"), std::string::npos) << "no cell is short of its seeds:\n" << md;
