@@ -336,8 +336,10 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
      << "Written by `scripts/reproduce` from the runs under `" << (fs::path(o.out) / "runs" / o.mode).string()
      << "`; do not edit by hand.\n\n"
      << "- Command: `" << r["command"].get<std::string>() << "`\n"
-     << "- Code: commit " << m["commit"].get<std::string>()
-     << (m["local_changes"].get<bool>() ? " with local changes" : "") << "\n"
+     << (o.report_only ? "- Report written at commit " : "- Code: commit ") << m["commit"].get<std::string>()
+     << (m["local_changes"].get<bool>() ? " with local changes" : "")
+     << (o.report_only ? " (`--report-only`: the runs are those of earlier invocations, each with its own code)" : "")
+     << "\n"
      << "- Machine: " << m["cpu"].get<std::string>() << ", " << m["cores"] << " cores, " << m["memory_gib"]
      << " GiB, no GPU\n"
      << "- Protocol: " << o.steps << " training steps per run, training seeds";

@@ -228,6 +228,16 @@ TEST(Reproduce, AMethodMayHaveItsOwnSeeds) {
   const std::string md = read_text(out / "baselines.md");
   EXPECT_NE(md.find("training seeds 0 (RL-Prim.: 0 1);"), std::string::npos) << md;
   EXPECT_EQ(md.find(" seeds)"), std::string::npos) << "no cell is short of its seeds:\n" << md;
+  EXPECT_NE(md.find("- Code: commit "), std::string::npos) << md;
+
+  // --report-only trains nothing and names the commit as the report's, not the runs'.
+  const fs::path seed1 = out / "runs" / "symbolic" / "collect_trash" / "rl-prim_seed1";
+  const auto written = fs::last_write_time(seed1 / "cell.json");
+  ASSERT_EQ(reproduce_small_table(out, log, false, " --report-only", cells), 0) << log;
+  EXPECT_EQ(log.find("training"), std::string::npos) << log;
+  EXPECT_EQ(fs::last_write_time(seed1 / "cell.json"), written);
+  EXPECT_EQ(read_json(out / "baselines.json")["runs"].size(), 3u);
+  EXPECT_NE(read_text(out / "baselines.md").find("- Report written at commit "), std::string::npos);
 
   // Bad --seeds-for: exit 2 naming it, nothing run.
   const fs::path other = out / "other";
