@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -247,7 +248,9 @@ nlohmann::json plot_curves(const PlotOptions& options) {
   const int ly = std::max(0, area.y + area.height / 2 - ylabel.rows / 2);
   if (ylabel.rows <= options.height - ly) ylabel.copyTo(image(cv::Rect(8, ly, ylabel.cols, ylabel.rows)));
 
-  // Legend, top left inside the axes.
+  // Legend, inside the axes in the corner the curves leave emptiest (top left
+  // first): a learning curve rises to the top right, a performance profile
+  // starts at the top left.
   int widest = 0;
   std::vector<std::string> entries;
   for (const Group& g : groups) {
@@ -256,7 +259,27 @@ nlohmann::json plot_curves(const PlotOptions& options) {
                           : g.label);
     widest = std::max(widest, cv::getTextSize(entries.back(), kFont, 0.45, 1, &base).width);
   }
-  const cv::Rect legend(area.x + 10, area.y + 10, widest + 50, 22 * static_cast<int>(groups.size()) + 8);
+  const cv::Size legend_size(widest + 50, 22 * static_cast<int>(groups.size()) + 8);
+  cv::Rect legend;
+  int least_ink = std::numeric_limits<int>::max();
+  for (const cv::Point corner : {cv::Point(0, 0), cv::Point(1, 0), cv::Point(1, 1), cv::Point(0, 1)}) {
+    const cv::Rect r(corner.x ? area.x + area.width - 10 - legend_size.width : area.x + 10,
+                     corner.y ? area.y + area.height - 10 - legend_size.height : area.y + 10, legend_size.width,
+                     legend_size.height);
+    const cv::Vec3b white(255, 255, 255), grid(228, 228, 228);           // kWhite, kGridLine
+    const cv::Rect inside = r & cv::Rect(0, 0, image.cols, image.rows);  // labels wider than the axes
+    int ink = 0;
+    for (int y = inside.y; y < inside.y + inside.height; ++y) {
+      for (int x = inside.x; x < inside.x + inside.width; ++x) {
+        const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
+        ink += c != white && c != grid;
+      }
+    }
+    if (ink < least_ink) {
+      least_ink = ink;
+      legend = r;
+    }
+  }
   cv::rectangle(image, legend, kWhite, cv::FILLED);
   cv::rectangle(image, legend, kGrey, 1);
   for (size_t k = 0; k < groups.size(); ++k) {
@@ -269,11 +292,9 @@ nlohmann::json plot_curves(const PlotOptions& options) {
   nlohmann::json summary = nlohmann::json::array();
   for (const Group& g : groups)
     summary.push_back({{"label", g.label}, {"runs", g.runs.size()}, {"points", g.mean.x.size()}});
-  return {{"out", options.out},
-          {"groups", summary},
-          {"area", {area.x, area.y, area.width, area.height}},
-          {"x_range", {x0, x1}},
-          {"y_range", {y0, y1}}};
+  return {{"out", options.out},  {"legend", {legend.x, legend.y, legend.width, legend.height}},
+          {"groups", summary},   {"area", {area.x, area.y, area.width, area.height}},
+          {"x_range", {x0, x1}}, {"y_range", {y0, y1}}};
 }
 
 }  // namespace chore

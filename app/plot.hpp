@@ -29,8 +29,9 @@ struct PlotOptions {
   bool count_runs = true;  // the legend says how many runs each group has
 };
 
-// Draws the PNG. Returns the groups (label, runs, points) and the plot frame
-// (the pixel rectangle of the axes and the data ranges they span).
+// Draws the PNG. Returns the groups (label, runs, points), the plot frame
+// (the pixel rectangle of the axes and the data ranges they span) and the
+// legend's pixel rectangle (x, y, width, height).
 // chore::Error naming the file (and line) for a missing file or column or a
 // value that is not a number.
 nlohmann::json plot_curves(const PlotOptions& options);

@@ -85,6 +85,30 @@ TEST(Plot, TheBandStaysWithinTheRunsValues) {
   EXPECT_NEAR(r["y_range"][1].get<double>(), high + pad, 1e-9);
 }
 
+// The legend takes the corner the curves leave emptiest: top left beside a
+// rising curve, elsewhere beside a falling one (a performance profile).
+TEST(Plot, TheLegendLeavesTheCurvesVisible) {
+  const auto dir = test::scratch_dir("plot_legend");
+  test::write_file(dir / "rising" / "metrics.csv", run([](double s) { return s / 30000; }));
+  test::write_file(dir / "falling" / "metrics.csv", run([](double s) { return 1 - s / 30000; }));
+  const auto legend = [&](const std::string& name) {
+    PlotOptions options;
+    options.runs = {(dir / name / "metrics.csv").string()};
+    options.y = "mean_q";
+    options.out = (test::output_dir() / ("plot_legend_" + name + ".png")).string();
+    const nlohmann::json r = plot_curves(options);
+    const auto& a = r["area"];
+    const auto& l = r["legend"];
+    EXPECT_GE(l[0].get<int>(), a[0].get<int>());
+    EXPECT_LE(l[0].get<int>() + l[2].get<int>(), a[0].get<int>() + a[2].get<int>());
+    return std::pair(l[0].get<int>() - a[0].get<int>(), l[1].get<int>() - a[1].get<int>());  // offset in the axes
+  };
+  EXPECT_EQ(legend("rising"), std::pair(10, 10));
+  const auto [x, y] = legend("falling");  // the top left holds the curve's start: the top right is empty
+  EXPECT_GT(x, 10);
+  EXPECT_EQ(y, 10);
+}
+
 TEST(Plot, BadFilesAreErrorsNamingThem) {
   const auto dir = test::scratch_dir("plot_errors");
   PlotOptions options;
