@@ -260,19 +260,20 @@ nlohmann::json plot_curves(const PlotOptions& options) {
     widest = std::max(widest, cv::getTextSize(entries.back(), kFont, 0.45, 1, &base).width);
   }
   const cv::Size legend_size(widest + 50, 22 * static_cast<int>(groups.size()) + 8);
+  const auto colour = [](const cv::Scalar& c) { return cv::Vec3b(c[0], c[1], c[2]); };
+  const cv::Vec3b paper = colour(kWhite), grid = colour(kGridLine);
   cv::Rect legend;
   int least_ink = std::numeric_limits<int>::max();
   for (const cv::Point corner : {cv::Point(0, 0), cv::Point(1, 0), cv::Point(1, 1), cv::Point(0, 1)}) {
     const cv::Rect r(corner.x ? area.x + area.width - 10 - legend_size.width : area.x + 10,
                      corner.y ? area.y + area.height - 10 - legend_size.height : area.y + 10, legend_size.width,
                      legend_size.height);
-    const cv::Vec3b white(255, 255, 255), grid(228, 228, 228);           // kWhite, kGridLine
     const cv::Rect inside = r & cv::Rect(0, 0, image.cols, image.rows);  // labels wider than the axes
     int ink = 0;
     for (int y = inside.y; y < inside.y + inside.height; ++y) {
       for (int x = inside.x; x < inside.x + inside.width; ++x) {
         const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
-        ink += c != white && c != grid;
+        ink += c != paper && c != grid;
       }
     }
     if (ink < least_ink) {
