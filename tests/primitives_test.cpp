@@ -236,7 +236,9 @@ TEST(Primitives, ThePapersPolicyFailureRuleCountsEveryFailedPrimitive) {
       r = act(env, "pick(pumpkin.n.02_1)");
       ASSERT_EQ(r.info.primitive_status, static_cast<int>(PrimitiveStatus::motion_planning_failure))
           << env.last_primitive().reason;
-      if (k < 3) EXPECT_FALSE(r.terminated) << rule << k;
+      if (k < 3) {
+        EXPECT_FALSE(r.terminated) << rule << k;
+      }
     }
     EXPECT_EQ(r.info.policy_failure, rule == "paper") << rule;
     EXPECT_EQ(r.terminated, rule == "paper") << rule;
