@@ -142,5 +142,24 @@ expect 2 "--generalisation-seeds '5-1': B is below A" -- "$chore" reproduce --ge
 expect 2 "--set ppo.nope: no such setting" -- "$chore" reproduce --set ppo.nope=1 --out "$reproduce_out"
 if [[ -n "$(ls -A "$reproduce_out")" ]]; then echo "FAIL: a refused reproduce wrote to $reproduce_out"; failures=$((failures + 1)); fi
 
+# scripts/compare_runs: one short cell run twice reproduces bit for bit (exit 0);
+# a machine's speed (wall_s) is not compared, a learning column is (exit 1); an
+# unreadable checkpoint is exit 2.
+compare_runs="$(cd "$(dirname "${BASH_SOURCE[0]}")/../scripts" && pwd)/compare_runs"
+twice="$(mktemp -d)"
+for copy in a b; do
+  expect 0 "1/1 runs done" -- "$chore" reproduce --activities collect_trash --methods rl-prim --seeds 0 --steps 300 --mode symbolic --jobs 1 --eval-episodes 1 --generalisation-seeds 100-100 --no-videos --set ppo.epochs=3 --out "$twice/$copy"
+done
+run_a="$twice/a/runs/symbolic/collect_trash/rl-prim_seed0"
+run_b="$twice/b/runs/symbolic/collect_trash/rl-prim_seed0"
+expect 0 "checkpoint.pt tensors: identical" -- "$compare_runs" "$run_a" "$run_b"
+awk -F, -v OFS=, 'NR == 2 { $2 = $2 + 1000 } 1' "$run_b/metrics.csv" > "$twice/m" && mv "$twice/m" "$run_b/metrics.csv"
+expect 0 "metrics.csv: identical" -- "$compare_runs" "$run_a" "$run_b"
+awk -F, -v OFS=, 'NR == 2 { $11 = $11 + 1 } 1' "$run_b/metrics.csv" > "$twice/m" && mv "$twice/m" "$run_b/metrics.csv"
+expect 1 "metrics.csv: DIFFERENT" -- "$compare_runs" "$run_a" "$run_b"
+printf 'garbage' > "$run_b/checkpoint.pt"
+expect 2 "not a chore checkpoint" -- "$compare_runs" "$run_a" "$run_b"
+expect 2 "no_such_run" -- "$compare_runs" "$run_a" "$twice/no_such_run"
+
 echo "$((checks - failures)) passed, $failures failed"
 [[ $failures -eq 0 ]]
