@@ -13,6 +13,7 @@
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/json_file.hpp"
+#include "training/trainer.hpp"
 #include "world/scene.hpp"
 
 namespace chore {
@@ -77,6 +78,20 @@ nlohmann::json to_json(const Stat& s) {
 }
 std::string format(const Stat& s) {
   return s.n == 0 ? "-" : fixed(s.mean) + " ± " + fixed(s.std);
+}
+
+// The policy-failure rule the primitive runs ran under: the env's default
+// unless --set changed it (a cell is done only with the table's settings).
+nlohmann::json policy_failure(const ReproduceOptions& o) {
+  TrainConfig c = baseline_config("rl-prim", "");
+  for (const std::string& s : settings_for("rl-prim", o.settings)) c = with_setting(c, s);
+  return {{"rule", c.env.policy_failure_rule}, {"repeats", c.env.policy_failure_repeats}};
+}
+// What ends an episode as a policy failure, in the report's words (EnvConfig
+// says what each rule counts).
+std::string policy_failure_words(const nlohmann::json& p) {
+  const std::string repeats = std::to_string(p["repeats"].get<int>()) + "x";
+  return p["rule"] == "paper" ? "same failed primitive " + repeats : "same invalid action " + repeats;
 }
 
 }  // namespace
@@ -272,7 +287,8 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                              {"eval_policy", "sampled"},
                              {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
                              {"generalisation_episodes_per_seed", 1},
-                             {"settings", o.settings}}},
+                             {"settings", o.settings},
+                             {"policy_failure", policy_failure(o)}}},
                            {"command", o.command_line},
                            {"machine", machine()},
                            {"rows", rows},
@@ -445,8 +461,8 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   md << "\n";
 
   md << "## How episodes ended and which primitives failed (all evaluation episodes, summed over runs)\n\n"
-     << "| Activity | Method | success | policy failure (same invalid action 3x) | time limit | motion planning "
-        "| grasp | place | precondition |\n|---|---|---|---|---|---|---|---|---|\n";
+     << "| Activity | Method | success | policy failure (" << policy_failure_words(r["protocol"]["policy_failure"])
+     << ") | time limit | motion planning | grasp | place | precondition |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& row : r["rows"]) {
     if (row["runs"].get<int>() == 0) continue;
     const nlohmann::json& e = row["episodes_ended_by"];

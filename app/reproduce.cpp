@@ -35,6 +35,18 @@ const std::vector<uint64_t>& seeds_of(const ReproduceOptions& o, const std::stri
   return it == o.seeds_for.end() ? o.seeds : it->second;
 }
 
+std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
+  const std::string& mine = algorithm_of(method).name;
+  std::vector<std::string> kept;
+  for (const std::string& s : settings) {
+    const std::string group = s.substr(0, s.find('.'));
+    const bool others = group != mine && std::any_of(algorithms().begin(), algorithms().end(),
+                                                     [&](const Algorithm& a) { return a.name == group; });
+    if (!others) kept.push_back(s);
+  }
+  return kept;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -63,19 +75,6 @@ std::string tail(const fs::path& path, size_t lines) {
 }
 
 using Cell = TableCell;
-
-// The --set settings that reach `method`'s trainer.
-std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
-  const std::string& mine = algorithm_of(method).name;
-  std::vector<std::string> kept;
-  for (const std::string& s : settings) {
-    const std::string group = s.substr(0, s.find('.'));
-    const bool others = group != mine && std::any_of(algorithms().begin(), algorithms().end(),
-                                                     [&](const Algorithm& a) { return a.name == group; });
-    if (!others) kept.push_back(s);
-  }
-  return kept;
-}
 
 // The cell's `chore train` (a new run).
 TrainOptions train_options(const Cell& c, const ReproduceOptions& o) {

@@ -90,6 +90,7 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   const std::string md = read_text(out / "baselines.md");
   EXPECT_NE(md.find("(paper 0.49 ± 0.04)"), std::string::npos) << md;
   EXPECT_NE(md.find("| RL-Prim. |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| policy failure (same invalid action 3x) |"), std::string::npos) << "the default rule\n" << md;
   EXPECT_GT(fs::file_size(out / "curves" / "collect_trash.png"), 1000u);
   // Interval estimates over the runs: the statistic itself, and a bootstrap
   // interval around it within the runs' range; the performance profile drawn.
@@ -176,24 +177,34 @@ TEST(Reproduce, SettingsReachTheirMethodsRunsAndGuardResuming) {
   const fs::path out = fs::path(CHORE_TEST_OUTPUT) / ("reproduce_settings_" + std::to_string(getpid()));
   fs::remove_all(out);
   fs::create_directories(out.parent_path());
-  const std::string settings = " --set ppo.epochs=2 --set sac.lr=0.001";
+  const std::string settings =
+      " --set ppo.epochs=2 --set sac.lr=0.001 --set env.policy_failure_rule=paper --set env.policy_failure_repeats=2";
   std::string log;
   ASSERT_EQ(reproduce_small_table(out, log, false, settings), 0) << log;
   const fs::path seed1 = out / "runs" / "symbolic" / "collect_trash" / "rl-prim_seed1";
   const nlohmann::json config = read_json(seed1 / "config.json");
   EXPECT_EQ(config["ppo"]["epochs"], 2);
+  EXPECT_EQ(config["env"]["policy_failure_rule"], "paper");
   EXPECT_DOUBLE_EQ(config["sac"]["lr"].get<double>(), 3e-4);  // SAC's setting is not RL-Prim.'s
-  EXPECT_EQ(read_json(seed1 / "cell.json")["spec"]["settings"], nlohmann::json({"ppo.epochs=2"}));
-  EXPECT_EQ(read_json(out / "baselines.json")["protocol"]["settings"],
-            nlohmann::json({"ppo.epochs=2", "sac.lr=0.001"}));
-  EXPECT_NE(read_text(out / "baselines.md").find("`ppo.epochs=2`"), std::string::npos);
+  EXPECT_EQ(read_json(seed1 / "cell.json")["spec"]["settings"],
+            nlohmann::json({"ppo.epochs=2", "env.policy_failure_rule=paper", "env.policy_failure_repeats=2"}));
+  const nlohmann::json protocol = read_json(out / "baselines.json")["protocol"];
+  EXPECT_EQ(protocol["settings"], nlohmann::json({"ppo.epochs=2", "sac.lr=0.001", "env.policy_failure_rule=paper",
+                                                  "env.policy_failure_repeats=2"}));
+  EXPECT_EQ(protocol["policy_failure"], nlohmann::json({{"rule", "paper"}, {"repeats", 2}}));
+  const std::string md = read_text(out / "baselines.md");
+  EXPECT_NE(md.find("`ppo.epochs=2`"), std::string::npos) << md;
+  // The failure table names the rule the runs ran under.
+  EXPECT_NE(md.find("| policy failure (same failed primitive 2x) |"), std::string::npos) << md;
 
   // Without the settings the cells are not done, and their checkpoints are
   // other runs than the ones asked for: refused, exit 2, nothing run.
   fs::remove(seed1 / "cell.json");
   const std::string metrics = read_text(seed1 / "metrics.csv");
   EXPECT_EQ(reproduce_small_table(out, log), 2) << log;
-  EXPECT_NE(log.find("rl-prim_seed0/checkpoint.pt is a run with other settings (ppo/epochs)"), std::string::npos)
+  EXPECT_NE(log.find("rl-prim_seed0/checkpoint.pt is a run with other settings (env/policy_failure_repeats, "
+                     "env/policy_failure_rule, ppo/epochs)"),
+            std::string::npos)
       << log;
   EXPECT_EQ(read_text(seed1 / "metrics.csv"), metrics);
   // With them seed 1 is resumed (nothing left to train) and evaluated again.
