@@ -13,7 +13,6 @@
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/json_file.hpp"
-#include "training/trainer.hpp"
 #include "world/scene.hpp"
 
 namespace chore {
@@ -80,13 +79,6 @@ std::string format(const Stat& s) {
   return s.n == 0 ? "-" : fixed(s.mean) + " ± " + fixed(s.std);
 }
 
-// The policy-failure rule the primitive runs ran under: the env's default
-// unless --set changed it (a cell is done only with the table's settings).
-nlohmann::json policy_failure(const ReproduceOptions& o) {
-  TrainConfig c = baseline_config("rl-prim", "");
-  for (const std::string& s : settings_for("rl-prim", o.settings)) c = with_setting(c, s);
-  return {{"rule", c.env.policy_failure_rule}, {"repeats", c.env.policy_failure_repeats}};
-}
 // What ends an episode as a policy failure, in the report's words (EnvConfig
 // says what each rule counts).
 std::string policy_failure_words(const nlohmann::json& p) {
@@ -287,8 +279,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                              {"eval_policy", "sampled"},
                              {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
                              {"generalisation_episodes_per_seed", 1},
-                             {"settings", o.settings},
-                             {"policy_failure", policy_failure(o)}}},
+                             {"settings", o.settings}}},
                            {"command", o.command_line},
                            {"machine", machine()},
                            {"rows", rows},

@@ -27,8 +27,9 @@ struct TableCell {
   std::string label() const { return activity + " " + method + " seed " + std::to_string(seed); }
 };
 
-// baselines.json's content but "videos", "failures" and the invocation's
-// wall-clock, which the runner adds; draws the curves of the done cells.
+// baselines.json's content but "videos", "failures", the invocation's
+// wall-clock and protocol.policy_failure, which the runner adds; draws the
+// curves of the done cells.
 nlohmann::json baselines_report(const std::vector<TableCell>& cells, const ReproduceOptions& options,
                                 std::ostream& log);
 // baselines.md from baselines.json's content.

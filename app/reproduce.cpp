@@ -35,18 +35,6 @@ const std::vector<uint64_t>& seeds_of(const ReproduceOptions& o, const std::stri
   return it == o.seeds_for.end() ? o.seeds : it->second;
 }
 
-std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
-  const std::string& mine = algorithm_of(method).name;
-  std::vector<std::string> kept;
-  for (const std::string& s : settings) {
-    const std::string group = s.substr(0, s.find('.'));
-    const bool others = group != mine && std::any_of(algorithms().begin(), algorithms().end(),
-                                                     [&](const Algorithm& a) { return a.name == group; });
-    if (!others) kept.push_back(s);
-  }
-  return kept;
-}
-
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -75,6 +63,19 @@ std::string tail(const fs::path& path, size_t lines) {
 }
 
 using Cell = TableCell;
+
+// The --set settings that reach `method`'s trainer.
+std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings) {
+  const std::string& mine = algorithm_of(method).name;
+  std::vector<std::string> kept;
+  for (const std::string& s : settings) {
+    const std::string group = s.substr(0, s.find('.'));
+    const bool others = group != mine && std::any_of(algorithms().begin(), algorithms().end(),
+                                                     [&](const Algorithm& a) { return a.name == group; });
+    if (!others) kept.push_back(s);
+  }
+  return kept;
+}
 
 // The cell's `chore train` (a new run).
 TrainOptions train_options(const Cell& c, const ReproduceOptions& o) {
@@ -399,6 +400,10 @@ nlohmann::json reproduce(const ReproduceOptions& o, std::ostream& log) {
   if (!o.report_only) failures = run_cells(cells, o, log);
   for (Cell& c : cells) c.done = cell_done(c, o);
   nlohmann::json result = baselines_report(cells, o, log);
+  // The rule as the runs' own config builder sets it (defaults, then --set):
+  // the same for every cell of a table, the failure table's header names it.
+  const EnvConfig env = new_run_config(train_options(cells.front(), o)).env;
+  result["protocol"]["policy_failure"] = {{"rule", env.policy_failure_rule}, {"repeats", env.policy_failure_repeats}};
   result["failures"] = failures;
   result["videos"] = make_videos(result["runs"], o, log);
   result["this_invocation_wall_s"] = std::chrono::duration<double>(Clock::now() - start).count();

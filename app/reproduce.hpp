@@ -53,8 +53,6 @@ struct ReproduceOptions {
 
 // The training seeds of `method`'s runs.
 const std::vector<uint64_t>& seeds_of(const ReproduceOptions& options, const std::string& method);
-// The --set settings that reach `method`'s trainer.
-std::vector<std::string> settings_for(const std::string& method, const std::vector<std::string>& settings);
 
 // Runs the cells not done yet, then writes the report; returns baselines.json's
 // content. chore::Error for bad options; a failed run is reported (its log's
