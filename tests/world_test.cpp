@@ -2,12 +2,14 @@
 #include <mujoco/mujoco.h>
 
 #include <cstring>
+#include <random>
 
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
 #include "test_util.hpp"
 #include "world/mujoco_errors.hpp"
+#include "world/pair_early_outs.hpp"
 #include "world/predicates.hpp"
 
 namespace chore {
@@ -395,9 +397,10 @@ TEST(Sleeping, APhysicsStepLeavesTheDofsOfTheLastSleepersOut) {
   EXPECT_NEAR(whole[0] - whole[19], g * h * h * (2 + 20) * 19 / 2, 1e-9);  // sum of k g h^2, k = 2..20
 }
 
-// Each body's geom count as MuJoCo's step sees it.
-std::vector<int> geomnum_seen_in_step;
+// Each body's geoms (first, count) as MuJoCo's step sees them.
+std::vector<int> geomadr_seen_in_step, geomnum_seen_in_step;
 void record_geomnum(const mjModel* m, mjData*) {
+  geomadr_seen_in_step.assign(m->body_geomadr, m->body_geomadr + m->nbody);
   geomnum_seen_in_step.assign(m->body_geomnum, m->body_geomnum + m->nbody);
 }
 
@@ -421,6 +424,145 @@ TEST(World, AStepLeavesOutOnlyGeomsThatCannotCollide) {
   mjcb_control = nullptr;
   for (const Scene::CollidingGeoms& c : cut) EXPECT_EQ(geomnum_seen_in_step[c.body], c.count) << c.body;
   EXPECT_EQ(std::vector<int>(m->body_geomnum, m->body_geomnum + m->nbody), geomnum);  // all back after it
+}
+
+// A static body (2 m of furniture) near anything awake keeps in a step only
+// the run of its geoms from the first to the last that an awake region meets;
+// none of those left out is within 5 cm of an awake geom by MuJoCo's own pair
+// functions. The restaurant with every object just woken: the robot, and the
+// plates, cups and rag resting on its tables.
+TEST(Sleeping, AStaticBodyKeepsOnlyTheGeomsAnAwakeRegionMeets) {
+  EnvConfig c;
+  c.activity = "clean_table";
+  c.action_space = "primitives";
+  c.observations = {"is_grasping"};
+  Env env(c);
+  env.reset(0);
+  World& w = env.impl().world();
+  const mjModel* m = w.model();
+  w.set_sleeping(false);
+  w.set_sleeping(true);  // all awake until they have been still for a while
+  const std::vector<int> geomadr(m->body_geomadr, m->body_geomadr + m->nbody);
+  const std::vector<int> geomnum(m->body_geomnum, m->body_geomnum + m->nbody);
+  mjcb_control = record_geomnum;
+  w.step(1);
+  mjcb_control = nullptr;
+  std::vector<int> awake;  // colliding geoms of the robot and of awake objects with bodies of their own
+  const int robot_root = m->body_rootid[w.robot()->gripper_body];
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
+    const int object = w.scene().object_of_geom(g);
+    const bool moving = object >= 0 && w.scene().objects()[object].static_body < 0 && !w.asleep(object);
+    if (moving || m->body_rootid[m->geom_bodyid[g]] == robot_root) awake.push_back(g);
+  }
+  int kept = 0, shortened = 0, left_out = 0, left_out_near = 0;
+  for (int b : w.scene().static_bodies()) {
+    const int first = geomadr_seen_in_step[b], count = geomnum_seen_in_step[b];
+    if (count == 0) continue;  // away from every awake region: masked whole
+    ++kept;
+    EXPECT_GE(first, geomadr[b]);
+    EXPECT_LE(first + count, geomadr[b] + geomnum[b]);
+    shortened += count < geomnum[b];
+    for (int g = geomadr[b]; g < geomadr[b] + geomnum[b]; ++g) {
+      if (g >= first && g < first + count) continue;
+      ++left_out;
+      for (int a : awake) {
+        const int g1 = m->geom_type[a] <= m->geom_type[g] ? a : g, g2 = g1 == a ? g : a;
+        mjContact con[mjMAXCONPAIR];
+        const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
+        left_out_near += collide && collide(m, w.data(), con, g1, g2, 0.05) > 0;
+      }
+    }
+  }
+  EXPECT_GT(awake.size(), 100u);
+  EXPECT_GT(kept, 5);
+  EXPECT_GT(shortened, 0);
+  EXPECT_GT(left_out, 0);
+  EXPECT_EQ(left_out_near, 0);
+  EXPECT_EQ(std::vector<int>(m->body_geomadr, m->body_geomadr + m->nbody), geomadr);  // all back after it
+  EXPECT_EQ(std::vector<int>(m->body_geomnum, m->body_geomnum + m->nbody), geomnum);
+}
+
+// The early-outs before MuJoCo's capsule-, cylinder- and box-box functions
+// change no contact: over random poses of each shape around a box, and poses
+// within a hair of first touch on either side (found by bisection), with and
+// without a margin, the table's function gives MuJoCo's own contacts bit for
+// bit, and every pair the early-out rejects is one MuJoCo finds nothing for.
+TEST(World, PairEarlyOutsGiveMuJoCosOwnContactsBitForBit) {
+  install_pair_early_outs();
+  const std::string xml = R"(<mujoco><worldbody>
+    <geom name="table" type="box" size="0.4 0.3 0.02"/>
+    <body><freejoint/><geom type="capsule" size="0.02 0.05"/></body>
+    <body><freejoint/><geom type="cylinder" size="0.27 0.14"/></body>
+    <body><freejoint/><geom type="box" size="0.05 0.1 0.2"/></body>
+  </worldbody></mujoco>)";
+  mjModel* m = load_mjcf(xml, "early-out test");
+  mjData* d = mj_makeData(m);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int contacts = 0, rejected = 0, none = 0;
+  // Geom g (body g - 1) against the table: MuJoCo's contact count.
+  const auto check = [&](int g, double margin) {
+    mjContact ours[mjMAXCONPAIR], theirs[mjMAXCONPAIR];
+    std::memset(ours, 0, sizeof(ours));
+    std::memset(theirs, 0, sizeof(theirs));
+    const int type = m->geom_type[g];
+    const int n = mjCOLLISIONFUNC[type][mjGEOM_BOX](m, d, ours, g, 0, margin);
+    const int expected = mujoco_pair_function(type, mjGEOM_BOX)(m, d, theirs, g, 0, margin);
+    EXPECT_EQ(n, expected) << "type " << type;
+    EXPECT_EQ(std::memcmp(ours, theirs, sizeof(mjContact) * std::max(std::min(n, expected), 0)), 0);
+    contacts += expected > 0;
+    none += expected == 0;
+    if (geoms_apart(m, d, g, 0, margin)) {
+      ++rejected;
+      EXPECT_EQ(expected, 0) << "type " << type << " rejected with a contact";
+    }
+    return expected;
+  };
+  const auto random_pose = [&](int body) {
+    double* q = d->qpos + 7 * body;
+    for (int k = 0; k < 3; ++k) q[k] = unit(rng) * (k == 2 ? 0.45 : 0.75);
+    for (int k = 3; k < 7; ++k) q[k] = unit(rng);
+    mju_normalize4(q + 3);
+  };
+  for (int trial = 0; trial < 20000; ++trial) {
+    for (int b = 0; b < 3; ++b) random_pose(b);
+    mj_kinematics(m, d);
+    for (int g = 1; g < 4; ++g) {
+      for (const double margin : {0.0, 0.02}) check(g, margin);
+    }
+  }
+  // First touch along a ray out of the table's centre: touching at scale 0,
+  // apart at 2 (convex shapes: one crossing), bisected to 1e-12.
+  for (int trial = 0; trial < 300; ++trial) {
+    const int g = 1 + trial % 3;
+    const double margin = trial % 2 ? 0.0 : 0.02;
+    random_pose(g - 1);
+    double* q = d->qpos + 7 * (g - 1);
+    const Eigen::Vector3d ray(q[0], q[1], q[2]);
+    const auto place = [&](double scale) {
+      for (int k = 0; k < 3; ++k) q[k] = ray[k] * scale;
+      mj_kinematics(m, d);
+    };
+    double touching = 0, apart = 2;
+    while (apart - touching > 1e-12) {
+      const double mid = (touching + apart) / 2;
+      place(mid);
+      (check(g, margin) > 0 ? touching : apart) = mid;
+    }
+    for (const double step : {1e-9, 1e-7, 1e-5, 1e-3}) {
+      for (const double scale : {touching - step, apart + step}) {
+        place(scale);
+        check(g, margin);
+      }
+    }
+  }
+  // Both sides were exercised, and the early-out does the work.
+  EXPECT_GT(contacts, 5000);
+  EXPECT_GT(rejected, none / 2);
+  EXPECT_NE(mjCOLLISIONFUNC[mjGEOM_CAPSULE][mjGEOM_BOX], mujoco_pair_function(mjGEOM_CAPSULE, mjGEOM_BOX));
+  mj_deleteData(d);
+  mj_deleteModel(m);
 }
 
 TEST(World, ZeroActionHoldsTheRobotStill) {

@@ -27,6 +27,7 @@ int dof_count(int joint_type) {
 Sleeping::Sleeping(const Scene& scene, const mjModel* m, int robot_root)
     : geom_object_(m->ngeom),
       robot_geom_(m->ngeom, 0),
+      body_geomadr_(m->body_geomadr, m->body_geomadr + m->nbody),
       body_geomnum_(m->body_geomnum, m->body_geomnum + m->nbody),
       static_bodies_(scene.static_bodies()),
       static_asleep_(static_bodies_.size(), 0) {
@@ -91,9 +92,12 @@ bool Sleeping::moved_since_step(const Object& o, const mjData* d) const {
 
 void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   const size_t n = objects_.size();
-  // Scratch kept between steps: this runs before every physics step.
-  boxes_.assign(n, Aabb{});
-  awake_.assign(n, 0);
+  // Scratch kept between steps: this runs before every physics step. Only
+  // the moving objects' entries are written and read (furniture in static
+  // bodies keeps 0s).
+  boxes_.resize(n);
+  awake_.resize(n);
+  fell_asleep_.resize(n);
   regions_.clear();
   if (!robot_geoms_.empty()) {
     Aabb robot;
@@ -103,6 +107,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   for (const int i : moving_) {  // furniture in a static body: its static body's region decides
     const Object& o = objects_[i];
     int& still = objects_[i].still_steps;
+    boxes_[i] = Aabb{};
+    awake_[i] = 0;
     for (int g : o.geoms) add_geom(boxes_[i], m, d, g);
     if (o.never || o.geoms.empty()) {
       awake_[i] = 1;
@@ -150,18 +156,42 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
   if (static_boxes_.size() != static_bodies_.size()) {
     for (int b : static_bodies_) {
       Aabb& box = static_boxes_.emplace_back();
-      for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) add_geom(box, m, d, g);
+      std::vector<Aabb>& geom_boxes = static_geom_boxes_.emplace_back();
+      for (int g = m->body_geomadr[b]; g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
+        add_geom(geom_boxes.emplace_back(), m, d, g);
+        box.grow(geom_boxes.back());
+      }
     }
   }
   for (size_t k = 0; k < static_bodies_.size(); ++k) {
-    const auto near = [&](const Aabb& r) { return static_boxes_[k].overlaps(r); };
-    static_asleep_[k] = std::none_of(regions_.begin(), regions_.end(), near);
-    if (static_asleep_[k]) m->body_geomnum[static_bodies_[k]] = 0;
+    near_regions_.clear();
+    for (const Aabb& r : regions_) {
+      if (static_boxes_[k].overlaps(r)) near_regions_.push_back(r);
+    }
+    const int b = static_bodies_[k];
+    static_asleep_[k] = near_regions_.empty();
+    if (static_asleep_[k]) {
+      m->body_geomnum[b] = 0;
+      continue;
+    }
+    // Of its geoms, only the run from the first to the last that an awake
+    // region meets: a 2 m cell's dozens of boxes would otherwise each be
+    // paired with every geom of the robot or cloth near any one of them.
+    const std::vector<Aabb>& boxes = static_geom_boxes_[k];
+    const auto met = [&](const Aabb& box) {
+      return std::any_of(near_regions_.begin(), near_regions_.end(), [&](const Aabb& r) { return box.overlaps(r); });
+    };
+    int first = 0, last = static_cast<int>(boxes.size()) - 1;
+    while (first <= last && !met(boxes[first])) ++first;
+    while (last > first && !met(boxes[last])) --last;
+    m->body_geomadr[b] = body_geomadr_[b] + first;
+    m->body_geomnum[b] = last - first + 1;
   }
-  fell_asleep_.assign(n, 0);
+  bool changed = false;  // anyone fell asleep or woke
   for (const int i : moving_) {
     Object& o = objects_[i];
     fell_asleep_[i] = !awake_[i] && !o.asleep;
+    changed |= o.asleep == static_cast<bool>(awake_[i]);
     o.asleep = !awake_[i];
     if (!o.asleep) continue;
     if (fell_asleep_[i]) {
@@ -170,7 +200,8 @@ void Sleeping::mask(mjModel* m, const mjData* d, int held_body) {
     }
     for (int b : o.bodies) m->body_geomnum[b] = 0;
   }
-  keep_resting_contacts(d);
+  // The kept contacts depend on who sleeps, and only change when that does.
+  if (changed) keep_resting_contacts(d);
   // The dofs physics must keep: the robot's, tendons', awake objects', and
   // those of bodies an active equality ties (a grasp, an attachment).
   awake_dofs_ = always_dofs_;
@@ -220,7 +251,10 @@ void Sleeping::keep_resting_contacts(const mjData* d) {
 }
 
 void Sleeping::unmask(mjModel* m, mjData* d, bool physics) {
-  for (int b : static_bodies_) m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
+  for (int b : static_bodies_) {
+    m->body_geomadr[b] = body_geomadr_[static_cast<size_t>(b)];
+    m->body_geomnum[b] = body_geomnum_[static_cast<size_t>(b)];
+  }
   for (const int i : moving_) {
     Object& o = objects_[i];
     if (o.asleep) {

@@ -9,7 +9,8 @@
 // bodies get no geoms (MuJoCo's broadphase skips them), after it they are
 // given back and their joints put back where they slept (gravity moved them
 // one step). Static bodies of furniture (Scene::static_bodies()) that no awake
-// region meets are masked too: out of the broadphase.
+// region meets are masked too: out of the broadphase; one that a region meets
+// keeps only the run of its geoms from the first to the last a region meets.
 //
 // What a sleeper touched when it fell asleep it still touches: those resting
 // contacts are kept, and World appends them to mjData's contact list at the
@@ -97,12 +98,14 @@ class Sleeping {
   std::vector<int> moving_;       // objects with bodies of their own (not in a static body), in order
   std::vector<int> geom_object_;  // Scene::object_of_geom, copied
   std::vector<int> robot_geoms_;
-  std::vector<char> robot_geom_;       // per geom
-  std::vector<int> body_geomnum_;      // the model's own counts
-  std::vector<Aabb> boxes_, regions_;  // mask()'s scratch: objects' boxes, awake regions
+  std::vector<char> robot_geom_;                  // per geom
+  std::vector<int> body_geomadr_, body_geomnum_;  // the model's own
+  std::vector<Aabb> boxes_, regions_;             // mask()'s scratch: objects' boxes, awake regions
   std::vector<char> awake_, fell_asleep_;
   std::vector<int> static_bodies_;
-  std::vector<Aabb> static_boxes_;  // made on the first mask()
+  std::vector<Aabb> static_boxes_;                    // made on the first mask()
+  std::vector<std::vector<Aabb>> static_geom_boxes_;  // per static body, its geoms'
+  std::vector<Aabb> near_regions_;                    // mask()'s scratch
   std::vector<char> static_asleep_;
   std::vector<mjContact> resting_;  // contacts of sleepers, kept
   int always_dofs_ = 0;             // one past the robot's and tendons' dofs
