@@ -23,11 +23,8 @@ namespace chore {
 namespace {
 
 EnvConfig primitive_config(const std::string& activity, ExecutionMode mode) {
-  EnvConfig c;
-  c.activity = activity;
-  c.action_space = "primitives";
+  EnvConfig c = test::primitives_config(activity);
   c.primitive_mode = mode;
-  c.observations = {"is_grasping"};
   c.max_episode_steps = 40;
   return c;
 }

@@ -27,6 +27,15 @@ inline EnvConfig box_room_config() {
   return c;
 }
 
+// An activity in the primitive action space, observing only is_grasping.
+inline EnvConfig primitives_config(const std::string& activity) {
+  EnvConfig c;
+  c.activity = activity;
+  c.action_space = "primitives";
+  c.observations = {"is_grasping"};
+  return c;
+}
+
 // A fresh directory under the build tree for files a test writes and a person
 // may want to look at (pictures).
 inline std::filesystem::path output_dir() {

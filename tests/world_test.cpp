@@ -432,11 +432,7 @@ TEST(World, AStepLeavesOutOnlyGeomsThatCannotCollide) {
 // functions. The restaurant with every object just woken: the robot, and the
 // plates, cups and rag resting on its tables.
 TEST(Sleeping, AStaticBodyKeepsOnlyTheGeomsAnAwakeRegionMeets) {
-  EnvConfig c;
-  c.activity = "clean_table";
-  c.action_space = "primitives";
-  c.observations = {"is_grasping"};
-  Env env(c);
+  Env env(test::primitives_config("clean_table"));
   env.reset(0);
   World& w = env.impl().world();
   const mjModel* m = w.model();
