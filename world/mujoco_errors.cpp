@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "base/error.hpp"
+#include "world/pair_early_outs.hpp"
 
 namespace chore {
 namespace {
@@ -27,6 +28,7 @@ void install_mujoco_handlers() {
   std::call_once(once, [] {
     mju_user_error = on_error;
     mju_user_warning = on_warning;
+    install_pair_early_outs();  // before any MuJoCo work of chore's, on any thread
   });
 }
 

@@ -16,7 +16,7 @@
 namespace chore {
 
 // Puts the early-outs in MuJoCo's table. Once per process; idempotent and
-// thread-safe. World's constructor calls it.
+// thread-safe. install_mujoco_handlers() calls it.
 void install_pair_early_outs();
 
 // MuJoCo's own function for two geom types (type1 <= type2), as before the

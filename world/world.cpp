@@ -9,14 +9,12 @@
 
 #include "base/error.hpp"
 #include "world/mujoco_errors.hpp"
-#include "world/pair_early_outs.hpp"
 #include "world/state_rules.hpp"
 
 namespace chore {
 
 World::World(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
   install_mujoco_handlers();
-  install_pair_early_outs();
   model_ = mj_copyModel(nullptr, scene_->model());
   data_ = mj_makeData(model_);
   if (!model_ || !data_) throw Error("world: out of memory copying scene '" + scene_->name() + "'");
