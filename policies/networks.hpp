@@ -44,7 +44,7 @@ class RunningNormImpl : public torch::nn::Module {
   // Normalises `x` whose dimension `dim` holds the channels; clipped to +-clip.
   torch::Tensor forward(const torch::Tensor& x, int64_t dim) const;
   // forward(images.to(kFloat32), 1) bit for bit, for uint8 images (B, C, H, W)
-  // in one pass: a byte has 256 values, each channel's are normalised once.
+  // in one vectorised pass, without the float copy of the images.
   torch::Tensor forward_bytes(const torch::Tensor& images) const;
 
  private:

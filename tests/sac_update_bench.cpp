@@ -3,7 +3,8 @@
 // (Table A.11), on a full replay buffer, one torch thread:
 //   build/tests/chore_sac_bench [--benchmark_repetitions=5]
 // The time is the trainer's own `update_ms` for each update (manual time):
-// the env step between two updates is not counted.
+// the env step between two updates is not counted. BM_FmaPeak is this core's
+// ceiling for the update's convolutions: fp32 multiply-adds per second.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
@@ -30,6 +31,32 @@ void BM_SacUpdate(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SacUpdate)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(50);
+
+// Twelve independent chains of 16-lane multiply-adds, enough in flight to
+// fill the FMA pipes (contracted to fused multiply-adds with AVX-512 or AVX2).
+using Floats16 = float __attribute__((vector_size(64)));
+
+__attribute__((target_clones("avx512f", "arch=haswell", "default"))) float fma_chains(int64_t rounds, float seed) {
+  Floats16 acc[12];
+  for (int i = 0; i < 12; ++i) acc[i] = Floats16{} + seed * i;
+  const Floats16 a = Floats16{} + 0.9999f, b = Floats16{} + 1e-6f;
+  for (int64_t k = 0; k < rounds; ++k) {
+#pragma GCC unroll 12
+    for (int i = 0; i < 12; ++i) acc[i] = acc[i] * a + b;
+  }
+  float sum = 0;
+  for (int i = 0; i < 12; ++i) sum += acc[i][i];
+  return sum;
+}
+
+void BM_FmaPeak(benchmark::State& state) {
+  constexpr int64_t kRounds = 10'000'000;
+  for (auto _ : state) benchmark::DoNotOptimize(fma_chains(kRounds, 0.001f));
+  state.counters["multiply_adds_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kRounds * 12 * 16, benchmark::Counter::kIsRate,
+                         benchmark::Counter::kIs1000);
+}
+BENCHMARK(BM_FmaPeak)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace chore

@@ -305,6 +305,15 @@ TEST(Training, ByteNormalisationIsTheFloatOneBitForBit) {
   norm->update(torch::rand({50, 3}) * 40 + 200);
   const torch::Tensor images = torch::randint(0, 256, {4, 3, 16, 12}, torch::kUInt8);
   EXPECT_TRUE(torch::equal(bits(norm->forward_bytes(images)), bits(norm->forward(images.to(torch::kFloat32), 1))));
+  // Narrow statistics: most bytes clamp to -5 or +5, and byte 128 is a
+  // channel's mean exactly (0 / std); odd sizes leave vector tails.
+  RunningNorm narrow(3, 5.0);
+  narrow->update(torch::tensor({{127.0f, 128.0f, 120.0f}, {129.0f, 128.0f, 140.0f}}));
+  const torch::Tensor all = torch::arange(256, torch::kUInt8).repeat({27}).view({3, 3, 16, 48}).narrow(3, 0, 47);
+  const torch::Tensor normalised = narrow->forward_bytes(all);
+  EXPECT_TRUE(torch::equal(bits(normalised), bits(narrow->forward(all.to(torch::kFloat32), 1))));
+  EXPECT_EQ(normalised.max().item<float>(), 5.0f);
+  EXPECT_EQ(normalised.min().item<float>(), -5.0f);
 }
 
 TEST(Training, ImageTrunkPoolsTo4x4) {
