@@ -66,7 +66,7 @@ torch::Tensor max_pool_2x2(const torch::Tensor& input, torch::Tensor* argmax) {
 // clamped to +-clip, for `planes` planes of `plane` bytes whose channel is
 // plane % channels. IEEE subtraction, division, min and max give the same bits
 // at any vector width, so each CPU gets its widest loop: an SAC update's three
-// batch-64 passes cost ~3 ms less than with a table of each channel's 256
+// batch-64 passes cost ~4 ms less than with a table of each channel's 256
 // values looked up per byte (docs/benchmarks.md, One SAC update).
 __attribute__((target_clones("avx512f", "avx2", "default"))) void normalise_bytes(const uint8_t* __restrict src,
                                                                                   float* __restrict dst,

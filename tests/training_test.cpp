@@ -296,7 +296,7 @@ TEST(Training, MaxPool2x2IsTorchsMaxPoolBitForBit) {
   EXPECT_TRUE(torch::equal(bits(own_no_grad), bits(no_grad_out)));
 }
 
-// Images normalise through a table of each channel's 256 values, bit for bit
+// Images normalise in one vectorised pass over their bytes, bit for bit
 // as the float path.
 TEST(Training, ByteNormalisationIsTheFloatOneBitForBit) {
   torch::manual_seed(0);
