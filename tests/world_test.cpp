@@ -86,6 +86,35 @@ TEST(World, AMuJoCoErrorMidStepTruncatesLikeADivergence) {
   EXPECT_EQ(std::memcmp(a.item(0), b.item(0), a.item_bytes()), 0);
 }
 
+// MuJoCo resets a diverging state inside mj_step, where the static geoms are
+// left out of kinematics: the rest of that step collides with their zeroed
+// poses (degenerate boxes at the origin). What a pair function makes of those
+// must not reach the episode: the step ends in MuJoCo's reset state, every
+// geom posed, as a fresh reset gives it (seen: an early-out and MuJoCo's own
+// function disagreeing on such a box changed a training run).
+TEST(World, ADivergedStepEndsInMuJoCosResetStatePosedOverTheWholeModel) {
+  auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
+  World w(scene);
+  const mjModel* m = w.model();
+  ASSERT_LT(scene->first_static_geom(), m->ngeom);
+  const SceneObject& apple = *scene->find_object("apple_1");
+  w.data()->qvel[m->jnt_dofadr[m->body_jntadr[apple.body]]] = 1e30;  // beyond mjMAXVAL
+  const World::StepReport report = w.step(1);
+  ASSERT_TRUE(report.diverged);
+  mjData* fresh = mj_makeData(m);
+  mj_kinematics(m, fresh);
+  const mjData* d = w.data();
+  const auto same = [](const double* a, const double* b, int n) { return std::memcmp(a, b, sizeof(double) * n) == 0; };
+  EXPECT_TRUE(same(d->qpos, fresh->qpos, m->nq));
+  EXPECT_TRUE(same(d->qvel, fresh->qvel, m->nv));
+  EXPECT_EQ(d->time, 0.0);
+  for (int g = 0; g < m->ngeom; ++g) {
+    EXPECT_TRUE(same(d->geom_xpos + 3 * g, fresh->geom_xpos + 3 * g, 3)) << "geom " << g;
+    EXPECT_TRUE(same(d->geom_xmat + 9 * g, fresh->geom_xmat + 9 * g, 9)) << "geom " << g;
+  }
+  mj_deleteData(fresh);
+}
+
 // Reaching pose of assets/robots/tiago.xml: the gripper 0.6 m in front at
 // 0.8 m height, pointing forward, fingers opening horizontally.
 void untuck(World& w) {

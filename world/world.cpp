@@ -139,19 +139,21 @@ World::StepReport World::step(int substeps) {
     try {
       run_masked(mj_step);
     } catch (const Error&) {
-      // A MuJoCo error inside the step. Seen in training: MuJoCo resets a
-      // diverging state (bad acceleration) inside mj_step, where the static
-      // geoms are left out (StaticGeomsLeftOut): their poses stay zeroed, and
-      // the step's collision with them fails ("xaxis of contact frame
-      // undefined"). The state is lost as when it diverges. The reset also
-      // restores MuJoCo's stack, left mid-step.
-      mj_resetData(model_, data_);
-      mj_kinematics(model_, data_);  // poses to draw the last frame from; nothing that could fail again
-      mj_camlight(model_, data_);
       failed = true;
     }
     if (failed || bad_state_count() != bad_before) {
-      // MuJoCo has already reset the state; the episode cannot go on.
+      // The state is lost: MuJoCo reset it inside the step (a bad position,
+      // velocity or acceleration), or failed mid-step. Its reset ran where the
+      // static geoms are left out (StaticGeomsLeftOut), so their poses were
+      // zeroed, and the rest of the step collided with degenerate boxes at the
+      // origin: contacts that moved what it integrated, or an error ("xaxis of
+      // contact frame undefined", seen in training). The step therefore ends
+      // in MuJoCo's reset state posed over the whole model, the same whatever
+      // happened inside it; the reset also restores MuJoCo's stack, left
+      // mid-step by an error. The episode cannot go on.
+      mj_resetData(model_, data_);
+      mj_kinematics(model_, data_);  // poses to draw the last frame from; nothing that could fail again
+      mj_camlight(model_, data_);
       report.diverged = true;
       release();
       return report;
