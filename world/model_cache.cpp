@@ -60,8 +60,10 @@ mjModel* read_cached(const fs::path& path, const Header& want) {
   mjVFS vfs;
   mj_defaultVFS(&vfs);
   const char* file = "chore.mjb";
-  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(mjb.size())) != 0) return nullptr;
-  std::memcpy(vfs.filedata[mj_findFileVFS(&vfs, file)], mjb.data(), mjb.size());
+  if (mj_addBufferVFS(&vfs, file, mjb.data(), static_cast<int>(mjb.size())) != 0) {
+    mj_deleteVFS(&vfs);
+    return nullptr;
+  }
   mjModel* model = nullptr;
   try {
     model = mj_loadModel(file, &vfs);

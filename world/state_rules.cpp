@@ -40,15 +40,15 @@ void soak(World& w, double dt, int moved, const Aabb* moved_box) {
 
 // Whether a contact joins an object whose states are kept.
 bool acts_on(const ObjectStates& states, const World& w, const mjContact& con) {
-  const int o1 = w.scene().object_of_geom(con.geom1);
-  const int o2 = w.scene().object_of_geom(con.geom2);
+  const int o1 = w.scene().object_of_geom(con.geom[0]);
+  const int o2 = w.scene().object_of_geom(con.geom[1]);
   return (o1 >= 0 && states.abilities(o1)) || (o2 >= 0 && states.abilities(o2));
 }
 
 // Cleaning, breaking, slicing: what one contact does to the objects it joins.
 void touch(ObjectStates& states, const World& w, const mjContact& con, double normal_force) {
-  const int o1 = w.scene().object_of_geom(con.geom1);
-  const int o2 = w.scene().object_of_geom(con.geom2);
+  const int o1 = w.scene().object_of_geom(con.geom[0]);
+  const int o2 = w.scene().object_of_geom(con.geom[1]);
   const ObjectAbilities* a1 = o1 >= 0 ? states.abilities(o1) : nullptr;
   const ObjectAbilities* a2 = o2 >= 0 ? states.abilities(o2) : nullptr;
   std::map<int, ObjectState>& state_of = states.all_states();
