@@ -82,7 +82,7 @@ bool ArmCollisionChecker::for_each_contact(const std::vector<int>& mine, int ign
     hi = hi.cwiseMax(c + r);
   }
   mjPreContact found[mjMAXCONPAIR];
-  mjContact contacts[mjMAXCONPAIR] = {};
+  mjContact contacts[mjMAXCONPAIR];  // only what the readers read is set (geoms, dist, pos, frame)
   for (const Box& other : others_) {
     if ((other.lo.array() > hi.array()).any() || (other.hi.array() < lo.array()).any()) continue;
     const int o = other.geom;
