@@ -125,7 +125,7 @@ TEST(Segmentation, TablesNumberClassesAndInstances) {
 std::array<double, 3> in_camera(const Env& env, const double v[3]) {
   const int cam = env.world().scene().camera();
   std::array<double, 3> out;
-  mju_mulMatTVec3(out.data(), v, env.world().data()->cam_xmat + 9 * cam);
+  mju_mulMatTVec3(out.data(), env.world().data()->cam_xmat + 9 * cam, v);
   return out;
 }
 

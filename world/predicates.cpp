@@ -108,7 +108,7 @@ bool infov(const World& w, int a) {
   const Eigen::Vector3d c = object_aabb(w, a).center();
   double rel[3], local[3];
   mju_sub3(rel, c.data(), d->cam_xpos + 3 * cam);
-  mju_mulMatTVec3(local, rel, d->cam_xmat + 9 * cam);  // camera frame: looks along -z
+  mju_mulMatTVec3(local, d->cam_xmat + 9 * cam, rel);  // camera frame: looks along -z
   const double depth = -local[2];
   const double half = std::tan(m->cam_fovy[cam] * M_PI / 360.0);
   if (depth <= 0 || std::abs(local[1]) > half * depth || std::abs(local[0]) > half * depth) {

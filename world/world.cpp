@@ -271,7 +271,7 @@ void World::hold_in_place(int weld) {
   mjtNum delta[3], relpos[3], holder_inverse[4];
   mju_zero3(eq);  // anchor at the body's origin
   mju_sub3(delta, data_->xpos + 3 * body, data_->xpos + 3 * holder);
-  mju_mulMatTVec3(relpos, delta, data_->xmat + 9 * holder);
+  mju_mulMatTVec3(relpos, data_->xmat + 9 * holder, delta);
   mju_copy3(eq + 3, relpos);
   mju_negQuat(holder_inverse, data_->xquat + 4 * holder);
   mju_mulQuat(eq + 6, holder_inverse, data_->xquat + 4 * body);
@@ -320,7 +320,7 @@ bool World::carry_grasped(mjData* d) const {
   const int hand = robot_->gripper_body, joint = model_->body_jntadr[body];
   mjtNum* qpos = d->qpos + model_->jnt_qposadr[joint];
   mjtNum offset[3];
-  mju_mulMatVec3(offset, eq + 3, d->xmat + 9 * hand);
+  mju_mulMatVec3(offset, d->xmat + 9 * hand, eq + 3);
   mju_add3(qpos, d->xpos + 3 * hand, offset);
   mju_mulQuat(qpos + 3, d->xquat + 4 * hand, eq + 6);
   mju_zero(d->qvel + model_->jnt_dofadr[joint], 6);
