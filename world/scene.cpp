@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "base/error.hpp"
 #include "base/json_file.hpp"
@@ -257,6 +258,48 @@ std::string static_body_name(const std::pair<long, long>& cell) {
   return "static_" + std::to_string(cell.first) + "_" + std::to_string(cell.second);
 }
 
+// The scene file places each object touching what it stands on; MuJoCo's
+// soft contacts rest a little into it, and only a contact that is there
+// counts (onfloor, ontop). So the objects are let fall into their resting
+// poses once, when the model is compiled (then cached): from the model's
+// reference pose, with the robot colliding with nothing, each tree steps
+// until MuJoCo puts it to sleep (at most kSettleSeconds), and the joints of
+// those that slept take their pose as the reference (qpos0) that every reset
+// starts from. One still moving then (dropped from a height, or pressed into
+// another) keeps the pose it was placed in.
+constexpr double kSettleSeconds = 2.0;
+
+void settle_placed_objects(mjModel* m, const std::vector<char>& object_root) {
+  const auto of_object = [&](int body) { return object_root[m->body_rootid[body]] != 0; };
+  bool any = false;
+  for (int t = 0; t < m->ntree; ++t) any |= of_object(m->tree_bodyadr[t]);
+  if (!any || !(m->opt.enableflags & mjENBL_SLEEP)) return;
+  std::vector<std::pair<int, int>> collisions(m->ngeom);  // contype, conaffinity
+  for (int g = 0; g < m->ngeom; ++g) {
+    collisions[g] = {m->geom_contype[g], m->geom_conaffinity[g]};
+    const int root = m->body_rootid[m->geom_bodyid[g]];
+    if (root != 0 && !object_root[root]) m->geom_contype[g] = m->geom_conaffinity[g] = 0;  // the robot
+  }
+  mjData* d = mj_makeData(m);
+  if (!d) throw Error("scene: out of memory to settle the objects");
+  const auto all_asleep = [&] {
+    for (int t = 0; t < m->ntree; ++t) {
+      if (of_object(m->tree_bodyadr[t]) && d->tree_asleep[t] < 0) return false;
+    }
+    return true;
+  };
+  const int steps = static_cast<int>(std::lround(kSettleSeconds / m->opt.timestep));
+  for (int k = 0; k < steps && !all_asleep(); ++k) mj_step(m, d);
+  for (int j = 0; j < m->njnt; ++j) {
+    const int body = m->jnt_bodyid[j];
+    if (!of_object(body) || d->tree_asleep[m->body_treeid[body]] < 0) continue;
+    const int size = m->jnt_type[j] == mjJNT_FREE ? 7 : m->jnt_type[j] == mjJNT_BALL ? 4 : 1;
+    std::copy_n(d->qpos + m->jnt_qposadr[j], size, m->qpos0 + m->jnt_qposadr[j]);
+  }
+  mj_deleteData(d);
+  for (int g = 0; g < m->ngeom; ++g) std::tie(m->geom_contype[g], m->geom_conaffinity[g]) = collisions[g];
+}
+
 }  // namespace
 
 std::shared_ptr<const Scene> Scene::load(const std::string& name, const SceneOptions& options) {
@@ -495,8 +538,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
                     "  </default>\n"
                     "  <asset>\n" +
                     mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n";
-  // The robot first: its bodies and degrees of freedom are the model's first
-  // (the physics step keeps the dofs up to the last awake one, World).
+  // The robot first: its bodies and degrees of freedom are the model's first.
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
     xml += robot_mjcf_children(read_text_file(robot_path, kMaxMjcfBytes, "a robot file"), robot_path);
@@ -527,8 +569,16 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";
   scene->mjcf_ = xml;
 
-  mjModel* model =
-      load_mjcf_cached(xml, path + ": MuJoCo rejected the compiled scene", options.model_cache, &scene->from_cache_);
+  const auto object_roots = [&](const mjModel* m) {
+    std::vector<char> root(m->nbody, 0);
+    for (size_t i = 0; i < holder_bodies.size(); ++i) {
+      if (!in_static_body[i]) root[mj_name2id(m, mjOBJ_BODY, holder_bodies[i].c_str())] = 1;
+    }
+    return root;
+  };
+  mjModel* model = load_mjcf_cached(xml, path + ": MuJoCo rejected the compiled scene", options.model_cache,
+                                    &scene->from_cache_,
+                                    [&](mjModel* m) { settle_placed_objects(m, object_roots(m)); });
   scene->model_ = model;  // owned from here: ~Scene frees it on any later error
   mesh.paint_palette(model);
   ceilings.paint_palette(model);
@@ -549,7 +599,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // Objects are children of the world: their links share the root body.
   scene->body_object_.resize(model->nbody);
   for (int b = 0; b < model->nbody; ++b) scene->body_object_[b] = root_object[model->body_rootid[b]];
-  // The scene's objects were placed at rest: each reset puts them to sleep
+  // The scene's objects rest where they settled: each reset puts them to sleep
   // (MuJoCo's sleep="init": after one step of them all, islands that touch
   // nothing awake sleep), where a tree may sleep at all (MuJoCo's compiler
   // keeps trees with actuators, the robot's, awake).

@@ -161,16 +161,17 @@ World::StepReport World::step(int substeps) {
       // velocity or acceleration), or failed mid-step. The step ends in
       // MuJoCo's reset state, the same whatever happened inside it; the reset
       // also restores MuJoCo's arena, left mid-step by an error. The episode
-      // cannot go on. Sleeping off for the reset: its sleep="init" would run a
-      // whole forward pass, and with it whatever failed.
+      // cannot go on. Sleeping off for the reset and the posing: its
+      // sleep="init" would run a whole forward pass, and with it whatever
+      // failed; and with sleeping on, mj_kinematics poses only what is awake.
       release();
       resting_.clear();
       const int flags = model_->opt.enableflags;
       model_->opt.enableflags &= ~mjENBL_SLEEP;
       mj_resetData(model_, data_);
-      model_->opt.enableflags = flags;
       mj_kinematics(model_, data_);  // poses to draw the last frame from; nothing that could fail again
       mj_camlight(model_, data_);
+      model_->opt.enableflags = flags;
       report.diverged = true;
       return report;
     }
