@@ -81,7 +81,8 @@ bool ArmCollisionChecker::for_each_contact(const std::vector<int>& mine, int ign
     lo = lo.cwiseMin(c - r);
     hi = hi.cwiseMax(c + r);
   }
-  mjContact contacts[mjMAXCONPAIR];
+  mjPreContact found[mjMAXCONPAIR];
+  mjContact contacts[mjMAXCONPAIR];  // only what the readers read is set (geoms, dist, pos, frame)
   for (const Box& other : others_) {
     if ((other.lo.array() > hi.array()).any() || (other.hi.array() < lo.array()).any()) continue;
     const int o = other.geom;
@@ -97,11 +98,15 @@ bool ArmCollisionChecker::for_each_contact(const std::vector<int>& mine, int ign
       const int g1 = ordered ? g : o, g2 = ordered ? o : g;
       const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
       const double margin = std::max(m->geom_margin[g1], m->geom_margin[g2]) + extra;
-      const int n = collide ? collide(m, d, contacts, g1, g2, margin) : 0;
+      const int n = collide ? collide(m, d, found, g1, g2, margin) : 0;
       if (n <= 0) continue;
       for (int k = 0; k < n; ++k) {
-        contacts[k].geom1 = g1;
-        contacts[k].geom2 = g2;
+        contacts[k].dist = found[k].dist;
+        mju_copy3(contacts[k].pos, found[k].pos);
+        mju_copy3(contacts[k].frame, found[k].normal);
+        mju_copy3(contacts[k].frame + 3, found[k].tangent);
+        contacts[k].geom[0] = g1;
+        contacts[k].geom[1] = g2;
         contacts[k].efc_address = -1;
       }
       if (visit(contacts, n)) return true;

@@ -132,7 +132,7 @@ bool Motion::hand_in_contact() const {
            (held >= 0 && (body == held || m->body_rootid[body] == m->body_rootid[held]));
   };
   for (int c = 0; c < d->ncon; ++c) {
-    const int b1 = m->geom_bodyid[d->contact[c].geom1], b2 = m->geom_bodyid[d->contact[c].geom2];
+    const int b1 = m->geom_bodyid[d->contact[c].geom[0]], b2 = m->geom_bodyid[d->contact[c].geom[1]];
     const bool robot1 = m->body_rootid[b1] == robot || hand(b1), robot2 = m->body_rootid[b2] == robot || hand(b2);
     if ((hand(b1) && !robot2) || (hand(b2) && !robot1)) return true;
   }

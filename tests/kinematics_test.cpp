@@ -103,8 +103,8 @@ bool mujoco_says_collides(const World& w, int load_body) {
   const mjData* d = w.data();
   const int robot = m->body_rootid[w.robot()->gripper_body];
   for (int c = 0; c < d->ncon; ++c) {
-    const int r1 = m->body_rootid[m->geom_bodyid[d->contact[c].geom1]];
-    const int r2 = m->body_rootid[m->geom_bodyid[d->contact[c].geom2]];
+    const int r1 = m->body_rootid[m->geom_bodyid[d->contact[c].geom[0]]];
+    const int r2 = m->body_rootid[m->geom_bodyid[d->contact[c].geom[1]]];
     const bool mine1 = r1 == robot || r1 == load_body, mine2 = r2 == robot || r2 == load_body;
     if (mine1 != mine2) return true;
   }

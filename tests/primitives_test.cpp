@@ -367,11 +367,11 @@ TEST(Primitives, TheCheckersLoadContactsAreThoseMuJoCoFindsForThePose) {
   // What the rules read: the load's contacts with scene objects.
   using Touch = std::tuple<int, int, double, double, double>;  // geoms (lower first), point
   const auto touch = [](const mjContact& c) {
-    return Touch{std::min(c.geom1, c.geom2), std::max(c.geom1, c.geom2), c.pos[0], c.pos[1], c.pos[2]};
+    return Touch{std::min(c.geom[0], c.geom[1]), std::max(c.geom[0], c.geom[1]), c.pos[0], c.pos[1], c.pos[2]};
   };
   const Scene& scene = w.scene();
   const auto of_load_with_objects = [&](const mjContact& c) {
-    const int o1 = scene.object_of_geom(c.geom1), o2 = scene.object_of_geom(c.geom2);
+    const int o1 = scene.object_of_geom(c.geom[0]), o2 = scene.object_of_geom(c.geom[1]);
     return (o1 == rag && o2 >= 0 && o2 != rag) || (o2 == rag && o1 >= 0 && o1 != rag);
   };
   std::vector<Touch> world_touches, checker_touches;

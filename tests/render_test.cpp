@@ -26,7 +26,7 @@ void save_png(const Array& rgb, int index, int h, int w, const std::string& name
 std::array<double, 2> project(const mjModel* m, const mjData* d, int cam, const double p[3], int width, int height) {
   double rel[3], local[3];
   mju_sub3(rel, p, d->cam_xpos + 3 * cam);
-  mju_rotVecMatT(local, rel, d->cam_xmat + 9 * cam);  // camera frame: x right, y up, -z forward
+  mju_mulMatTVec3(local, d->cam_xmat + 9 * cam, rel);  // camera frame: x right, y up, -z forward
   const double f = 0.5 * height / std::tan(m->cam_fovy[cam] * M_PI / 360.0);
   return {width / 2.0 + f * local[0] / -local[2], height / 2.0 - f * local[1] / -local[2]};
 }
@@ -47,11 +47,11 @@ TEST(Render, DepthMatchesRayCastsWithinOneCentimetre) {
     for (int col : {20, 64, 110}) {
       const double local[3] = {(col + 0.5 - w / 2.0) / f, -(row + 0.5 - h / 2.0) / f, -1.0};
       double dir[3];
-      mju_rotVecMat(dir, local, d->cam_xmat + 9 * cam);
+      mju_mulMatVec3(dir, d->cam_xmat + 9 * cam, local);
       const double norm = mju_norm3(dir);
       mju_scl3(dir, dir, 1.0 / norm);
       int geom = -1;
-      const double hit = mj_ray(m, d, d->cam_xpos + 3 * cam, dir, nullptr, 1, m->cam_bodyid[cam], &geom);
+      const double hit = mj_ray(m, d, d->cam_xpos + 3 * cam, dir, nullptr, 1, m->cam_bodyid[cam], &geom, nullptr);
       ASSERT_GT(hit, 0) << row << "," << col;
       EXPECT_NEAR(depth[row * w + col], hit / norm, 0.01) << "pixel " << row << "," << col;
       ++checked;

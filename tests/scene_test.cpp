@@ -105,7 +105,7 @@ TEST(Scene, FurnitureWithoutMovingPartsSharesStaticBodiesAndKeepsItsIdentity) {
   std::set<std::pair<int, int>> excluded;
   for (int e = 0; e < m->nexclude; ++e) {
     const int s1 = m->exclude_signature[e] >> 16, s2 = m->exclude_signature[e] & 0xFFFF;
-    excluded.insert({s1 - 1, s2 - 1});  // MuJoCo's signature: (body1 + 1) << 16 | (body2 + 1)
+    excluded.insert({s1, s2});  // MuJoCo's signature: body1 << 16 | body2
   }
   EXPECT_TRUE(excluded.count({0, table.static_body}));
   EXPECT_TRUE(excluded.count({std::min(table.static_body, cabinet.body), std::max(table.static_body, cabinet.body)}));

@@ -9,7 +9,6 @@
 #include "env/env_impl.hpp"
 #include "test_util.hpp"
 #include "world/mujoco_errors.hpp"
-#include "world/pair_early_outs.hpp"
 #include "world/predicates.hpp"
 
 namespace chore {
@@ -27,8 +26,7 @@ TEST(MujocoErrors, ErrorsBecomeChoreErrorsNotExit) {
   // A real failure inside the engine: the data stack overflows.
   auto scene = Scene::load(test::box_room());
   mjData* d = mj_makeData(scene->model());
-  d->pstack = d->nstack - 4;
-  EXPECT_THROW(mj_stackAlloc(d, 1000), Error);
+  EXPECT_THROW(mj_stackAllocNum(d, d->narena), Error);
   mj_deleteData(d);
 }
 
@@ -86,17 +84,13 @@ TEST(World, AMuJoCoErrorMidStepTruncatesLikeADivergence) {
   EXPECT_EQ(std::memcmp(a.item(0), b.item(0), a.item_bytes()), 0);
 }
 
-// MuJoCo resets a diverging state inside mj_step, where the static geoms are
-// left out of kinematics: the rest of that step collides with their zeroed
-// poses (degenerate boxes at the origin). What a pair function makes of those
-// must not reach the episode: the step ends in MuJoCo's reset state, every
-// geom posed, as a fresh reset gives it (seen: an early-out and MuJoCo's own
-// function disagreeing on such a box changed a training run).
+// MuJoCo resets a diverging state inside mj_step and goes on with the step:
+// what the rest of that step makes of it must not reach the episode. The step
+// ends in MuJoCo's reset state, every geom posed, as a fresh reset gives it.
 TEST(World, ADivergedStepEndsInMuJoCosResetStatePosedOverTheWholeModel) {
   auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
   World w(scene);
   const mjModel* m = w.model();
-  ASSERT_LT(scene->first_static_geom(), m->ngeom);
   const SceneObject& apple = *scene->find_object("apple_1");
   w.data()->qvel[m->jnt_dofadr[m->body_jntadr[apple.body]]] = 1e30;  // beyond mjMAXVAL
   const World::StepReport report = w.step(1);
@@ -201,393 +195,101 @@ int object_index(const World& w, const char* name) {
   return static_cast<int>(w.scene().find_object(name) - w.scene().objects().data());
 }
 
-// The object's contacts in the list: those physics computed, and the resting
-// contacts sleeping keeps for it (efc_address Sleeping::kKeptContact).
+// The object's contacts: those in MuJoCo's list (kept = false), or the
+// resting contacts World keeps for it while it sleeps (kept = true).
 int contacts_of(const World& w, const char* name, bool kept) {
   const int object = object_index(w, name);
+  const auto mine = [&](const mjContact& con) {
+    return w.scene().object_of_geom(con.geom[0]) == object || w.scene().object_of_geom(con.geom[1]) == object;
+  };
   int n = 0;
-  for (int c = 0; c < w.data()->ncon; ++c) {
-    const mjContact& con = w.data()->contact[c];
-    const bool mine = w.scene().object_of_geom(con.geom1) == object || w.scene().object_of_geom(con.geom2) == object;
-    n += mine && (con.efc_address == Sleeping::kKeptContact) == kept;
+  if (kept) {
+    w.resting_contacts().for_each(w.model(), w.data(), [&](const mjContact& con) { n += mine(con); });
+    return n;
   }
+  for (int c = 0; c < w.data()->ncon; ++c) n += mine(w.data()->contact[c]);
   return n;
 }
-bool in_contact_list(const World& w, const char* name) {
-  return contacts_of(w, name, false) > 0;
-}
 
-TEST(Sleeping, ObjectsAtRestAwayFromTheRobotSleepStillAndKeepTheirContacts) {
+// MuJoCo's sleeping (3.4 on), as chore uses it: the scene's objects start
+// asleep where they were placed and stay exactly there; MuJoCo computes none
+// of their contacts, and World keeps those they rest on, which contact
+// predicates read.
+TEST(Sleeping, TheScenesObjectsStartAsleepAndKeepTheirRestingContacts) {
   Env env(box_room_config());
   env.reset(0);
   World& w = env.impl().world();
-  w.set_sleeping(false);
-  // A block 0.45 m in front of the robot (within its reach) and one 2.8 m away.
-  double* near = w.data()->qpos + (object_qpos(w, "heavy_block_1") - w.data()->qpos);
-  near[0] = 0.45, near[1] = 0;
-  mj_forward(w.model(), w.data());
-  w.step(60);  // both come to rest on the floor
-  const int resting = contacts_of(w, "small_block_1", false);
-  ASSERT_GT(resting, 0);
-
-  w.set_sleeping(true);
+  const int block = object_index(w, "small_block_1");
+  ASSERT_TRUE(w.asleep(block));
+  EXPECT_TRUE(w.asleep(object_index(w, "heavy_block_1")));
+  EXPECT_FALSE(w.asleep(object_index(w, "red_panel_1")));  // furniture in a static body: no tree to sleep
+  const std::vector<double> rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
   w.step(60);
-  ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
-  const std::vector<double> far_rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
-  w.step(60);
-  EXPECT_TRUE(w.asleep(object_index(w, "small_block_1")));
-  EXPECT_TRUE(w.asleep(object_index(w, "red_panel_1")));     // furniture nothing moves near
-  EXPECT_FALSE(w.asleep(object_index(w, "heavy_block_1")));  // within the robot's region
-  EXPECT_EQ(w.sleepers(), 3);
-  for (int k = 0; k < 7; ++k) EXPECT_EQ(object_qpos(w, "small_block_1")[k], far_rest[k]) << k;  // held exactly
-  // Out of collision detection, its resting contacts kept: the same number,
-  // with no force in the solver.
+  EXPECT_TRUE(w.asleep(block));
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(object_qpos(w, "small_block_1")[k], rest[k]) << k;  // held exactly
   EXPECT_EQ(contacts_of(w, "small_block_1", false), 0);
-  EXPECT_EQ(contacts_of(w, "small_block_1", true), resting);
-  for (int c = 0; c < w.data()->ncon; ++c) {
-    if (w.data()->contact[c].efc_address != Sleeping::kKeptContact) continue;
-    double force[6];
-    mj_contactForce(w.model(), w.data(), c, force);
-    EXPECT_EQ(force[0], 0.0);
-  }
-  EXPECT_TRUE(in_contact_list(w, "heavy_block_1"));
-  EXPECT_TRUE(onfloor(w, object_index(w, "small_block_1"), 0));  // contact predicates read the kept ones
+  const int resting = contacts_of(w, "small_block_1", true);
+  EXPECT_GT(resting, 0);
+  EXPECT_TRUE(onfloor(w, block, 0));  // contact predicates read the kept ones
 
   w.set_sleeping(false);  // everyone awake, every contact computed again
   EXPECT_EQ(w.sleepers(), 0);
-  EXPECT_EQ(contacts_of(w, "small_block_1", false), resting);
   EXPECT_EQ(contacts_of(w, "small_block_1", true), 0);
+  EXPECT_EQ(contacts_of(w, "small_block_1", false), resting);
+  EXPECT_TRUE(onfloor(w, block, 0));
+  w.step(30);
+  EXPECT_FALSE(w.asleep(block));
+  w.set_sleeping(true);  // still, it falls asleep again after mjMINAWAKE steps
+  w.step(30);
+  EXPECT_TRUE(w.asleep(block));
+  EXPECT_EQ(contacts_of(w, "small_block_1", true), resting);
 }
 
-TEST(Sleeping, AnObjectLetGoInTheAirFallsBeforeItSleeps) {
+TEST(Sleeping, AnObjectMovedIntoTheAirWakesFallsAndSleepsAgain) {
   Env env(box_room_config());
   env.reset(0);
   World& w = env.impl().world();
-  w.step(120);
-  ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
-  // A sampler's move: 30 cm up, still. The sleeper wakes, and an object
-  // still in the air is not at rest: it falls to the floor, then sleeps.
-  double* block = w.data()->qpos + (object_qpos(w, "small_block_1") - w.data()->qpos);
-  const double floor_z = block[2];
-  block[2] += 0.3;
+  const int block = object_index(w, "small_block_1");
+  ASSERT_TRUE(w.asleep(block));
+  // A sampler's move: 30 cm up, still. MuJoCo wakes a sleeper whose joints
+  // moved; an object in the air is not at rest: it falls to the floor, then sleeps.
+  double* q = w.data()->qpos + (object_qpos(w, "small_block_1") - w.data()->qpos);
+  const double floor_z = q[2];
+  q[2] += 0.3;
   mj_forward(w.model(), w.data());
+  EXPECT_FALSE(w.asleep(block));
+  EXPECT_FALSE(onfloor(w, block, 0));  // its kept contacts no longer count
   w.step(1);
-  EXPECT_FALSE(w.asleep(object_index(w, "small_block_1")));
+  EXPECT_FALSE(w.asleep(block));
   w.step(120);
   EXPECT_NEAR(object_qpos(w, "small_block_1")[2], floor_z, 0.005);
-  EXPECT_TRUE(w.asleep(object_index(w, "small_block_1")));
+  EXPECT_TRUE(w.asleep(block));
   EXPECT_GT(contacts_of(w, "small_block_1", true), 0);
+  EXPECT_TRUE(onfloor(w, block, 0));
 }
 
-TEST(Sleeping, AnObjectKeptAwakeThenPutInTheAirFallsBeforeItSleeps) {
+TEST(Sleeping, AMovingObjectWakesWhatItHits) {
   Env env(box_room_config());
   env.reset(0);
   World& w = env.impl().world();
-  const int block_index = object_index(w, "small_block_1");
-  double* block = w.data()->qpos + (object_qpos(w, "small_block_1") - w.data()->qpos);
-  const double floor_z = block[2], x = block[0], y = block[1];
-  // Still beside the robot: awake (its region), however long it rests.
-  const Pose2 base = w.base_pose();
-  block[0] = base.x + 0.45 * std::cos(base.yaw);
-  block[1] = base.y + 0.45 * std::sin(base.yaw);
-  mj_forward(w.model(), w.data());
-  w.step(120);
-  ASSERT_FALSE(w.asleep(block_index));
-  // A sampler puts it back where it was, 30 cm up: away from the robot and
-  // still, but not at rest. It falls, then sleeps.
-  block[0] = x, block[1] = y, block[2] = floor_z + 0.3;
-  mj_forward(w.model(), w.data());
-  w.step(1);
-  EXPECT_FALSE(w.asleep(block_index));
-  w.step(120);
-  EXPECT_NEAR(object_qpos(w, "small_block_1")[2], floor_z, 0.005);
-  EXPECT_TRUE(w.asleep(block_index));
-}
-
-TEST(Sleeping, StaticGeomsLeftOutOfTheStepStayPutAndStillCollide) {
-  auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
-  World w(scene);
-  const mjModel* m = w.model();
-  const int ngeom = m->ngeom, first = scene->first_static_geom();
-  ASSERT_LT(first, ngeom);
-  for (int g = first; g < ngeom; ++g) {
-    const int b = m->geom_bodyid[g];
-    EXPECT_EQ(m->body_weldid[b], 0) << g;  // never moves
-    EXPECT_EQ(m->body_jntnum[b], 0) << g;
-  }
-  const std::vector<double> before(w.data()->geom_xpos + 3 * first, w.data()->geom_xpos + 3 * ngeom);
-  // An apple let go 5 cm above the table (a static body's geoms): it lands
-  // on the table top, 0.75 m, and rests there.
-  const SceneObject& apple = *scene->find_object("apple_1");
-  double* q = w.data()->qpos + m->jnt_qposadr[m->body_jntadr[apple.body]];
-  q[0] = 1.5, q[1] = 1.5, q[2] = 0.80;
-  mj_forward(w.model(), w.data());
-  w.step(240);
-  EXPECT_EQ(m->ngeom, ngeom);  // the full count outside a step
-  EXPECT_NEAR(q[2], 0.75, 0.01);
-  const int table = static_cast<int>(scene->find_object("table_1") - scene->objects().data());
-  EXPECT_TRUE(ontop(w, object_index(w, "apple_1"), table));
-  const std::vector<double> after(w.data()->geom_xpos + 3 * first, w.data()->geom_xpos + 3 * ngeom);
-  EXPECT_EQ(before, after);
-}
-
-TEST(Sleeping, AMovingObjectWakesWhatItWouldHit) {
-  Env env(box_room_config());
-  env.reset(0);
-  World& w = env.impl().world();
-  w.step(60);
-  w.set_sleeping(true);
-  w.step(4);
   ASSERT_TRUE(w.asleep(object_index(w, "heavy_block_1")));  // at (-2, 2), 25 kg
   // Slide the small block along the floor at it, 15 cm between their faces.
-  w.set_sleeping(false);
   const mjModel* m = w.model();
   const int small = w.scene().find_object("small_block_1")->body;
   double* q = w.data()->qpos + m->jnt_qposadr[m->body_jntadr[small]];
   q[0] = -2.0, q[1] = 1.8;
   w.data()->qvel[m->jnt_dofadr[m->body_jntadr[small]] + 1] = 2.0;
   mj_forward(w.model(), w.data());
-  w.set_sleeping(true);
-  w.step(2);
-  EXPECT_FALSE(w.asleep(object_index(w, "heavy_block_1")));  // woken before the blocks meet
-  w.step(58);
-  // The blocks met: the small one stopped at the heavy one's face (5 cm
-  // cubes, centres 5 cm apart) instead of passing through it.
+  bool woken = false;
+  for (int k = 0; k < 60; ++k) {
+    w.step(1);
+    woken |= !w.asleep(object_index(w, "heavy_block_1"));
+  }
+  EXPECT_TRUE(woken);  // when the blocks met (both may sleep again since)
+  // The small one stopped at the heavy one's face (5 cm cubes, centres 5 cm
+  // apart) instead of passing through it.
   EXPECT_LT(object_qpos(w, "small_block_1")[1], object_qpos(w, "heavy_block_1")[1] - 0.045);
   EXPECT_GT(object_qpos(w, "small_block_1")[1], 1.85);
-}
-
-// The degrees of freedom MuJoCo's step sees, read from inside it (mjcb_control
-// runs mid-step).
-int dofs_seen_in_step = 0;
-void record_dofs(const mjModel* m, mjData*) {
-  dofs_seen_in_step = m->nv;
-}
-int dofs_in_a_step(World& w) {
-  mjcb_control = record_dofs;
-  w.step(1);
-  mjcb_control = nullptr;
-  return dofs_seen_in_step;
-}
-
-TEST(Sleeping, APhysicsStepLeavesTheDofsOfTheLastSleepersOut) {
-  Env env(box_room_config());
-  env.reset(0);
-  World& w = env.impl().world();
-  const mjModel* m = w.model();
-  const int full = m->nv, nq = m->nq, njnt = m->njnt;
-  const auto dof_of = [&](const char* name) {
-    return m->jnt_dofadr[m->body_jntadr[w.scene().find_object(name)->body]];
-  };
-  const int small = dof_of("small_block_1"), heavy = dof_of("heavy_block_1");
-  // The robot's dofs come first: every joint before the blocks' is the robot's.
-  ASSERT_LT(small, heavy);
-  for (int j = 0; j < m->njnt && m->jnt_dofadr[j] < small; ++j) {
-    EXPECT_LT(w.scene().object_of_body(m->jnt_bodyid[j]), 0) << j;
-  }
-  w.step(120);
-  ASSERT_TRUE(w.asleep(object_index(w, "small_block_1")));
-  ASSERT_TRUE(w.asleep(object_index(w, "heavy_block_1")));
-  EXPECT_EQ(dofs_in_a_step(w), small);  // the robot's only
-  EXPECT_EQ(m->nv, full);               // the whole model outside a step
-  EXPECT_EQ(m->nq, nq);
-  EXPECT_EQ(m->njnt, njnt);
-
-  // Held, the small block is kept (its grasp weld ties it to the hand); the
-  // heavy one, asleep and last, is still left out.
-  ASSERT_TRUE(w.hold(object_index(w, "small_block_1")));
-  EXPECT_EQ(dofs_in_a_step(w), heavy);
-  w.release();
-
-  // Falling with the heavy block's dofs left out, the small block follows
-  // the same steps as with everyone awake and in the step: free fall,
-  // semi-implicit Euler, bit for bit.
-  auto fall = [&](bool sleeping) {
-    env.reset(0);
-    w.step(120);
-    w.set_sleeping(sleeping);
-    double* q = w.data()->qpos + m->jnt_qposadr[m->body_jntadr[w.scene().find_object("small_block_1")->body]];
-    q[2] += 0.3;
-    mj_forward(w.model(), w.data());
-    std::vector<double> z;
-    for (int k = 0; k < 20; ++k) {
-      if (sleeping)
-        EXPECT_EQ(dofs_in_a_step(w), heavy) << k;
-      else
-        w.step(1);
-      z.push_back(q[2]);
-    }
-    w.set_sleeping(true);
-    return z;
-  };
-  const std::vector<double> cut = fall(true), whole = fall(false);
-  EXPECT_EQ(cut, whole);
-  const double h = m->opt.timestep, g = -m->opt.gravity[2];
-  EXPECT_NEAR(whole[0] - whole[19], g * h * h * (2 + 20) * 19 / 2, 1e-9);  // sum of k g h^2, k = 2..20
-}
-
-// Each body's geoms (first, count) as MuJoCo's step sees them.
-std::vector<int> geomadr_seen_in_step, geomnum_seen_in_step;
-void record_geomnum(const mjModel* m, mjData*) {
-  geomadr_seen_in_step.assign(m->body_geomadr, m->body_geomadr + m->nbody);
-  geomnum_seen_in_step.assign(m->body_geomnum, m->body_geomnum + m->nbody);
-}
-
-TEST(World, AStepLeavesOutOnlyGeomsThatCannotCollide) {
-  Env env(box_room_config());
-  env.reset(0);
-  World& w = env.impl().world();
-  const mjModel* m = w.model();
-  const std::vector<int> geomnum(m->body_geomnum, m->body_geomnum + m->nbody);
-  const auto& cut = w.scene().colliding_geoms();
-  ASSERT_FALSE(cut.empty());  // the robot's drawn geoms
-  for (const Scene::CollidingGeoms& c : cut) {
-    EXPECT_LT(w.scene().object_of_body(c.body), 0);  // the robot's
-    for (int g = m->body_geomadr[c.body] + c.count; g < m->body_geomadr[c.body] + m->body_geomnum[c.body]; ++g) {
-      EXPECT_EQ(m->geom_contype[g], 0) << g;
-      EXPECT_EQ(m->geom_conaffinity[g], 0) << g;
-    }
-  }
-  mjcb_control = record_geomnum;
-  w.step(1);
-  mjcb_control = nullptr;
-  for (const Scene::CollidingGeoms& c : cut) EXPECT_EQ(geomnum_seen_in_step[c.body], c.count) << c.body;
-  EXPECT_EQ(std::vector<int>(m->body_geomnum, m->body_geomnum + m->nbody), geomnum);  // all back after it
-}
-
-// A static body (2 m of furniture) near anything awake keeps in a step only
-// the run of its geoms from the first to the last that an awake region meets;
-// none of those left out is within 5 cm of an awake geom by MuJoCo's own pair
-// functions. The restaurant with every object just woken: the robot, and the
-// plates, cups and rag resting on its tables.
-TEST(Sleeping, AStaticBodyKeepsOnlyTheGeomsAnAwakeRegionMeets) {
-  Env env(test::primitives_config("clean_table"));
-  env.reset(0);
-  World& w = env.impl().world();
-  const mjModel* m = w.model();
-  w.set_sleeping(false);
-  w.set_sleeping(true);  // all awake until they have been still for a while
-  const std::vector<int> geomadr(m->body_geomadr, m->body_geomadr + m->nbody);
-  const std::vector<int> geomnum(m->body_geomnum, m->body_geomnum + m->nbody);
-  mjcb_control = record_geomnum;
-  w.step(1);
-  mjcb_control = nullptr;
-  std::vector<int> awake;  // colliding geoms of the robot and of awake objects with bodies of their own
-  const int robot_root = m->body_rootid[w.robot()->gripper_body];
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
-    const int object = w.scene().object_of_geom(g);
-    const bool moving = object >= 0 && w.scene().objects()[object].static_body < 0 && !w.asleep(object);
-    if (moving || m->body_rootid[m->geom_bodyid[g]] == robot_root) awake.push_back(g);
-  }
-  int kept = 0, shortened = 0, left_out = 0, left_out_near = 0;
-  for (int b : w.scene().static_bodies()) {
-    const int first = geomadr_seen_in_step[b], count = geomnum_seen_in_step[b];
-    if (count == 0) continue;  // away from every awake region: masked whole
-    ++kept;
-    EXPECT_GE(first, geomadr[b]);
-    EXPECT_LE(first + count, geomadr[b] + geomnum[b]);
-    shortened += count < geomnum[b];
-    for (int g = geomadr[b]; g < geomadr[b] + geomnum[b]; ++g) {
-      if (g >= first && g < first + count) continue;
-      ++left_out;
-      for (int a : awake) {
-        const int g1 = m->geom_type[a] <= m->geom_type[g] ? a : g, g2 = g1 == a ? g : a;
-        mjContact con[mjMAXCONPAIR];
-        const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
-        left_out_near += collide && collide(m, w.data(), con, g1, g2, 0.05) > 0;
-      }
-    }
-  }
-  EXPECT_GT(awake.size(), 100u);
-  EXPECT_GT(kept, 5);
-  EXPECT_GT(shortened, 0);
-  EXPECT_GT(left_out, 0);
-  EXPECT_EQ(left_out_near, 0);
-  EXPECT_EQ(std::vector<int>(m->body_geomadr, m->body_geomadr + m->nbody), geomadr);  // all back after it
-  EXPECT_EQ(std::vector<int>(m->body_geomnum, m->body_geomnum + m->nbody), geomnum);
-}
-
-// The early-outs before MuJoCo's capsule-, cylinder- and box-box functions
-// change no contact: over random poses of each shape around a box, and poses
-// within a hair of first touch on either side (found by bisection), with and
-// without a margin, the table's function gives MuJoCo's own contacts bit for
-// bit, and every pair the early-out rejects is one MuJoCo finds nothing for.
-TEST(World, PairEarlyOutsGiveMuJoCosOwnContactsBitForBit) {
-  install_pair_early_outs();
-  const std::string xml = R"(<mujoco><worldbody>
-    <geom name="table" type="box" size="0.4 0.3 0.02"/>
-    <body><freejoint/><geom type="capsule" size="0.02 0.05"/></body>
-    <body><freejoint/><geom type="cylinder" size="0.27 0.14"/></body>
-    <body><freejoint/><geom type="box" size="0.05 0.1 0.2"/></body>
-  </worldbody></mujoco>)";
-  mjModel* m = load_mjcf(xml, "early-out test");
-  mjData* d = mj_makeData(m);
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(-1, 1);
-  int contacts = 0, rejected = 0, none = 0;
-  // Geom g (body g - 1) against the table: MuJoCo's contact count.
-  const auto check = [&](int g, double margin) {
-    mjContact ours[mjMAXCONPAIR], theirs[mjMAXCONPAIR];
-    std::memset(ours, 0, sizeof(ours));
-    std::memset(theirs, 0, sizeof(theirs));
-    const int type = m->geom_type[g];
-    const int n = mjCOLLISIONFUNC[type][mjGEOM_BOX](m, d, ours, g, 0, margin);
-    const int expected = mujoco_pair_function(type, mjGEOM_BOX)(m, d, theirs, g, 0, margin);
-    EXPECT_EQ(n, expected) << "type " << type;
-    EXPECT_EQ(std::memcmp(ours, theirs, sizeof(mjContact) * std::max(std::min(n, expected), 0)), 0);
-    contacts += expected > 0;
-    none += expected == 0;
-    if (geoms_apart(m, d, g, 0, margin)) {
-      ++rejected;
-      EXPECT_EQ(expected, 0) << "type " << type << " rejected with a contact";
-    }
-    return expected;
-  };
-  const auto random_pose = [&](int body) {
-    double* q = d->qpos + 7 * body;
-    for (int k = 0; k < 3; ++k) q[k] = unit(rng) * (k == 2 ? 0.45 : 0.75);
-    for (int k = 3; k < 7; ++k) q[k] = unit(rng);
-    mju_normalize4(q + 3);
-  };
-  for (int trial = 0; trial < 20000; ++trial) {
-    for (int b = 0; b < 3; ++b) random_pose(b);
-    mj_kinematics(m, d);
-    for (int g = 1; g < 4; ++g) {
-      for (const double margin : {0.0, 0.02}) check(g, margin);
-    }
-  }
-  // First touch along a ray out of the table's centre: touching at scale 0,
-  // apart at 2 (convex shapes: one crossing), bisected to 1e-12.
-  for (int trial = 0; trial < 300; ++trial) {
-    const int g = 1 + trial % 3;
-    const double margin = trial % 2 ? 0.0 : 0.02;
-    random_pose(g - 1);
-    double* q = d->qpos + 7 * (g - 1);
-    const Eigen::Vector3d ray(q[0], q[1], q[2]);
-    const auto place = [&](double scale) {
-      for (int k = 0; k < 3; ++k) q[k] = ray[k] * scale;
-      mj_kinematics(m, d);
-    };
-    double touching = 0, apart = 2;
-    while (apart - touching > 1e-12) {
-      const double mid = (touching + apart) / 2;
-      place(mid);
-      (check(g, margin) > 0 ? touching : apart) = mid;
-    }
-    for (const double step : {1e-9, 1e-7, 1e-5, 1e-3}) {
-      for (const double scale : {touching - step, apart + step}) {
-        place(scale);
-        check(g, margin);
-      }
-    }
-  }
-  // Both sides were exercised, and the early-out does the work.
-  EXPECT_GT(contacts, 5000);
-  EXPECT_GT(rejected, none / 2);
-  EXPECT_NE(mjCOLLISIONFUNC[mjGEOM_CAPSULE][mjGEOM_BOX], mujoco_pair_function(mjGEOM_CAPSULE, mjGEOM_BOX));
-  mj_deleteData(d);
-  mj_deleteModel(m);
 }
 
 TEST(World, ZeroActionHoldsTheRobotStill) {

@@ -56,9 +56,10 @@ bool randomize_appearance(const Scene& scene, mjModel* model, const AppearanceRa
   for (const char* name : {"static_visual", "ceiling_visual"}) {
     const int tex = mj_name2id(model, mjOBJ_TEXTURE, name);
     if (tex < 0) continue;
+    if (model->tex_nchannel[tex] != 3) throw Error("appearance: texture '" + std::string(name) + "' is not RGB");
     const int bytes = 3 * model->tex_width[tex] * model->tex_height[tex];
-    unsigned char* texels = model->tex_rgb + model->tex_adr[tex];
-    std::memcpy(texels, original->tex_rgb + original->tex_adr[tex], bytes);
+    unsigned char* texels = model->tex_data + model->tex_adr[tex];
+    std::memcpy(texels, original->tex_data + original->tex_adr[tex], bytes);
     if (r.surface_color <= 0) continue;
     // The same colour gets the same factors wherever it appears: keyed by colour.
     const uint64_t salt = rng();

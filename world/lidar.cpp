@@ -39,9 +39,9 @@ void lidar_scan(const World& world, const LidarConfig& c, float* ranges) {
     const double a = beam_angle(c, i);
     const mjtNum local[3] = {std::cos(a), std::sin(a), 0};
     mjtNum direction[3];
-    mju_rotVecMat(direction, local, frame);
+    mju_mulMatVec3(direction, frame, local);
     int geom = -1;
-    const mjtNum hit = mj_ray(m, d, origin, direction, groups, 1, base, &geom);
+    const mjtNum hit = mj_ray(m, d, origin, direction, groups, 1, base, &geom, nullptr);
     ranges[i] = static_cast<float>(hit < 0 ? c.range : std::min<double>(hit, c.range));
   }
 }

@@ -25,7 +25,7 @@ namespace {
 // The file: this header, then the MJB bytes.
 struct Header {
   char magic[8] = {'c', 'h', 'o', 'r', 'e', 'm', 'j', 'b'};
-  uint32_t format = 1;
+  uint32_t format = 2;  // 2: scenes' objects settled where they were placed (Scene)
   int32_t mujoco = 0;  // mj_version()
   uint64_t xml_hash = 0, xml_size = 0;
   uint64_t mjb_size = 0, mjb_hash = 0;
@@ -60,8 +60,10 @@ mjModel* read_cached(const fs::path& path, const Header& want) {
   mjVFS vfs;
   mj_defaultVFS(&vfs);
   const char* file = "chore.mjb";
-  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(mjb.size())) != 0) return nullptr;
-  std::memcpy(vfs.filedata[mj_findFileVFS(&vfs, file)], mjb.data(), mjb.size());
+  if (mj_addBufferVFS(&vfs, file, mjb.data(), static_cast<int>(mjb.size())) != 0) {
+    mj_deleteVFS(&vfs);
+    return nullptr;
+  }
   mjModel* model = nullptr;
   try {
     model = mj_loadModel(file, &vfs);
@@ -109,9 +111,22 @@ void write_cached(const fs::path& dir, const fs::path& path, Header h, const mjM
 
 }  // namespace
 
-mjModel_* load_mjcf_cached(const std::string& xml, const std::string& what, const std::string& dir, bool* from_cache) {
+mjModel_* load_mjcf_cached(const std::string& xml, const std::string& what, const std::string& dir, bool* from_cache,
+                           const std::function<void(mjModel_*)>& prepare) {
   if (from_cache) *from_cache = false;
-  if (dir.empty()) return load_mjcf(xml, what);
+  const auto compile = [&] {
+    mjModel* model = load_mjcf(xml, what);
+    if (prepare) {
+      try {
+        prepare(model);
+      } catch (...) {
+        mj_deleteModel(model);
+        throw;
+      }
+    }
+    return model;
+  };
+  if (dir.empty()) return compile();
   install_mujoco_handlers();
   const Header want = expected_header(xml);
   const fs::path path = fs::path(dir) / (std::to_string(want.xml_hash) + ".mjb");
@@ -121,7 +136,7 @@ mjModel_* load_mjcf_cached(const std::string& xml, const std::string& what, cons
     fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // recently used: kept
     return cached;
   }
-  mjModel* model = load_mjcf(xml, what);
+  mjModel* model = compile();
   write_cached(dir, path, want, model);
   return model;
 }

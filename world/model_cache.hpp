@@ -7,6 +7,7 @@
 // folder keeps the kModelCacheFiles most recently used files.
 #pragma once
 
+#include <functional>
 #include <string>
 
 struct mjModel_;
@@ -17,8 +18,11 @@ inline constexpr int kModelCacheFiles = 32;
 
 // load_mjcf (world/mujoco_errors.hpp) through the cache in `dir` ("": none);
 // `from_cache` (optional) says whether it was loaded rather than compiled.
+// `prepare` (optional) finishes a freshly compiled model before it is cached:
+// the cache keeps what it made (a change to what callers prepare bumps the
+// file format, model_cache.cpp).
 mjModel_* load_mjcf_cached(const std::string& xml, const std::string& what, const std::string& dir,
-                           bool* from_cache = nullptr);
+                           bool* from_cache = nullptr, const std::function<void(mjModel_*)>& prepare = {});
 
 // $CHORE_CACHE, else $XDG_CACHE_HOME/chore, else $HOME/.cache/chore, with
 // "/models" after it; "" when none of them is set.

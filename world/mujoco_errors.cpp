@@ -6,7 +6,6 @@
 #include <mutex>
 
 #include "base/error.hpp"
-#include "world/pair_early_outs.hpp"
 
 namespace chore {
 namespace {
@@ -28,7 +27,6 @@ void install_mujoco_handlers() {
   std::call_once(once, [] {
     mju_user_error = on_error;
     mju_user_warning = on_warning;
-    install_pair_early_outs();  // before any MuJoCo work of chore's, on any thread
   });
 }
 
@@ -37,12 +35,18 @@ mjModel* load_mjcf(const std::string& xml, const std::string& what) {
   mjVFS vfs;
   mj_defaultVFS(&vfs);
   const char* file = "chore.xml";
-  if (mj_makeEmptyFileVFS(&vfs, file, static_cast<int>(xml.size())) != 0) {
+  if (mj_addBufferVFS(&vfs, file, xml.data(), static_cast<int>(xml.size())) != 0) {
+    mj_deleteVFS(&vfs);
     throw Error(what + ": cannot allocate the model in MuJoCo's VFS");
   }
-  std::memcpy(vfs.filedata[mj_findFileVFS(&vfs, file)], xml.data(), xml.size());
   char error[2048] = "";
-  mjModel* model = mj_loadXML(file, &vfs, error, sizeof error);
+  mjModel* model = nullptr;
+  try {
+    model = mj_loadXML(file, &vfs, error, sizeof error);
+  } catch (...) {
+    mj_deleteVFS(&vfs);
+    throw;
+  }
   mj_deleteVFS(&vfs);
   if (!model) throw Error(what + ": " + error);
   return model;

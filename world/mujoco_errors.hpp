@@ -10,9 +10,6 @@ struct mjModel_;
 namespace chore {
 
 // Idempotent and thread-safe; every entry point that touches MuJoCo calls it.
-// It also puts the pair early-outs in MuJoCo's collision table
-// (pair_early_outs.hpp), so that they are there before chore's first MuJoCo
-// work on any thread.
 void install_mujoco_handlers();
 
 // Compiles an MJCF document held in memory (through MuJoCo's virtual file

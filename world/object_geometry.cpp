@@ -58,7 +58,7 @@ double ray_to_geoms(const World& world, const std::vector<int>& geoms, const Eig
   double best = -1;
   for (int g : geoms) {
     const double t = mju_rayGeom(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g, m->geom_size + 3 * g, p.data(), dir.data(),
-                                 m->geom_type[g]);
+                                 m->geom_type[g], nullptr);
     if (t >= 0 && t <= max_distance && (best < 0 || t < best)) best = t;
   }
   return best;
@@ -75,13 +75,18 @@ template <class OtherTest>
 bool any_contact(const World& world, int a, OtherTest is_other) {
   const mjData* d = world.data();
   const Scene& scene = world.scene();
+  const auto joins = [&](const mjContact& con) {
+    const int o1 = scene.object_of_geom(con.geom[0]);
+    const int o2 = scene.object_of_geom(con.geom[1]);
+    return (o1 == a && is_other(con.geom[1])) || (o2 == a && is_other(con.geom[0]));
+  };
   for (int c = 0; c < d->ncon; ++c) {
-    const mjContact& con = d->contact[c];
-    const int o1 = scene.object_of_geom(con.geom1);
-    const int o2 = scene.object_of_geom(con.geom2);
-    if ((o1 == a && is_other(con.geom2)) || (o2 == a && is_other(con.geom1))) return true;
+    if (joins(d->contact[c])) return true;
   }
-  return false;
+  // Those of sleepers, which MuJoCo no longer computes.
+  bool found = false;
+  world.resting_contacts().for_each(world.model(), d, [&](const mjContact& con) { found = found || joins(con); });
+  return found;
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ struct ObjectAbilities {
   bool toggleable = false;
   bool sliceable = false, slicer = false;
   bool breakable = false;
-  double break_force = 100;  // N of contact force
+  double break_force = 100;  // N of contact force (with one other object, over their contacts)
   double slice_force = 10;   // N (seed: F_sliced)
   std::optional<ThermalSource> heat_source, cold_source;
   bool holds_liquid = false;  // a container or source of water (sink, bucket)

@@ -20,8 +20,8 @@ void optical_flow(const mjModel* model, const Pinhole& pinhole, const FramePoses
         // A point at infinity: its direction, turned with the camera.
         double direction[3];
         pinhole.unproject(col, row, 1.0, local);
-        mju_rotVecMat(direction, local, now.camera.mat);
-        mju_rotVecMatT(then, direction, before.camera.mat);
+        mju_mulMatVec3(direction, now.camera.mat, local);
+        mju_mulMatTVec3(then, before.camera.mat, direction);
       } else {
         // Where the point was: the same point of its body, at the body's previous pose.
         const int b = model->geom_bodyid[geom[i]];
@@ -29,8 +29,8 @@ void optical_flow(const mjModel* model, const Pinhole& pinhole, const FramePoses
         pinhole.unproject(col, row, depth[i], local);
         now.camera.to_world(local, point);
         mju_sub3(rel, point, now.xpos.data() + 3 * b);
-        mju_rotVecMatT(on_body, rel, now.xmat.data() + 9 * b);
-        mju_rotVecMat(moved, on_body, before.xmat.data() + 9 * b);
+        mju_mulMatTVec3(on_body, now.xmat.data() + 9 * b, rel);
+        mju_mulMatVec3(moved, before.xmat.data() + 9 * b, on_body);
         mju_addTo3(moved, before.xpos.data() + 3 * b);
         before.camera.to_camera(moved, then);
       }

@@ -19,14 +19,14 @@ CameraPose CameraPose::of(const mjData* data, int camera) {
 }
 
 void CameraPose::to_world(const double local[3], double world[3]) const {
-  mju_rotVecMat(world, local, mat);
+  mju_mulMatVec3(world, mat, local);
   mju_addTo3(world, pos);
 }
 
 void CameraPose::to_camera(const double world[3], double local[3]) const {
   double rel[3];
   mju_sub3(rel, world, pos);
-  mju_rotVecMatT(local, rel, mat);
+  mju_mulMatTVec3(local, mat, rel);
 }
 
 }  // namespace chore

@@ -108,7 +108,7 @@ bool infov(const World& w, int a) {
   const Eigen::Vector3d c = object_aabb(w, a).center();
   double rel[3], local[3];
   mju_sub3(rel, c.data(), d->cam_xpos + 3 * cam);
-  mju_rotVecMatT(local, rel, d->cam_xmat + 9 * cam);  // camera frame: looks along -z
+  mju_mulMatTVec3(local, d->cam_xmat + 9 * cam, rel);  // camera frame: looks along -z
   const double depth = -local[2];
   const double half = std::tan(m->cam_fovy[cam] * M_PI / 360.0);
   if (depth <= 0 || std::abs(local[1]) > half * depth || std::abs(local[0]) > half * depth) {
@@ -120,7 +120,7 @@ bool infov(const World& w, int a) {
   dir /= distance;
   const mjtByte groups[mjNGROUP] = {1, 0, 0, 1, 0, 0};  // drawn objects and collision geoms
   int geom = -1;
-  const double hit = mj_ray(m, d, d->cam_xpos + 3 * cam, dir.data(), groups, 0, m->cam_bodyid[cam], &geom);
+  const double hit = mj_ray(m, d, d->cam_xpos + 3 * cam, dir.data(), groups, 0, m->cam_bodyid[cam], &geom, nullptr);
   return hit >= 0 && geom >= 0 && w.scene().object_of_geom(geom) == a;
 }
 
@@ -186,17 +186,18 @@ bool draped(const World& w, int a, int b) {
 
 bool attached(const World& w, int a, int b) {
   const mjModel* m = w.model();
+  const mjData* d = w.data();
   const Scene& scene = w.scene();
   const int robot = w.robot() ? m->body_rootid[w.robot()->gripper_body] : -2;
   auto is = [&](int body, int object) {
     return object >= 0 ? scene.object_of_body(body) == object : m->body_rootid[body] == robot;
   };
   for (const Scene::Attachment& at : scene.attachments()) {  // to furniture in a static body too
-    if (at.weld >= 0 && m->eq_active[at.weld] && ((at.object == a && at.to == b) || (at.object == b && at.to == a)))
+    if (at.weld >= 0 && d->eq_active[at.weld] && ((at.object == a && at.to == b) || (at.object == b && at.to == a)))
       return true;
   }
   for (int e = 0; e < m->neq; ++e) {
-    if (!m->eq_active[e] || (m->eq_type[e] != mjEQ_WELD && m->eq_type[e] != mjEQ_CONNECT)) continue;
+    if (!d->eq_active[e] || (m->eq_type[e] != mjEQ_WELD && m->eq_type[e] != mjEQ_CONNECT)) continue;
     const int b1 = m->eq_obj1id[e], b2 = m->eq_obj2id[e];
     if ((is(b1, a) && is(b2, b)) || (is(b2, a) && is(b1, b))) return true;
   }

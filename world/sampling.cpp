@@ -79,7 +79,7 @@ bool touches_anything(const World& w, int a, int except = -1) {
   const mjData* d = w.data();
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
-    const int o1 = w.scene().object_of_geom(con.geom1), o2 = w.scene().object_of_geom(con.geom2);
+    const int o1 = w.scene().object_of_geom(con.geom[0]), o2 = w.scene().object_of_geom(con.geom[1]);
     if ((o1 == a) != (o2 == a) && (except < 0 || (o1 != except && o2 != except))) return true;
   }
   return false;
@@ -316,8 +316,8 @@ bool sample_robot_in_room(World& w, int room, Rng& rng) {
     bool clear = true;
     for (int c = 0; c < w.data()->ncon && clear; ++c) {
       const mjContact& con = w.data()->contact[c];
-      const int root1 = m->body_rootid[m->geom_bodyid[con.geom1]];
-      const int root2 = m->body_rootid[m->geom_bodyid[con.geom2]];
+      const int root1 = m->body_rootid[m->geom_bodyid[con.geom[0]]];
+      const int root2 = m->body_rootid[m->geom_bodyid[con.geom[1]]];
       const int robot = m->body_rootid[m->jnt_bodyid[r.base_x.joint]];
       clear = root1 != robot && root2 != robot;
     }

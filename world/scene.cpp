@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "base/error.hpp"
 #include "base/json_file.hpp"
@@ -136,30 +137,95 @@ void emit_child_links(std::string& xml, std::string& welds, StaticMesh& mesh, co
   }
 }
 
-// MuJoCo names a composite's bodies <prefix>B<i>_<j>; a cloth's root is its centre.
+// A cloth's bodies are <object>B<i>_<j> (as MuJoCo 2.2.2's composite named them); its root is its centre.
 std::string root_body_name(const std::string& object, const ObjectModel& model, bool cloth) {
   if (!model.cloth || !cloth) return object;
   const std::string c = std::to_string(model.cloth->count / 2);
   return object + "B" + c + "_" + c;
 }
 
-// The composite lies flat in the object's frame, just above its origin. Each
-// body is a capsule, drawn and colliding: MuJoCo 2.2.2's skins cost ~2 ms per
-// frame on llvmpipe (skin update and draw), a geom ~30 us and is culled out of
-// view; flat ellipsoids went through MPR contacts that threw the cloth about.
-std::string cloth_xml(const std::string& name, const ClothSpec& c, double mass) {
+// A cloth: the body tree MuJoCo 2.2.2's <composite type="cloth"> made (MuJoCo
+// 3 has no such composite), written out. It lies flat in the object's frame,
+// just above its origin: the centre body is the root, a spine runs along x
+// from it, and from each spine body a branch along y; each body hangs from
+// its parent by two hinges, in-plane and about z. The grid's x edges that
+// the tree leaves out are tendons that cannot stretch past the spacing
+// (limits: MuJoCo's sleeping supports no tendon equality). Each body is a
+// capsule, drawn and colliding (a skin costs ~2 ms per frame on llvmpipe, a
+// geom ~30 us and is culled out of view), laid along x and y in a
+// checkerboard as the composite laid them.
+struct ClothXml {
+  std::string bodies;   // the root's contents and its subtree
+  std::string tendons;  // <tendon> children
+};
+
+ClothXml cloth_xml(const std::string& name, const ClothSpec& c, double mass) {
   const double per_body = mass / (c.count * c.count);
-  return "      <composite type=\"cloth\" count=\"" + std::to_string(c.count) + " " + std::to_string(c.count) +
-         " 1\" spacing=\"" + fmt(c.spacing) + "\" prefix=\"" + name +
-         "\" flatinertia=\"0.01\">\n"
-         "        <joint kind=\"main\" damping=\"0.01\" armature=\"0.0005\"/>\n"
-         "        <geom type=\"capsule\" size=\"" +
-         fmt(c.radius) + " " + fmt(c.spacing * 0.4) + "\" mass=\"" + fmt(per_body) + "\" group=\"" +
-         std::to_string(kStaticGroup) +
-         // contype 4, conaffinity 3: tiles touch the scene (1) and the robot (2), not each other.
-         "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " + fmt(c.rgb[2]) +
-         " 1\" friction=\"0.8 0.02 0.001\"/>\n"
-         "      </composite>\n";
+  const int centre = c.count / 2;
+  // Inertia of a flat square plate, a side of `spacing`, 1% of it thick.
+  const double side = c.spacing, thick = 0.01 * c.spacing;
+  const double flat = per_body * (side * side + thick * thick) / 12, normal = per_body * 2 * side * side / 12;
+  const auto body_name = [&](int i, int j) { return name + "B" + std::to_string(i) + "_" + std::to_string(j); };
+  const auto suffix = [&](int i, int j) { return std::to_string(i) + "_" + std::to_string(j); };
+  const auto contents = [&](int i, int j, const std::string& indent) {
+    const char* along = (i + j) % 2 ? "0.707107 0.707107 0 0" : "0.5 0.5 0.5 0.5";
+    return indent + "<inertial pos=\"0 0 0\" mass=\"" + fmt(per_body) + "\" diaginertia=\"" + fmt(flat) + " " +
+           fmt(flat) + " " + fmt(normal) + "\"/>\n" + indent + "<geom name=\"" + name + "G" + suffix(i, j) +
+           "\" type=\"capsule\" size=\"" + fmt(c.radius) + " " + fmt(c.spacing * 0.4) + "\" quat=\"" + along +
+           "\" mass=\"0\" group=\"" + std::to_string(kStaticGroup) +
+           // contype 4, conaffinity 3: tiles touch the scene (1) and the robot (2), not each other.
+           "\" contype=\"4\" conaffinity=\"3\" rgba=\"" + fmt(c.rgb[0]) + " " + fmt(c.rgb[1]) + " " + fmt(c.rgb[2]) +
+           " 1\" friction=\"0.8 0.02 0.001\"/>\n" + indent + "<site name=\"" + name + "S" + suffix(i, j) +
+           "\" group=\"3\"/>\n";
+  };
+  // A child (i, j) one spacing along `axis` (0: x, 1: y) in direction `sign` from its parent.
+  const auto open_child = [&](int i, int j, int axis, int sign, const std::string& indent) {
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    offset[axis] = sign * c.spacing;
+    const char* bend = axis == 0 ? "0 1 0" : "1 0 0";
+    std::string xml = indent + "<body name=\"" + body_name(i, j) + "\" pos=\"" + fmt(offset) + "\">\n";
+    const std::string hinge = "\" pos=\"" + fmt(Eigen::Vector3d(-offset)) + "\" group=\"3\" damping=\"0.01\" armature=\"0.0005\"/>\n";
+    xml += indent + "  <joint name=\"" + name + "J0_" + suffix(i, j) + "\" axis=\"" + bend + hinge;
+    xml += indent + "  <joint name=\"" + name + "J1_" + suffix(i, j) + "\" axis=\"0 0 1" + hinge;
+    return xml + contents(i, j, indent + "  ");
+  };
+  // The branch along y from spine body (i, centre), into `xml` at `indent`.
+  const auto branch = [&](int i, const std::string& indent) {
+    std::string xml;
+    for (const int sign : {1, -1}) {
+      std::string close;
+      std::string in = indent;
+      for (int j = centre + sign; j >= 0 && j < c.count; j += sign) {
+        xml += open_child(i, j, 1, sign, in);
+        close = in + "</body>\n" + close;
+        in += "  ";
+      }
+      xml += close;
+    }
+    return xml;
+  };
+  ClothXml out;
+  const std::string root_indent = "      ";
+  out.bodies = contents(centre, centre, root_indent) + branch(centre, root_indent);
+  for (const int sign : {1, -1}) {
+    std::string close;
+    std::string in = root_indent;
+    for (int i = centre + sign; i >= 0 && i < c.count; i += sign) {
+      out.bodies += open_child(i, centre, 0, sign, in) + branch(i, in + "  ");
+      close = in + "</body>\n" + close;
+      in += "  ";
+    }
+    out.bodies += close;
+  }
+  for (int j = 0; j < c.count; ++j) {
+    if (j == centre) continue;
+    for (int i = 0; i + 1 < c.count; ++i) {
+      out.tendons += "    <spatial name=\"" + name + "T" + suffix(i, j) + "\" limited=\"true\" range=\"0 " +
+                     fmt(c.spacing) + "\">\n      <site site=\"" + name + "S" + suffix(i, j) +
+                     "\"/>\n      <site site=\"" + name + "S" + suffix(i + 1, j) + "\"/>\n    </spatial>\n";
+    }
+  }
+  return out;
 }
 
 std::string resolve_scene_path(const std::string& name, const std::string& assets) {
@@ -190,6 +256,48 @@ std::pair<long, long> static_cell(const Eigen::Vector3d& p) {
 
 std::string static_body_name(const std::pair<long, long>& cell) {
   return "static_" + std::to_string(cell.first) + "_" + std::to_string(cell.second);
+}
+
+// The scene file places each object touching what it stands on; MuJoCo's
+// soft contacts rest a little into it, and only a contact that is there
+// counts (onfloor, ontop). So the objects are let fall into their resting
+// poses once, when the model is compiled (then cached): from the model's
+// reference pose, with the robot colliding with nothing, each tree steps
+// until MuJoCo puts it to sleep (at most kSettleSeconds), and the joints of
+// those that slept take their pose as the reference (qpos0) that every reset
+// starts from. One still moving then (dropped from a height, or pressed into
+// another) keeps the pose it was placed in.
+constexpr double kSettleSeconds = 2.0;
+
+void settle_placed_objects(mjModel* m, const std::vector<char>& object_root) {
+  const auto of_object = [&](int body) { return object_root[m->body_rootid[body]] != 0; };
+  bool any = false;
+  for (int t = 0; t < m->ntree; ++t) any |= of_object(m->tree_bodyadr[t]);
+  if (!any || !(m->opt.enableflags & mjENBL_SLEEP)) return;
+  std::vector<std::pair<int, int>> collisions(m->ngeom);  // contype, conaffinity
+  for (int g = 0; g < m->ngeom; ++g) {
+    collisions[g] = {m->geom_contype[g], m->geom_conaffinity[g]};
+    const int root = m->body_rootid[m->geom_bodyid[g]];
+    if (root != 0 && !object_root[root]) m->geom_contype[g] = m->geom_conaffinity[g] = 0;  // the robot
+  }
+  mjData* d = mj_makeData(m);
+  if (!d) throw Error("scene: out of memory to settle the objects");
+  const auto all_asleep = [&] {
+    for (int t = 0; t < m->ntree; ++t) {
+      if (of_object(m->tree_bodyadr[t]) && d->tree_asleep[t] < 0) return false;
+    }
+    return true;
+  };
+  const int steps = static_cast<int>(std::lround(kSettleSeconds / m->opt.timestep));
+  for (int k = 0; k < steps && !all_asleep(); ++k) mj_step(m, d);
+  for (int j = 0; j < m->njnt; ++j) {
+    const int body = m->jnt_bodyid[j];
+    if (!of_object(body) || d->tree_asleep[m->body_treeid[body]] < 0) continue;
+    const int size = m->jnt_type[j] == mjJNT_FREE ? 7 : m->jnt_type[j] == mjJNT_BALL ? 4 : 1;
+    std::copy_n(d->qpos + m->jnt_qposadr[j], size, m->qpos0 + m->jnt_qposadr[j]);
+  }
+  mj_deleteData(d);
+  for (int g = 0; g < m->ngeom; ++g) std::tie(m->geom_contype[g], m->geom_conaffinity[g]) = collisions[g];
 }
 
 }  // namespace
@@ -270,7 +378,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // freedom up to the last awake one (World): cloths (their tendons always
   // count), fixed objects' links (a dof or two each, often awake beside the
   // robot), then free objects (six each).
-  std::string cloth_bodies, free_bodies, linked_bodies;
+  std::string cloth_bodies, free_bodies, linked_bodies, cloth_tendons;
   for (const ObjectPlacement& placement : file.objects) {
     const auto found = file.models.find(placement.model);
     if (found == file.models.end()) {
@@ -328,7 +436,9 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
       static_roots.push_back(body);
     }
     if (model.cloth && options.cloth) {
-      world += cloth_xml(object.name, *model.cloth, model.root.mass);
+      const ClothXml cloth = cloth_xml(object.name, *model.cloth, model.root.mass);
+      world += cloth.bodies;
+      cloth_tendons += cloth.tendons;
     } else if (model.cloth) {
       // Cloth simulation off: one rigid tile of the cloth's size.
       const ClothSpec& c = *model.cloth;
@@ -347,14 +457,10 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
 
   world += cloth_bodies + linked_bodies + free_bodies;
   // The static bodies, and the pairs among what never moves (the world, the
-  // static bodies, the roots of fixed objects with moving parts) excluded:
-  // MuJoCo 2.2.2 pairs the world body with every body and would otherwise
-  // run every geom pair of two touching static bodies through its filters.
-  // They come last in the document, so that their geoms are the model's last
-  // (Scene::first_static_geom). The drawn static meshes get a body of their
-  // own: the world body is paired with every body each step, and each of its
-  // geoms visited in the pair. (Welded to the world, its inertia is never
-  // used; massless geoms need one given.)
+  // static bodies, the roots of fixed objects with moving parts) excluded.
+  // The drawn static meshes get a body of their own, out of the world body's
+  // pairs. (Welded to the world, its inertia is never used; massless geoms
+  // need one given.)
   std::string statics =
       "    <body name=\"static_visuals\">\n"
       "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n" +
@@ -386,28 +492,28 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
              "\" xyaxes=\"" + fmt(std::sin(p.yaw)) + " " + fmt(-std::cos(p.yaw)) + " 0 0 0 1\" fovy=\"58\"/>\n";
   }
 
-  // <size>: MuJoCo 2.2.2 preallocates for njmax constraint rows; each mjData
-  // costs ~25 MB at 500 rows and ~780 MB at 8000. A resting free object has
-  // about 4 contacts of 4 rows each (pyramidal cones): room for each free
-  // object's 8 contacts, plus the robot's and joint limits, up to the
-  // restaurant's 65 free objects: past that (generated scenes of hundreds)
-  // the rows would cost gigabytes per env, and objects at rest sleep out of
-  // collision detection (world/sleeping.hpp), so only those awake need rows;
-  // in such scenes they start asleep (World::reset).
+  // <size memory>: MuJoCo's arena, where each step's contacts and constraint
+  // rows go. malloc'd and never cleared whole, it costs the memory of what a
+  // step uses, not of its size (docs/benchmarks.md): with sleeping, the
+  // contacts of what is awake. Its size is room for every free object at rest
+  // on something awake at once (a reset puts the scene's objects to sleep
+  // after one step of them all: MuJoCo's sleep="init"), ~32 KB each.
   int free_objects = 0;
   for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
   scene->free_objects_ = free_objects;
-  const int nconmax = 200 + 8 * std::min(free_objects, kFreeObjectsWithRows), njmax = 4 * nconmax;
+  const long arena_mb = 64 + (32L * scene->objects_.size()) / 1024;
   std::string xml = "<mujoco model=\"" + scene->name_ +
                     "\">\n"
                     "  <compiler angle=\"radian\" autolimits=\"true\" fusestatic=\"false\"/>\n"
                     "  <option timestep=\"" +
                     fmt(kTimestep) +
                     "\" integrator=\"Euler\" solver=\"Newton\" "
-                    "iterations=\"30\" tolerance=\"1e-6\"/>\n"
-                    "  <size nconmax=\"" +
-                    std::to_string(nconmax) + "\" njmax=\"" + std::to_string(njmax) +
-                    "\"/>\n"
+                    "iterations=\"30\" tolerance=\"1e-6\">\n"
+                    "    <flag sleep=\"enable\"/>\n"
+                    "  </option>\n"
+                    "  <size memory=\"" +
+                    std::to_string(arena_mb) +
+                    "M\"/>\n"
                     "  <visual>\n"
                     "    <global offwidth=\"128\" offheight=\"128\" fovy=\"58\"/>\n"
                     "    <quality shadowsize=\"0\" offsamples=\"0\"/>\n"
@@ -432,14 +538,14 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
                     "  </default>\n"
                     "  <asset>\n" +
                     mesh.mjcf_assets() + ceilings.mjcf_assets() + "  </asset>\n";
-  // The robot first: its bodies and degrees of freedom are the model's first
-  // (the physics step keeps the dofs up to the last awake one, World).
+  // The robot first: its bodies and degrees of freedom are the model's first.
   if (options.robot) {
     const std::string robot_path = (fs::path(assets) / "robots" / "tiago.xml").string();
     xml += robot_mjcf_children(read_text_file(robot_path, kMaxMjcfBytes, "a robot file"), robot_path);
   }
   xml += "  <worldbody>\n" + lights + world + "  </worldbody>\n";
   if (!excludes.empty()) xml += "  <contact>\n" + excludes + "  </contact>\n";
+  if (!cloth_tendons.empty()) xml += "  <tendon>\n" + cloth_tendons + "  </tendon>\n";
   // Attachments: a weld each, from the object's body to what it attaches to.
   std::string attach_welds;
   std::vector<std::pair<int, int>> attached;  // object indices, in weld order
@@ -463,8 +569,16 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   xml += "  <worldbody>\n" + statics + "  </worldbody>\n</mujoco>\n";
   scene->mjcf_ = xml;
 
-  mjModel* model =
-      load_mjcf_cached(xml, path + ": MuJoCo rejected the compiled scene", options.model_cache, &scene->from_cache_);
+  const auto object_roots = [&](const mjModel* m) {
+    std::vector<char> root(m->nbody, 0);
+    for (size_t i = 0; i < holder_bodies.size(); ++i) {
+      if (!in_static_body[i]) root[mj_name2id(m, mjOBJ_BODY, holder_bodies[i].c_str())] = 1;
+    }
+    return root;
+  };
+  mjModel* model = load_mjcf_cached(xml, path + ": MuJoCo rejected the compiled scene", options.model_cache,
+                                    &scene->from_cache_,
+                                    [&](mjModel* m) { settle_placed_objects(m, object_roots(m)); });
   scene->model_ = model;  // owned from here: ~Scene frees it on any later error
   mesh.paint_palette(model);
   ceilings.paint_palette(model);
@@ -485,6 +599,16 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // Objects are children of the world: their links share the root body.
   scene->body_object_.resize(model->nbody);
   for (int b = 0; b < model->nbody; ++b) scene->body_object_[b] = root_object[model->body_rootid[b]];
+  // The scene's objects rest where they settled: each reset puts them to sleep
+  // (MuJoCo's sleep="init": after one step of them all, islands that touch
+  // nothing awake sleep), where a tree may sleep at all (MuJoCo's compiler
+  // keeps trees with actuators, the robot's, awake).
+  for (int t = 0; t < model->ntree; ++t) {
+    if (model->tree_sleep_policy[t] == mjSLEEP_AUTO_ALLOWED &&
+        scene->body_object_[model->tree_bodyadr[t]] >= 0) {
+      model->tree_sleep_policy[t] = mjSLEEP_INIT;
+    }
+  }
   // Geoms of a static body are named "<object>/<index>".
   scene->geom_object_.resize(model->ngeom);
   for (int g = 0; g < model->ngeom; ++g) {
@@ -500,18 +624,6 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   }
   for (const auto& [cell, geoms] : static_cells) {
     scene->static_bodies_.push_back(mj_name2id(model, mjOBJ_BODY, static_body_name(cell).c_str()));
-  }
-  // The static bodies are the last bodies (static_visuals first): their geoms the last geoms.
-  const int visuals = mj_name2id(model, mjOBJ_BODY, "static_visuals");
-  scene->first_static_geom_ = model->ngeom;
-  while (scene->first_static_geom_ > 0 && model->geom_bodyid[scene->first_static_geom_ - 1] >= visuals) {
-    --scene->first_static_geom_;
-  }
-  for (int b = 0; b < visuals; ++b) {
-    const auto drawn_only = [&](int g) { return model->geom_contype[g] == 0 && model->geom_conaffinity[g] == 0; };
-    int count = model->body_geomnum[b];
-    while (count > 0 && drawn_only(model->body_geomadr[b] + count - 1)) --count;
-    if (count < model->body_geomnum[b]) scene->colliding_geoms_.push_back({b, count});
   }
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];

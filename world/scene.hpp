@@ -86,20 +86,7 @@ class Scene {
   // grid. Chosen by measurement (docs/benchmarks.md): smaller cells mean more
   // bodies and excluded pairs, larger ones more geoms awake near the robot.
   const std::vector<int>& static_bodies() const { return static_bodies_; }
-  // The static bodies' geoms (and the drawn static meshes') are the model's
-  // last, from this id on: they never move, so a physics step may leave
-  // them out of MuJoCo's per-geom loops (World does).
-  int first_static_geom() const { return first_static_geom_; }
   static constexpr double kStaticCell = 2.0;
-  // Bodies whose last geoms are only drawn (contype and conaffinity 0), with
-  // how many of their geoms come before those: a physics step may leave the
-  // drawn ones out of collision detection (World does), where MuJoCo 2.2.2
-  // would test each against every geom of each body near. The robot's MJCF
-  // lists each body's collision geoms first.
-  struct CollidingGeoms {
-    int body, count;
-  };
-  const std::vector<CollidingGeoms>& colliding_geoms() const { return colliding_geoms_; }
   // Collision geoms of each room's floor, in rooms() order.
   const std::vector<int>& floor_geoms(int room) const { return floor_geoms_[room]; }
   // The room whose floor contains (x, y), or nullptr outside every room.
@@ -109,9 +96,6 @@ class Scene {
   int camera() const { return camera_; }                    // the egocentric camera
   int overview_camera() const { return overview_camera_; }  // third-person, top-down
   const std::vector<int>& ceiling_lights() const { return ceiling_lights_; }
-  // Contact rows are allocated for this many free objects at most (see
-  // scene.cpp's <size>); a scene with more starts them asleep.
-  static constexpr int kFreeObjectsWithRows = 65;
   int free_objects() const { return free_objects_; }
   // SceneFile::attachments, resolved: objects() indices and the weld's equality id.
   struct Attachment {
@@ -128,8 +112,6 @@ class Scene {
   std::vector<Room> rooms_;
   std::vector<SceneObject> objects_;
   std::vector<int> body_object_, geom_object_, static_bodies_;
-  int first_static_geom_ = 0;
-  std::vector<CollidingGeoms> colliding_geoms_;
   std::vector<std::vector<int>> floor_geoms_;
   Pose2 robot_start_;
   bool has_robot_ = true;

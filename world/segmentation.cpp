@@ -24,7 +24,7 @@ struct Segmentation::Part {
   double distance(const double world[3]) const {
     double rel[3], p[3];
     mju_sub3(rel, world, pos);
-    mju_rotVecMatT(p, rel, mat);
+    mju_mulMatTVec3(p, mat, rel);
     // Exterior distance plus (negative) interior depth of an axis-aligned box of half sizes h.
     auto box = [](std::initializer_list<double> q) {
       double outside = 0, inside = -std::numeric_limits<double>::infinity();

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
@@ -40,15 +42,16 @@ void soak(World& w, double dt, int moved, const Aabb* moved_box) {
 
 // Whether a contact joins an object whose states are kept.
 bool acts_on(const ObjectStates& states, const World& w, const mjContact& con) {
-  const int o1 = w.scene().object_of_geom(con.geom1);
-  const int o2 = w.scene().object_of_geom(con.geom2);
+  const int o1 = w.scene().object_of_geom(con.geom[0]);
+  const int o2 = w.scene().object_of_geom(con.geom[1]);
   return (o1 >= 0 && states.abilities(o1)) || (o2 >= 0 && states.abilities(o2));
 }
 
-// Cleaning, breaking, slicing: what one contact does to the objects it joins.
+// Cleaning, breaking, slicing: what one contact does to the objects it joins;
+// `normal_force` is the force between those two objects.
 void touch(ObjectStates& states, const World& w, const mjContact& con, double normal_force) {
-  const int o1 = w.scene().object_of_geom(con.geom1);
-  const int o2 = w.scene().object_of_geom(con.geom2);
+  const int o1 = w.scene().object_of_geom(con.geom[0]);
+  const int o2 = w.scene().object_of_geom(con.geom[1]);
   const ObjectAbilities* a1 = o1 >= 0 ? states.abilities(o1) : nullptr;
   const ObjectAbilities* a2 = o2 >= 0 ? states.abilities(o2) : nullptr;
   std::map<int, ObjectState>& state_of = states.all_states();
@@ -82,11 +85,22 @@ void update_states_after_physics_step(World& w, double dt) {
   soak(w, dt, -1, nullptr);
   const mjModel* m = w.model();
   const mjData* d = w.data();
+  // Breaking and slicing read the force between two objects: the sum over the
+  // contacts that join them (MuJoCo gives a face resting on a face one contact
+  // or several, as its collision functions choose).
+  std::map<std::pair<int, int>, double> pair_force;
+  const auto pair_of = [&](const mjContact& con) {
+    const int o1 = w.scene().object_of_geom(con.geom[0]), o2 = w.scene().object_of_geom(con.geom[1]);
+    return std::pair{std::min(o1, o2), std::max(o1, o2)};
+  };
   for (int c = 0; c < d->ncon; ++c) {
     if (!acts_on(states, w, d->contact[c])) continue;  // most contacts: the force is not worth computing
     double force[6];
     mj_contactForce(m, d, c, force);
-    touch(states, w, d->contact[c], std::abs(force[0]));
+    pair_force[pair_of(d->contact[c])] += std::abs(force[0]);
+  }
+  for (int c = 0; c < d->ncon; ++c) {
+    if (acts_on(states, w, d->contact[c])) touch(states, w, d->contact[c], pair_force[pair_of(d->contact[c])]);
   }
 }
 

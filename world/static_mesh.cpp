@@ -248,10 +248,11 @@ std::string StaticMesh::mjcf_geom() const {
 void StaticMesh::paint_palette(mjModel_* model) const {
   if (empty()) return;
   const int id = mj_name2id(model, mjOBJ_TEXTURE, name_.c_str());
-  if (id < 0 || model->tex_width[id] != texture_width() || model->tex_height[id] != texture_height()) {
+  if (id < 0 || model->tex_width[id] != texture_width() || model->tex_height[id] != texture_height() ||
+      model->tex_nchannel[id] != 3) {
     throw Error("static mesh '" + name_ + "': palette texture missing from the compiled model");
   }
-  unsigned char* texels = model->tex_rgb + model->tex_adr[id];  // tex_adr counts bytes
+  unsigned char* texels = model->tex_data + model->tex_adr[id];  // tex_adr counts bytes
   for (const auto& [rgb, index] : palette_) {
     const int bx = index % kBlocksPerRow, by = index / kBlocksPerRow;
     for (int y = by * kBlock; y < (by + 1) * kBlock; ++y) {

@@ -19,7 +19,13 @@ World::World(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
   data_ = mj_makeData(model_);
   if (!model_ || !data_) throw Error("world: out of memory copying scene '" + scene_->name() + "'");
   if (scene_->has_robot()) robot_ = Robot::bind(model_);
-  sleeping_.emplace(*scene_, model_, robot_ ? model_->body_rootid[robot_->gripper_body] : -1);
+  object_trees_.resize(scene_->objects().size());
+  for (int b = 1; b < model_->nbody; ++b) {
+    const int object = scene_->object_of_body(b), tree = model_->body_treeid[b];
+    if (object < 0 || tree < 0) continue;
+    std::vector<int>& trees = object_trees_[object];
+    if (std::find(trees.begin(), trees.end(), tree) == trees.end()) trees.push_back(tree);
+  }
   reset(scene_->robot_start());
 }
 
@@ -37,15 +43,10 @@ mjData* World::scratch() const {
 
 void World::reset(const Pose2& base) {
   release();
-  for (const Scene::Attachment& a : scene_->attachments()) {
-    if (a.weld >= 0) model_->eq_active[a.weld] = 0;
-  }
-  sleeping_->wake_all();
-  // Too many free objects to give each contact rows while they settle: they
-  // were placed at rest, and sleep from the first step.
-  if (scene_->free_objects() > Scene::kFreeObjectsWithRows) sleeping_->all_at_rest();
   states_.reset();
-  mj_resetData(model_, data_);
+  // Grasps and attachments off (eq_active0); the scene's objects asleep where
+  // they were placed, with their resting contacts kept.
+  reset_data();
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
   velocity_command_.assign(model_->nu, 0.0);
   if (robot_) {
@@ -102,6 +103,19 @@ double World::time() const {
   return data_->time;
 }
 
+void World::reset_data() {
+  mj_resetData(model_, data_);
+  resting_.before_reset(model_);
+  if (!sleeping()) return;
+  // MuJoCo computed the contacts of the objects it put to sleep, then left
+  // them out of the list: computed again with sleeping off (a collision pass,
+  // which wakes no one), those are the resting contacts to keep.
+  model_->opt.enableflags &= ~mjENBL_SLEEP;
+  mj_collision(model_, data_);
+  model_->opt.enableflags |= mjENBL_SLEEP;
+  resting_.after_step(model_, data_);
+}
+
 World::StepReport World::step(int substeps) {
   StepReport report;
   for (int s = 0; s < substeps; ++s) {
@@ -136,42 +150,64 @@ World::StepReport World::step(int substeps) {
     };
     const int bad_before = bad_state_count();
     bool failed = false;
+    resting_.before_step(model_, data_);
     try {
-      run_masked(mj_step);
+      mj_step(model_, data_);
     } catch (const Error&) {
       failed = true;
     }
     if (failed || bad_state_count() != bad_before) {
       // The state is lost: MuJoCo reset it inside the step (a bad position,
-      // velocity or acceleration), or failed mid-step. Its reset ran where the
-      // static geoms are left out (StaticGeomsLeftOut), so their poses were
-      // zeroed, and the rest of the step collided with degenerate boxes at the
-      // origin: contacts that moved what it integrated, or an error ("xaxis of
-      // contact frame undefined", seen in training). The step therefore ends
-      // in MuJoCo's reset state posed over the whole model, the same whatever
-      // happened inside it; the reset also restores MuJoCo's stack, left
-      // mid-step by an error. The episode cannot go on.
+      // velocity or acceleration), or failed mid-step. The step ends in
+      // MuJoCo's reset state, the same whatever happened inside it; the reset
+      // also restores MuJoCo's arena, left mid-step by an error. The episode
+      // cannot go on. Sleeping off for the reset and the posing: its
+      // sleep="init" would run a whole forward pass, and with it whatever
+      // failed; and with sleeping on, mj_kinematics poses only what is awake.
+      release();
+      resting_.clear();
+      const int flags = model_->opt.enableflags;
+      model_->opt.enableflags &= ~mjENBL_SLEEP;
       mj_resetData(model_, data_);
       mj_kinematics(model_, data_);  // poses to draw the last frame from; nothing that could fail again
       mj_camlight(model_, data_);
+      model_->opt.enableflags = flags;
       report.diverged = true;
-      release();
       return report;
     }
+    resting_.after_step(model_, data_);
     if (robot_) update_grasp(report);
     if (state_updates_) update_states_after_physics_step(*this, model_->opt.timestep);
   }
-  if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
   if (state_updates_) update_states_after_env_step(*this, substeps * model_->opt.timestep);
   return report;
 }
 
 void World::set_sleeping(bool enabled) {
-  if (enabled == sleeping_on_) return;
-  sleeping_on_ = enabled;
-  if (enabled) return;
-  sleeping_->wake_all();
-  mj_forward(model_, data_);
+  if (enabled == sleeping()) return;
+  if (enabled) {
+    model_->opt.enableflags |= mjENBL_SLEEP;
+    return;
+  }
+  model_->opt.enableflags &= ~mjENBL_SLEEP;
+  resting_.clear();
+  mj_forward(model_, data_);  // MuJoCo wakes every tree when sleeping is off
+}
+
+bool World::sleeping() const {
+  return model_->opt.enableflags & mjENBL_SLEEP;
+}
+
+bool World::asleep(int object) const {
+  const std::vector<int>& trees = object_trees_.at(object);
+  return !trees.empty() &&
+         std::all_of(trees.begin(), trees.end(), [&](int t) { return data_->tree_asleep[t] >= 0; });
+}
+
+int World::sleepers() const {
+  int n = 0;
+  for (size_t o = 0; o < object_trees_.size(); ++o) n += asleep(static_cast<int>(o));
+  return n;
 }
 
 void World::update_grasp(StepReport& report) {
@@ -187,7 +223,7 @@ void World::update_grasp(StepReport& report) {
   std::vector<int> left, right;  // bodies each finger touches
   for (int c = 0; c < data_->ncon; ++c) {
     const mjContact& con = data_->contact[c];
-    const int b1 = model_->geom_bodyid[con.geom1], b2 = model_->geom_bodyid[con.geom2];
+    const int b1 = model_->geom_bodyid[con.geom[0]], b2 = model_->geom_bodyid[con.geom[1]];
     for (const auto& [finger, other] : {std::pair{b1, b2}, std::pair{b2, b1}}) {
       if (finger == r.left_finger_body) left.push_back(other);
       if (finger == r.right_finger_body) right.push_back(other);
@@ -230,18 +266,18 @@ int World::grasped_body() const {
 
 void World::hold_in_place(int weld) {
   const int holder = model_->eq_obj1id[weld], body = model_->eq_obj2id[weld];
-  // Weld error in MuJoCo 2.2.2: (x_holder + R_holder * relpos) - (x_body + R_body * anchor),
+  // Weld error in MuJoCo (2.2.2 to 4.0.1): (x_holder + R_holder * relpos) - (x_body + R_body * anchor),
   // orientation q_holder * relquat vs q_body. Zero error in the current pose:
   mjtNum* eq = model_->eq_data + mjNEQDATA * weld;
   mjtNum delta[3], relpos[3], holder_inverse[4];
   mju_zero3(eq);  // anchor at the body's origin
   mju_sub3(delta, data_->xpos + 3 * body, data_->xpos + 3 * holder);
-  mju_rotVecMatT(relpos, delta, data_->xmat + 9 * holder);
+  mju_mulMatTVec3(relpos, data_->xmat + 9 * holder, delta);
   mju_copy3(eq + 3, relpos);
   mju_negQuat(holder_inverse, data_->xquat + 4 * holder);
   mju_mulQuat(eq + 6, holder_inverse, data_->xquat + 4 * body);
   eq[10] = 1.0;  // torquescale
-  model_->eq_active[weld] = 1;
+  data_->eq_active[weld] = 1;
 }
 
 void World::attach(int object, int weld) {
@@ -271,7 +307,7 @@ bool World::hold(int object) {
 
 void World::release() {
   if (grasped_ < 0) return;
-  model_->eq_active[grasped_weld_] = 0;
+  data_->eq_active[grasped_weld_] = 0;
   grasped_ = grasped_weld_ = -1;
 }
 
@@ -285,7 +321,7 @@ bool World::carry_grasped(mjData* d) const {
   const int hand = robot_->gripper_body, joint = model_->body_jntadr[body];
   mjtNum* qpos = d->qpos + model_->jnt_qposadr[joint];
   mjtNum offset[3];
-  mju_rotVecMat(offset, eq + 3, d->xmat + 9 * hand);
+  mju_mulMatVec3(offset, d->xmat + 9 * hand, eq + 3);
   mju_add3(qpos, d->xpos + 3 * hand, offset);
   mju_mulQuat(qpos + 3, d->xquat + 4 * hand, eq + 6);
   mju_zero(d->qvel + model_->jnt_dofadr[joint], 6);
@@ -300,117 +336,7 @@ void World::command_gripper(bool open) {
 
 void World::set_robot_configuration(const Pose2& base, const double* torso_and_arm) {
   pose_robot(base, torso_and_arm);
-  run_masked(mj_forward);
-  if (sleeping_on_) sleeping_->append_resting_contacts(model_, data_);
-}
-
-namespace {
-
-// The static geoms are the model's last (Scene::first_static_geom) and never
-// move: while this lives, MuJoCo's per-geom loops (kinematics, the
-// broadphase's covariance) end before them; their poses in mjData stand, and
-// collision still reaches them through their bodies.
-class StaticGeomsLeftOut {
- public:
-  StaticGeomsLeftOut(mjModel* m, const Scene& scene) : m_(m), ngeom_(m->ngeom) { m->ngeom = scene.first_static_geom(); }
-  ~StaticGeomsLeftOut() { m_->ngeom = ngeom_; }
-  StaticGeomsLeftOut(const StaticGeomsLeftOut&) = delete;
-  StaticGeomsLeftOut& operator=(const StaticGeomsLeftOut&) = delete;
-
- private:
-  mjModel* m_;
-  int ngeom_;
-};
-
-// Geoms that are only drawn out of collision detection while this lives:
-// each body's count ends before them (Scene::colliding_geoms; only ever
-// lowered, so that a sleeper's stays 0).
-class DrawnGeomsLeftOut {
- public:
-  DrawnGeomsLeftOut(mjModel* m, const Scene& scene, std::vector<int>& saved) : m_(m), scene_(scene), saved_(saved) {
-    saved_.clear();
-    for (const Scene::CollidingGeoms& c : scene_.colliding_geoms()) {
-      saved_.push_back(m_->body_geomnum[c.body]);
-      m_->body_geomnum[c.body] = std::min(m_->body_geomnum[c.body], c.count);
-    }
-  }
-  ~DrawnGeomsLeftOut() {
-    for (size_t k = 0; k < saved_.size(); ++k) m_->body_geomnum[scene_.colliding_geoms()[k].body] = saved_[k];
-  }
-  DrawnGeomsLeftOut(const DrawnGeomsLeftOut&) = delete;
-  DrawnGeomsLeftOut& operator=(const DrawnGeomsLeftOut&) = delete;
-
- private:
-  mjModel* m_;
-  const Scene& scene_;
-  std::vector<int>& saved_;
-};
-
-// Sleepers out of the model while this lives, back in however the stage
-// ends: a MuJoCo error throws through it (mujoco_errors.hpp).
-class SleepersMasked {
- public:
-  SleepersMasked(Sleeping* sleeping, mjModel* m, mjData* d, int held_body, bool physics)
-      : sleeping_(sleeping), m_(m), d_(d), physics_(physics) {
-    if (sleeping_) sleeping_->mask(m_, d_, held_body);
-  }
-  ~SleepersMasked() {
-    if (sleeping_) sleeping_->unmask(m_, d_, physics_);
-  }
-  SleepersMasked(const SleepersMasked&) = delete;
-  SleepersMasked& operator=(const SleepersMasked&) = delete;
-
- private:
-  Sleeping* sleeping_;
-  mjModel* m_;
-  mjData* d_;
-  bool physics_;
-};
-
-// The degrees of freedom from `nv` on (sleepers' only: Sleeping::awake_dofs)
-// out of the model's counts while this lives: MuJoCo's per-dof work
-// (inertia, its factorisation, the Newton solver's dense nv x nv Hessian,
-// integration) ends before them, while its per-body work (kinematics) still
-// poses them where they sleep. Their bodies have no geoms then, so no contact
-// or Jacobian reaches their dofs. The solver's tolerance is relative to
-// meaninertia x nv: meaninertia is scaled so that it stays the same.
-class DofsCut {
- public:
-  DofsCut(mjModel* m, int nv)
-      : m_(m), nv_(m->nv), nq_(m->nq), njnt_(m->njnt), nM_(m->nM), meaninertia_(m->stat.meaninertia) {
-    if (nv <= 0 || nv >= m->nv) return;
-    int j = 0;
-    while (j < m->njnt && m->jnt_dofadr[j] < nv) ++j;
-    m->njnt = j;
-    m->nq = m->jnt_qposadr[j];
-    m->nM = m->dof_Madr[nv];  // rows of the inertia matrix are stored in dof order
-    m->nv = nv;
-    m->stat.meaninertia = meaninertia_ * nv_ / nv;
-  }
-  ~DofsCut() {
-    m_->nv = nv_;
-    m_->nq = nq_;
-    m_->njnt = njnt_;
-    m_->nM = nM_;
-    m_->stat.meaninertia = meaninertia_;
-  }
-  DofsCut(const DofsCut&) = delete;
-  DofsCut& operator=(const DofsCut&) = delete;
-
- private:
-  mjModel* m_;
-  int nv_, nq_, njnt_, nM_;
-  double meaninertia_;
-};
-
-}  // namespace
-
-void World::run_masked(void (*stage)(const mjModel*, mjData*)) {
-  const SleepersMasked masked(sleeping_on_ ? &*sleeping_ : nullptr, model_, data_, grasped_body(), stage == mj_step);
-  const StaticGeomsLeftOut out(model_, *scene_);
-  const DrawnGeomsLeftOut drawn(model_, *scene_, drawn_geoms_);
-  const DofsCut cut(model_, sleeping_on_ ? sleeping_->awake_dofs() : 0);
-  stage(model_, data_);
+  mj_forward(model_, data_);
 }
 
 void World::pose_robot(const Pose2& base, const double* torso_and_arm) {
@@ -427,7 +353,6 @@ void World::pose_robot(const Pose2& base, const double* torso_and_arm) {
   for (const RobotJoint* j : {&r.base_x, &r.base_y, &r.base_yaw}) data_->qvel[j->dof] = 0;
   for (const RobotJoint* j : joints) data_->qvel[j->dof] = 0;
   base_command_[0] = base_command_[1] = base_command_[2] = 0;
-  const StaticGeomsLeftOut out(model_, *scene_);
   mj_kinematics(model_, data_);
   if (carry_grasped(data_)) mj_kinematics(model_, data_);
 }

@@ -1,6 +1,6 @@
-// One simulated world: a private copy of the scene's model (MuJoCo 2.2.2 keeps
-// eq_active and light_active on mjModel, which grasping and lighting change)
-// and its mjData. Physics runs at 1/120 s; assistive grasping runs after every
+// One simulated world: a private copy of the scene's model (lighting,
+// appearance randomisation, grasp welds' poses and the sleeping flag change
+// it) and its mjData. Physics runs at 1/120 s; assistive grasping runs after every
 // physics step, as OmniGibson's does.
 #pragma once
 
@@ -77,16 +77,19 @@ class World {
   void set_state_updates(bool enabled) { state_updates_ = enabled; }
   bool state_updates() const { return state_updates_; }
 
-  // Sleeping (world/sleeping.hpp), on unless turned off: physics skips
-  // the collisions of objects at rest away from the robot and holds them
-  // still; their resting contacts stay in the contact list. Turning it off
-  // wakes them all and recomputes the contacts (mj_forward). reset() wakes
-  // everyone and keeps the setting.
+  // Sleeping (MuJoCo's, world/sleeping.hpp), on unless turned off: objects
+  // at rest sleep out of physics until something awake touches them. Turning
+  // it off wakes them all and recomputes the contacts (mj_forward). reset()
+  // keeps the setting.
   void set_sleeping(bool enabled);
-  bool sleeping() const { return sleeping_on_; }
-  // Objects asleep after the last step.
-  int sleepers() const { return sleeping_on_ ? sleeping_->sleepers() : 0; }
-  bool asleep(int object) const { return sleeping_on_ && sleeping_->asleep(object); }
+  bool sleeping() const;
+  // Objects with moving bodies whose every tree sleeps (furniture in static
+  // bodies never counts), after the last step.
+  int sleepers() const;
+  bool asleep(int object) const;
+  // The resting contacts of sleepers, which MuJoCo's contact list leaves out
+  // (contact predicates read both).
+  const RestingContacts& resting_contacts() const { return resting_; }
 
   // Index into scene().objects() of the object held by the gripper, or -1.
   // A drawer or door held by its handle counts as grasping its object.
@@ -100,8 +103,8 @@ class World {
 
   // Kinematic move (symbolic primitives): the base, torso and arm jump to the
   // given joint values, their controllers hold them there, velocities are zero,
-  // and a held object moves with the gripper. Contacts are recomputed (those
-  // of the awake objects while sleeping is on).
+  // and a held object moves with the gripper. Contacts are recomputed (what
+  // the robot now touches wakes).
   void set_robot_configuration(const Pose2& base, const double* torso_and_arm);
   // Kinematic head turn (symbolic primitives), clamped to the joints' ranges:
   // its controllers hold it there. The head touches nothing: only the poses
@@ -129,9 +132,8 @@ class World {
   void update_grasp(StepReport& report);
   // Joint values and controller targets of a kinematic move, the load carried, kinematics.
   void pose_robot(const Pose2& base, const double* torso_and_arm);
-  // One MuJoCo stage (mj_step, mj_forward, mj_collision) with the sleepers
-  // masked and the static geoms left out of its per-geom loops.
-  void run_masked(void (*stage)(const mjModel_*, mjData_*));
+  // mj_resetData, keeping the resting contacts of the objects it puts to sleep.
+  void reset_data();
   void attach(int object, int weld);
   // Sets `weld` (body1 -> body2) to hold body2 where it is now relative to body1, and turns it on.
   void hold_in_place(int weld);
@@ -144,13 +146,12 @@ class World {
   int grasped_ = -1, grasped_weld_ = -1;
   ObjectStates states_;
   bool state_updates_ = true;
-  std::optional<Sleeping> sleeping_;  // made with the world: it needs the scene and model
-  bool sleeping_on_ = true;
+  RestingContacts resting_;
+  std::vector<std::vector<int>> object_trees_;  // per object, the trees of its moving bodies
   int texture_version_ = 0;
   mutable mjData_* scratch_ = nullptr;
-  std::vector<double> payload_jacobian_;
-  std::vector<int> drawn_geoms_;          // run_masked's scratch: body_geomnum of Scene::colliding_geoms' bodies
-  std::vector<double> velocity_command_;  // per actuator, m/s or rad/s  // 3 x nv, for the load's gravity compensation
+  std::vector<double> payload_jacobian_;  // 3 x nv, for the load's gravity compensation
+  std::vector<double> velocity_command_;  // per actuator, m/s or rad/s
 };
 
 }  // namespace chore
