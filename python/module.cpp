@@ -2,6 +2,7 @@
 // observations as NumPy arrays that view chore's buffers (no copy), the GIL
 // released while envs work, chore::Error raised as chore.Error. The package
 // around it (python/chore/) gives them Gymnasium's shape.
+#include <mujoco/mujoco.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -152,6 +153,9 @@ PYBIND11_MODULE(_chore, m) {
   using namespace chore;
   m.doc() = "chore's C++ environments (the chore package wraps them in Gymnasium's API)";
   py::register_exception<Error>(m, "Error");
+  // The MuJoCo the environments run on (the C library chore is built against,
+  // whatever `import mujoco` in the same process gives).
+  m.attr("mujoco_version") = mj_versionString();
 
   py::class_<PyEnv>(m, "Env")
       .def(py::init<const py::dict&>(), py::arg("config"))

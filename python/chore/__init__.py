@@ -16,12 +16,12 @@ import functools
 import numpy as np
 
 from . import spaces
-from ._chore import Error
+from ._chore import Error, mujoco_version
 from .evaluation import evaluate, format_evaluation, load_policy
 from ._chore import Env as _Env
 from ._chore import VectorEnv as _VectorEnv
 
-__all__ = ["Env", "VectorEnv", "Error", "make", "spaces", "evaluate", "format_evaluation", "load_policy"]
+__all__ = ["Env", "VectorEnv", "Error", "mujoco_version", "make", "spaces", "evaluate", "format_evaluation", "load_policy"]
 
 _CONFIG_KEYS = ("width", "height", "observations", "max_episode_steps", "reward", "reachable_instances",
                 "robot", "object_states", "cloth")
