@@ -245,6 +245,26 @@ TEST(Sleeping, TheScenesObjectsStartAsleepAndKeepTheirRestingContacts) {
   EXPECT_EQ(contacts_of(w, "small_block_1", true), resting);
 }
 
+// The scene compiler lets the placed objects settle once (Scene): each comes
+// to rest where it was put, on the furniture it was put on, and sleeps there.
+TEST(Sleeping, ThePlacedObjectsRestWhereTheyWerePutAndSleep) {
+  for (const char* name : {"apartment", "restaurant"}) {
+    World w(Scene::load(name));
+    w.reset(Pose2{});
+    const mjData* d = w.data();
+    int free = 0;
+    for (size_t i = 0; i < w.scene().objects().size(); ++i) {
+      const SceneObject& o = w.scene().objects()[i];
+      if (o.fixed || !o.keypoints.empty()) continue;  // furniture, cloths
+      ++free;
+      EXPECT_TRUE(w.asleep(static_cast<int>(i))) << name << ": " << o.name;
+      const double* x = d->xpos + 3 * o.body;
+      EXPECT_LT(std::hypot(x[0] - o.pos[0], x[1] - o.pos[1], x[2] - o.pos[2]), 0.005) << name << ": " << o.name;
+    }
+    EXPECT_GT(free, 20) << name;
+  }
+}
+
 TEST(Sleeping, AnObjectMovedIntoTheAirWakesFallsAndSleepsAgain) {
   Env env(box_room_config());
   env.reset(0);

@@ -269,7 +269,7 @@ std::string static_body_name(const std::pair<long, long>& cell) {
 // another) keeps the pose it was placed in.
 constexpr double kSettleSeconds = 2.0;
 
-void settle_placed_objects(mjModel* m, const std::vector<char>& object_root) {
+void settle_placed_objects(mjModel* m, const std::vector<char>& object_root, int robot_root) {
   const auto of_object = [&](int body) { return object_root[m->body_rootid[body]] != 0; };
   bool any = false;
   for (int t = 0; t < m->ntree; ++t) any |= of_object(m->tree_bodyadr[t]);
@@ -277,8 +277,7 @@ void settle_placed_objects(mjModel* m, const std::vector<char>& object_root) {
   std::vector<std::pair<int, int>> collisions(m->ngeom);  // contype, conaffinity
   for (int g = 0; g < m->ngeom; ++g) {
     collisions[g] = {m->geom_contype[g], m->geom_conaffinity[g]};
-    const int root = m->body_rootid[m->geom_bodyid[g]];
-    if (root != 0 && !object_root[root]) m->geom_contype[g] = m->geom_conaffinity[g] = 0;  // the robot
+    if (m->body_rootid[m->geom_bodyid[g]] == robot_root) m->geom_contype[g] = m->geom_conaffinity[g] = 0;
   }
   mjData* d = mj_makeData(m);
   if (!d) throw Error("scene: out of memory to settle the objects");
@@ -495,9 +494,9 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // <size memory>: MuJoCo's arena, where each step's contacts and constraint
   // rows go. malloc'd and never cleared whole, it costs the memory of what a
   // step uses, not of its size (docs/benchmarks.md): with sleeping, the
-  // contacts of what is awake. Its size is room for every free object at rest
-  // on something awake at once (a reset puts the scene's objects to sleep
-  // after one step of them all: MuJoCo's sleep="init"), ~32 KB each.
+  // contacts of what is awake. Its size is room for every object at rest on
+  // something awake at once (a reset puts the scene's objects to sleep after
+  // one step of them all: MuJoCo's sleep="init"), ~32 KB each.
   int free_objects = 0;
   for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
   scene->free_objects_ = free_objects;
@@ -578,7 +577,10 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   };
   mjModel* model = load_mjcf_cached(xml, path + ": MuJoCo rejected the compiled scene", options.model_cache,
                                     &scene->from_cache_,
-                                    [&](mjModel* m) { settle_placed_objects(m, object_roots(m)); });
+                                    [&](mjModel* m) {
+                                      const int robot = options.robot ? mj_name2id(m, mjOBJ_BODY, "robot") : -1;
+                                      settle_placed_objects(m, object_roots(m), robot);
+                                    });
   scene->model_ = model;  // owned from here: ~Scene frees it on any later error
   mesh.paint_palette(model);
   ceilings.paint_palette(model);
