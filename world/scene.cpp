@@ -220,7 +220,7 @@ ClothXml cloth_xml(const std::string& name, const ClothSpec& c, double mass) {
   for (int j = 0; j < c.count; ++j) {
     if (j == centre) continue;
     for (int i = 0; i + 1 < c.count; ++i) {
-      out.tendons += "    <spatial name=\"" + name + "T" + suffix(i, j) + "\" limited=\"true\" range=\"0 " +
+      out.tendons += "    <spatial name=\"" + name + "T" + suffix(i, j) + "\" group=\"3\" limited=\"true\" range=\"0 " +
                      fmt(c.spacing) + "\">\n      <site site=\"" + name + "S" + suffix(i, j) +
                      "\"/>\n      <site site=\"" + name + "S" + suffix(i + 1, j) + "\"/>\n    </spatial>\n";
     }
