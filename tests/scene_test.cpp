@@ -67,25 +67,20 @@ TEST(Scene, StaticGeometryIsDrawnAsMergedChunksAndMovingPartsKeepTheirGeoms) {
   EXPECT_EQ(m->geom_group[m->body_geomadr[block->body]], 0);  // drawn itself
   const SceneObject* panel = scene->find_object("red_panel_1");
   EXPECT_TRUE(panel->fixed);
-  EXPECT_EQ(panel->body, -1);  // in a static body
-  EXPECT_EQ(m->body_jntnum[panel->static_body], 0);
+  EXPECT_EQ(panel->body, -1);  // in the world body
+  for (int g : panel->geoms) EXPECT_EQ(m->geom_bodyid[g], 0);
 }
 
-TEST(Scene, FurnitureWithoutMovingPartsSharesStaticBodiesAndKeepsItsIdentity) {
+TEST(Scene, FurnitureWithoutMovingPartsIsTheWorldBodysAndKeepsItsIdentity) {
   auto scene = Scene::load(test::data_path("scenes/predicate_room.json"));
   const mjModel* m = scene->model();
   auto index = [&](const char* name) { return static_cast<int>(scene->find_object(name) - scene->objects().data()); };
   const SceneObject& table = *scene->find_object("table_1");
   const SceneObject& cabinet = *scene->find_object("cabinet_1");  // a drawer: keeps its bodies
   EXPECT_EQ(table.body, -1);
-  ASSERT_GE(table.static_body, 0);
-  EXPECT_EQ(m->body_weldid[table.static_body], 0);  // no joint: welded to the world
-  EXPECT_NE(std::find(scene->static_bodies().begin(), scene->static_bodies().end(), table.static_body),
-            scene->static_bodies().end());
   EXPECT_GE(cabinet.body, 1);
-  EXPECT_EQ(cabinet.static_body, -1);
   EXPECT_EQ(scene->object_of_body(cabinet.body), index("cabinet_1"));
-  EXPECT_EQ(scene->object_of_body(table.static_body), -1);  // shared: the geom says whose
+  EXPECT_EQ(scene->object_of_body(0), -1);  // the world's: the geom says whose
   // The table's collision geoms are its own: the geom table names it, its
   // geoms are posed where the table stands (x 1.5, y 1.5 in the scene file).
   ASSERT_FALSE(table.geoms.empty());
@@ -95,20 +90,19 @@ TEST(Scene, FurnitureWithoutMovingPartsSharesStaticBodiesAndKeepsItsIdentity) {
         << g;
   }
   for (int g : table.geoms) {
-    EXPECT_EQ(m->geom_bodyid[g], table.static_body);
+    EXPECT_EQ(m->geom_bodyid[g], 0);
     EXPECT_LT(std::hypot(m->geom_pos[3 * g] - 1.5, m->geom_pos[3 * g + 1] - 1.5), 1.0) << g;
   }
   EXPECT_EQ(table.pos[0], 1.5);
   EXPECT_EQ(table.pos[1], 1.5);
-  // What never moves is never paired: the world, the static bodies and the
-  // drawer cabinet's root exclude each other.
+  // What never moves is never paired: the world and the drawer cabinet's root
+  // exclude each other.
   std::set<std::pair<int, int>> excluded;
   for (int e = 0; e < m->nexclude; ++e) {
     const int s1 = m->exclude_signature[e] >> 16, s2 = m->exclude_signature[e] & 0xFFFF;
     excluded.insert({s1, s2});  // MuJoCo's signature: body1 << 16 | body2
   }
-  EXPECT_TRUE(excluded.count({0, table.static_body}));
-  EXPECT_TRUE(excluded.count({std::min(table.static_body, cabinet.body), std::max(table.static_body, cabinet.body)}));
+  EXPECT_TRUE(excluded.count({0, m->body_rootid[cabinet.body]}));
   EXPECT_FALSE(excluded.count({0, scene->find_object("apple_1")->body}));
 }
 

@@ -247,17 +247,6 @@ std::string resolve_scene_path(const std::string& name, const std::string& asset
               "); known scenes: " + (known.empty() ? "none" : known));
 }
 
-// The cell of the static-body grid a point lies in (clamped: positions far
-// out of any room are the scene reader's to refuse, not a reason to overflow).
-std::pair<long, long> static_cell(const Eigen::Vector3d& p) {
-  auto index = [](double v) { return static_cast<long>(std::floor(std::clamp(v, -1e6, 1e6) / Scene::kStaticCell)); };
-  return {index(p.x()), index(p.y())};
-}
-
-std::string static_body_name(const std::pair<long, long>& cell) {
-  return "static_" + std::to_string(cell.first) + "_" + std::to_string(cell.second);
-}
-
 // The scene file places each object touching what it stands on; MuJoCo's
 // soft contacts rest a little into it, and only a contact that is there
 // counts (onfloor, ontop). So the objects are let fall into their resting
@@ -368,15 +357,12 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   }
 
   // Objects.
-  std::vector<std::string> holder_bodies;                     // per object: its root body's name, or its static body's
-  std::vector<char> in_static_body;                           // per object: its geoms are in a static body
-  std::vector<std::optional<ClothSpec>> cloths;               // per object: its cloth, if simulated
-  std::map<std::pair<long, long>, std::string> static_cells;  // cell -> geoms of its furniture
-  std::vector<std::string> static_roots;                      // fixed objects with moving parts: their static roots
-  // Bodies that move, ordered for the physics step, which keeps the degrees of
-  // freedom up to the last awake one (World): cloths (their tendons always
-  // count), fixed objects' links (a dof or two each, often awake beside the
-  // robot), then free objects (six each).
+  std::vector<std::string> holder_bodies;        // per object: its root body's name, or "world"
+  std::vector<char> in_world_body;              // per object: its geoms are the world body's
+  std::vector<std::optional<ClothSpec>> cloths;  // per object: its cloth, if simulated
+  std::string static_geoms;                      // the world body's furniture
+  std::vector<std::string> static_roots;         // fixed objects with moving parts: their static roots
+  // Bodies that move: cloths, fixed objects' links, free objects.
   std::string cloth_bodies, free_bodies, linked_bodies, cloth_tendons;
   for (const ObjectPlacement& placement : file.objects) {
     const auto found = file.models.find(placement.model);
@@ -405,25 +391,23 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
                 "\" specular=\"0.1 0.1 0.1\"/>\n";
     }
     if (object.fixed && !model.cloth && model.root.links.empty()) {
-      // Furniture without moving parts: its geoms, posed in the world, join
-      // the static body of the cell it stands in.
-      const auto key = static_cell(pose.translation());
-      std::string& cell = static_cells[key];
+      // Furniture without moving parts: its geoms, posed in the world, are
+      // the world body's (MuJoCo's midphase finds the few near a moving body).
       for (size_t g = 0; g < model.root.geoms.size(); ++g) {
         GeomSpec placed = model.root.geoms[g];
         placed.pose = pose * placed.pose;
         add_to_static_mesh(mesh, Eigen::Isometry3d::Identity(), placed);
-        cell += "      " + geom_xml(object.name + "/" + std::to_string(g), placed, false, 0) + "\n";
+        static_geoms += "    " + geom_xml(object.name + "/" + std::to_string(g), placed, false, 0) + "\n";
       }
-      holder_bodies.push_back(static_body_name(key));
-      in_static_body.push_back(1);
+      holder_bodies.push_back("world");
+      in_world_body.push_back(1);
       cloths.emplace_back();
       scene->objects_.push_back(std::move(object));
       continue;
     }
     const std::string body = root_body_name(object.name, model, options.cloth);
     holder_bodies.push_back(body);
-    in_static_body.push_back(0);
+    in_world_body.push_back(0);
     cloths.push_back(model.cloth && options.cloth ? model.cloth : std::nullopt);
     std::string& world = model.cloth ? cloth_bodies : object.fixed ? linked_bodies : free_bodies;
     world += "    <body name=\"" + body + "\" " + pose_attributes(pose) + ">\n";
@@ -455,21 +439,11 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   }
 
   world += cloth_bodies + linked_bodies + free_bodies;
-  // The static bodies, and the pairs among what never moves (the world, the
-  // static bodies, the roots of fixed objects with moving parts) excluded.
-  // The drawn static meshes get a body of their own, out of the world body's
-  // pairs. (Welded to the world, its inertia is never used; massless geoms
-  // need one given.)
-  std::string statics =
-      "    <body name=\"static_visuals\">\n"
-      "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n" +
-      mesh.mjcf_geom() + ceilings.mjcf_geom() + "    </body>\n";
-  std::vector<std::string> unmoving = {"world", "static_visuals"};
-  for (const auto& [cell, geoms] : static_cells) {
-    const std::string name = static_body_name(cell);
-    statics += "    <body name=\"" + name + "\">\n" + geoms + "    </body>\n";
-    unmoving.push_back(name);
-  }
+  // What never moves is the world body's: the furniture's geoms and the drawn
+  // static meshes; the pairs among it and the roots of fixed objects with
+  // moving parts are excluded.
+  const std::string statics = static_geoms + mesh.mjcf_geom() + ceilings.mjcf_geom();
+  std::vector<std::string> unmoving = {"world"};
   unmoving.insert(unmoving.end(), static_roots.begin(), static_roots.end());
   std::string excludes;
   for (size_t a = 0; a < unmoving.size(); ++a) {
@@ -556,7 +530,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   };
   for (const chore::Attachment& a : file.attachments) {
     const int object = index_of(a.object), to = index_of(a.to);
-    if (in_static_body[object] || object == to) continue;  // welded to the world already
+    if (in_world_body[object] || object == to) continue;  // welded to the world already
     attach_welds += "    <weld name=\"attach_" + std::to_string(attached.size()) + "\" body1=\"" + holder_bodies[to] +
                     "\" body2=\"" + holder_bodies[object] + "\" active=\"false\" solref=\"0.005 1\"/>\n";
     attached.push_back({object, to});
@@ -571,7 +545,7 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   const auto object_roots = [&](const mjModel* m) {
     std::vector<char> root(m->nbody, 0);
     for (size_t i = 0; i < holder_bodies.size(); ++i) {
-      if (!in_static_body[i]) root[mj_name2id(m, mjOBJ_BODY, holder_bodies[i].c_str())] = 1;
+      if (!in_world_body[i]) root[mj_name2id(m, mjOBJ_BODY, holder_bodies[i].c_str())] = 1;
     }
     return root;
   };
@@ -586,12 +560,11 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   ceilings.paint_palette(model);
 
   std::vector<int> root_object(model->nbody, -1);
-  std::map<std::string, int, std::less<>> static_object;  // name -> index, furniture in static bodies
+  std::map<std::string, int, std::less<>> static_object;  // name -> index, furniture in the world body
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];
     const int body = mj_name2id(model, mjOBJ_BODY, holder_bodies[i].c_str());
-    if (in_static_body[i]) {
-      object.static_body = body;
+    if (in_world_body[i]) {
       static_object[object.name] = static_cast<int>(i);
     } else {
       object.body = body;
@@ -611,21 +584,18 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
       model->tree_sleep_policy[t] = mjSLEEP_INIT;
     }
   }
-  // Geoms of a static body are named "<object>/<index>".
+  // The world body's furniture geoms are named "<object>/<index>".
   scene->geom_object_.resize(model->ngeom);
   for (int g = 0; g < model->ngeom; ++g) {
     int& object = scene->geom_object_[g] = scene->body_object_[model->geom_bodyid[g]];
     const char* name = mj_id2name(model, mjOBJ_GEOM, g);
-    if (object < 0 && name && model->body_rootid[model->geom_bodyid[g]] != 0) {
+    if (object < 0 && name && model->geom_bodyid[g] == 0) {
       const std::string_view n(name);
       const auto it = static_object.find(n.substr(0, n.find('/')));
       if (it != static_object.end()) object = it->second;
     }
     const bool collides = model->geom_contype[g] || model->geom_conaffinity[g];
     if (collides && object >= 0) scene->objects_[object].geoms.push_back(g);
-  }
-  for (const auto& [cell, geoms] : static_cells) {
-    scene->static_bodies_.push_back(mj_name2id(model, mjOBJ_BODY, static_body_name(cell).c_str()));
   }
   for (size_t i = 0; i < scene->objects_.size(); ++i) {
     SceneObject& object = scene->objects_[i];

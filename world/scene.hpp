@@ -35,13 +35,12 @@ struct SceneObject {
   std::string category;
   std::string synset;
   bool fixed = false;  // welded to the world (furniture) or a free body
-  // Root body id; -1 for fixed furniture without moving parts, whose geoms are
-  // compiled into a static body shared with its neighbours (static_body): a
-  // body costs every physics step, a geom only where something comes near.
+  // Root body id; -1 for fixed furniture without moving parts, whose geoms
+  // are compiled into the world body: a body costs every physics step, a
+  // geom of the world body only where MuJoCo's midphase finds something near.
   int body = -1;
-  int static_body = -1;
   // Where the object stands as compiled (row-major rotation, as mjData's
-  // xmat): for ever for furniture in a static body, the initial pose otherwise.
+  // xmat): for ever for furniture in the world body, the initial pose otherwise.
   std::array<double, 3> pos{};
   std::array<double, 9> mat{};
   int grasp_weld = -1;          // equality id of the gripper weld (free objects only)
@@ -76,17 +75,11 @@ class Scene {
   const std::vector<Room>& rooms() const { return rooms_; }
   const std::vector<SceneObject>& objects() const { return objects_; }
   const SceneObject* find_object(std::string_view name) const;
-  // Index into objects() of the object a body belongs to, or -1 (robot, world,
-  // static bodies).
+  // Index into objects() of the object a body belongs to, or -1 (robot, world).
   int object_of_body(int body) const { return body_object_[body]; }
   // Index into objects() of the object a geom belongs to, or -1 (robot, rooms).
-  // The identity of furniture in static bodies lives only here.
+  // The identity of furniture in the world body lives only here.
   int object_of_geom(int geom) const { return geom_object_[geom]; }
-  // The static bodies holding furniture, one per cell of a kStaticCell (m)
-  // grid. Chosen by measurement (docs/benchmarks.md): smaller cells mean more
-  // bodies and excluded pairs, larger ones more geoms awake near the robot.
-  const std::vector<int>& static_bodies() const { return static_bodies_; }
-  static constexpr double kStaticCell = 2.0;
   // Collision geoms of each room's floor, in rooms() order.
   const std::vector<int>& floor_geoms(int room) const { return floor_geoms_[room]; }
   // The room whose floor contains (x, y), or nullptr outside every room.
@@ -111,7 +104,7 @@ class Scene {
   std::string name_, path_, mjcf_;
   std::vector<Room> rooms_;
   std::vector<SceneObject> objects_;
-  std::vector<int> body_object_, geom_object_, static_bodies_;
+  std::vector<int> body_object_, geom_object_;
   std::vector<std::vector<int>> floor_geoms_;
   Pose2 robot_start_;
   bool has_robot_ = true;
