@@ -471,9 +471,6 @@ std::shared_ptr<const Scene> Scene::build(const SceneFile& file, const SceneOpti
   // contacts of what is awake. Its size is room for every object at rest on
   // something awake at once (a reset puts the scene's objects to sleep after
   // one step of them all: MuJoCo's sleep="init"), ~32 KB each.
-  int free_objects = 0;
-  for (const SceneObject& o : scene->objects_) free_objects += !o.fixed;
-  scene->free_objects_ = free_objects;
   const long arena_mb = 64 + (32L * scene->objects_.size()) / 1024;
   std::string xml = "<mujoco model=\"" + scene->name_ +
                     "\">\n"

@@ -89,7 +89,6 @@ class Scene {
   int camera() const { return camera_; }                    // the egocentric camera
   int overview_camera() const { return overview_camera_; }  // third-person, top-down
   const std::vector<int>& ceiling_lights() const { return ceiling_lights_; }
-  int free_objects() const { return free_objects_; }
   // SceneFile::attachments, resolved: objects() indices and the weld's equality id.
   struct Attachment {
     int object, to, weld;
@@ -111,7 +110,6 @@ class Scene {
   int camera_ = -1, overview_camera_ = -1;
   std::vector<int> ceiling_lights_;
   std::vector<Attachment> attachments_;
-  int free_objects_ = 0;
   bool from_cache_ = false;
 };
 
