@@ -146,7 +146,7 @@ void time_physics_steps(benchmark::State& state, World& w) {
 
 // One physics step of an activity's scene at rest after reset 0 (World::step:
 // mj_step with the robot's controllers, grasp and state rules), with objects
-// asleep as during a primitive (world/sleeping.hpp) or not, with the
+// asleep as every reset starts them (MuJoCo's sleeping) or not, with the
 // scene's Newton solver or MuJoCo's conjugate-gradient one.
 void physics_step_activity(benchmark::State& state, const std::string& activity, bool sleeping, mjtSolver solver) {
   EnvConfig c;

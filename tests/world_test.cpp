@@ -222,7 +222,7 @@ TEST(Sleeping, TheScenesObjectsStartAsleepAndKeepTheirRestingContacts) {
   const int block = object_index(w, "small_block_1");
   ASSERT_TRUE(w.asleep(block));
   EXPECT_TRUE(w.asleep(object_index(w, "heavy_block_1")));
-  EXPECT_FALSE(w.asleep(object_index(w, "red_panel_1")));  // furniture in a static body: no tree to sleep
+  EXPECT_FALSE(w.asleep(object_index(w, "red_panel_1")));  // furniture in the world body: no tree to sleep
   const std::vector<double> rest(object_qpos(w, "small_block_1"), object_qpos(w, "small_block_1") + 7);
   w.step(60);
   EXPECT_TRUE(w.asleep(block));

@@ -13,7 +13,7 @@
 namespace chore {
 
 // An object's frame in the world: its root body's pose, or where furniture
-// compiled into a static body stands (Scene's tables: it has no body of its own).
+// compiled into the world body stands (Scene's tables: it has no body of its own).
 struct Frame {
   Eigen::Vector3d pos;
   Eigen::Matrix3d rot;

@@ -192,7 +192,7 @@ bool attached(const World& w, int a, int b) {
   auto is = [&](int body, int object) {
     return object >= 0 ? scene.object_of_body(body) == object : m->body_rootid[body] == robot;
   };
-  for (const Scene::Attachment& at : scene.attachments()) {  // to furniture in a static body too
+  for (const Scene::Attachment& at : scene.attachments()) {  // to furniture in the world body too
     if (at.weld >= 0 && d->eq_active[at.weld] && ((at.object == a && at.to == b) || (at.object == b && at.to == a)))
       return true;
   }
