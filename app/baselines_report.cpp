@@ -83,8 +83,13 @@ std::string format(const Stat& s) {
 // says what each rule counts).
 std::string policy_failure_words(const nlohmann::json& p) {
   const std::string repeats = std::to_string(p["repeats"].get<int>()) + "x";
+  if (p["rule"] == "none") return "not applied";
   return p["rule"] == "paper" ? "same failed primitive " + repeats : "same invalid action " + repeats;
 }
+
+// The evaluations a cell.json may hold: at seed 0 sampling, greedily (cells
+// from before issue 53 have none), and over the fresh instances.
+constexpr const char* kEvaluations[] = {"seed0", "seed0_greedy", "generalisation"};
 
 }  // namespace
 
@@ -94,7 +99,8 @@ nlohmann::json read_cell_summary(const fs::path& path) {
   cell.at("spec");
   cell.number("train_wall_s", {0, 1e9});
   cell.number("eval_wall_s", {0, 1e9});
-  for (const char* key : {"seed0", "generalisation"}) {
+  for (const char* key : kEvaluations) {
+    if (std::string(key) == "seed0_greedy" && !summary.contains(key)) continue;
     const JsonReader eval = cell.at(key);
     eval.at("q").number("mean", {0, 1});
     eval.at("success_rate").number("mean", {0, 1});
@@ -109,6 +115,7 @@ nlohmann::json read_cell_summary(const fs::path& path) {
       }
     }
   }
+  if (summary.contains("seed0_first10")) cell.at("seed0_first10").number("q", {0, 1});
   return summary;
 }
 
@@ -164,6 +171,10 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                     {"eval_wall_s", summary["eval_wall_s"]},
                     {"q_seed0", summary["seed0"]["q"]["mean"]},
                     {"success_seed0", summary["seed0"]["success_rate"]["mean"]},
+                    {"q_seed0_greedy", summary.contains("seed0_greedy") ? summary["seed0_greedy"]["q"]["mean"]
+                                                                         : nlohmann::json()},
+                    {"q_seed0_first10", summary.contains("seed0_first10") ? summary["seed0_first10"]["q"]
+                                                                           : nlohmann::json()},
                     {"q_generalisation", summary["generalisation"]["q"]["mean"]},
                     {"success_generalisation", summary["generalisation"]["success_rate"]["mean"]},
                     {"dir", c.dir.string()}});
@@ -174,14 +185,17 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
   for (const std::string& a : o.activities) {
     for (const std::string& m : o.methods) {
       const auto& done = by[{a, m}];
-      std::vector<double> q0, s0, qg, sg;
+      std::vector<double> q0, s0, qg, sg, q0_greedy, q0_first10;
       nlohmann::json failed = nlohmann::json::object(), ended = nlohmann::json::object();
       for (const nlohmann::json& c : done) {
         q0.push_back(c["seed0"]["q"]["mean"]);
         s0.push_back(c["seed0"]["success_rate"]["mean"]);
         qg.push_back(c["generalisation"]["q"]["mean"]);
         sg.push_back(c["generalisation"]["success_rate"]["mean"]);
-        for (const char* key : {"seed0", "generalisation"}) {
+        if (c.contains("seed0_greedy")) q0_greedy.push_back(c["seed0_greedy"]["q"]["mean"]);
+        if (c.contains("seed0_first10")) q0_first10.push_back(c["seed0_first10"]["q"]);
+        for (const char* key : kEvaluations) {
+          if (!c.contains(key)) continue;
           for (const auto& [k, v] : c[key]["failed_primitives"].items()) failed[k] = failed.value(k, 0) + v.get<int>();
           for (const auto& [k, v] : c[key]["episodes_ended_by"].items()) ended[k] = ended.value(k, 0) + v.get<int>();
         }
@@ -192,6 +206,8 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                       {"runs", done.size()},
                       {"q_seed0", to_json(mean_std(q0))},
                       {"success_seed0", to_json(mean_std(s0))},
+                      {"q_seed0_greedy", to_json(mean_std(q0_greedy))},
+                      {"q_seed0_first10", to_json(mean_std(q0_first10))},
                       {"q_generalisation", to_json(mean_std(qg))},
                       {"success_generalisation", to_json(mean_std(sg))},
                       {"q_seed0_intervals", intervals(q0, a + "/" + m + "/q_seed0")},
@@ -277,6 +293,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                              {"eval_seed", 0},
                              {"eval_episodes", o.eval_episodes},
                              {"eval_policy", "sampled"},
+                             {"eval_greedy", o.greedy_eval},
                              {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}},
                              {"generalisation_episodes_per_seed", 1},
                              {"settings", o.settings}}},
@@ -358,9 +375,10 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   }
   md << "; " << o.mode << " primitive execution; evaluation at seed 0 (" << o.eval_episodes
      << " episodes) and over seeds " << o.generalisation_first << "-" << o.generalisation_last
-     << " (one episode each, instances never trained on); the policies act by sampling their action distribution, as "
-        "in "
-        "training. Mean ± std over the training seeds.\n";
+     << " (one episode each, instances drawn afresh); Q is the policies' acting by sampling their action "
+        "distribution, as in training"
+     << (o.greedy_eval ? ", with greedy acting (the most probable primitive) beside it" : "")
+     << ". Mean ± std over the training seeds.\n";
   if (!o.settings.empty()) {
     md << "- Settings beyond the paper's (`chore train --set`, ppo.* for RL-Prim. and RL-Prim.Hist., sac.* for "
           "RL-VMC):";
@@ -399,6 +417,11 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   };
   table("Success score Q at evaluation seed 0 (chore, and the paper's Table A.13)", "q_seed0", true);
   table("Success rate at evaluation seed 0", "success_seed0", false);
+  if (o.greedy_eval) table("Success score Q at evaluation seed 0, acting greedily", "q_seed0_greedy", false);
+  if (o.eval_episodes > 10) {
+    table("Success score Q over the first 10 sampled episodes at evaluation seed 0 (chore's protocol before issue 53)",
+          "q_seed0_first10", false);
+  }
   table("Success score Q over fresh instances (seeds " + std::to_string(o.generalisation_first) + "-" +
             std::to_string(o.generalisation_last) + ")",
         "q_generalisation", false);

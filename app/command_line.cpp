@@ -72,6 +72,10 @@ void add_policy_options(CLI::App* cmd, PolicyArgs& a) {
       ->check(CLI::IsMember({"physical", "symbolic"}));
   cmd->add_option("--max-steps", a.max_steps, "Steps per episode (default: 60 primitive, 500 low-level)")
       ->check(integer_in(1, 1000000));
+  cmd->add_option("--instances", a.instances,
+                  "fixed: the activity's instance 0 at every reset; resample: drawn from each episode's seed "
+                  "(default: a checkpoint's own, else resample)")
+      ->check(CLI::IsMember({"fixed", "resample"}));
 }
 
 }  // namespace
@@ -273,7 +277,7 @@ CommandLineParser::Impl::Impl() {
       ->add_option("--episode-steps", c.train.episode_steps,
                    "Steps per episode (default: 60 primitives, 500 low-level)")
       ->check(integer_in(1, 1000000));
-  train_cmd->add_option("--history", c.train.history, "rl-prim-hist: past steps the policy sees (default 4)")
+  train_cmd->add_option("--history", c.train.history, "rl-prim-hist: observations the policy sees; rl-prim-action-hist: past primitives (default 4)")
       ->check(integer_in(1, 64));
   train_cmd
       ->add_option("--checkpoint-every", c.train.checkpoint_every,
@@ -311,6 +315,8 @@ CommandLineParser::Impl::Impl() {
       ->capture_default_str();
   reproduce_cmd->add_option("--out", c.reproduce.out, "Results folder (runs/ inside)")->capture_default_str();
   reproduce_cmd->add_flag("!--no-videos", c.reproduce.videos, "Skip the best policies' videos");
+  reproduce_cmd->add_flag("!--no-greedy-eval", c.reproduce.greedy_eval,
+                          "Evaluate at seed 0 by sampling only (tables run before issue 53)");
   reproduce_cmd->add_flag("--report-only", c.reproduce.report_only, "Train and evaluate nothing: report the runs done");
   reproduce_cmd->add_option(
       "--set", c.reproduce.settings,

@@ -44,6 +44,7 @@ enum class Command {
 struct PolicyArgs {
   std::vector<std::string> checkpoints;
   std::string activity, plugin, plugin_options, action_space = "primitives", mode;
+  std::string instances;  // "fixed" or "resample"; empty: a checkpoint's own, else resample
   std::vector<std::string> observations;
   int max_steps = 0;
   bool expert = false;

@@ -17,7 +17,7 @@
 
 namespace {
 
-std::vector<chore::PolicySource> policy_sources(const chore::PolicyArgs& a, const std::string& command) {
+std::vector<chore::PolicySource> sources_of(const chore::PolicyArgs& a, const std::string& command) {
   if (!a.checkpoints.empty()) {
     // Each checkpoint brings its env; --activity, --mode and --max-steps override it.
     chore::set_policy_threads(1);
@@ -53,6 +53,15 @@ std::vector<chore::PolicySource> policy_sources(const chore::PolicyArgs& a, cons
     env.observations.push_back("action_mask");
   }
   return {chore::plugin_source(a.plugin, a.plugin_options, env)};
+}
+
+std::vector<chore::PolicySource> policy_sources(const chore::PolicyArgs& a, const std::string& command) {
+  std::vector<chore::PolicySource> sources = sources_of(a, command);
+  // --instances overrides every env's, a checkpoint's own included.
+  if (!a.instances.empty()) {
+    for (chore::PolicySource& s : sources) s.env.instances = a.instances;
+  }
+  return sources;
 }
 
 }  // namespace

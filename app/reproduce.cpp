@@ -99,6 +99,7 @@ nlohmann::json cell_spec(const Cell& c, const ReproduceOptions& o) {
       {"seed", c.seed},           {"steps", o.steps},
       {"mode", o.mode},           {"eval_episodes", o.eval_episodes},
       {"eval_policy", "sampled"}, {"generalisation_seeds", {o.generalisation_first, o.generalisation_last}}};
+  if (o.greedy_eval) spec["eval_greedy"] = true;  // absent from cells evaluated before it was
   if (const auto settings = settings_for(c.method, o.settings); !settings.empty()) spec["settings"] = settings;
   return spec;
 }
@@ -158,75 +159,74 @@ pid_t spawn(const std::vector<std::string>& args, const fs::path& out, const fs:
   return pid;
 }
 
-// A cell's work, one child after another: train (or resume), evaluate at the
-// paper's seed, evaluate over the generalisation seeds, then cell.json.
+// One `chore eval` of a cell's checkpoint, its JSON into `file`.
+struct CellEvaluation {
+  std::string file, seeds;
+  int episodes;
+  bool sample;
+  std::string instances;  // --instances; empty: the run's own
+};
+
+// A cell's evaluations: at the paper's seed sampling (the table's Q) and
+// greedily, then one episode on each fresh instance of the generalisation
+// seeds (drawn afresh whatever instances the run trained on).
+std::vector<CellEvaluation> cell_evaluations(const ReproduceOptions& o) {
+  std::vector<CellEvaluation> e = {{"eval_seed0.json", "0-0", o.eval_episodes, true, ""}};
+  if (o.greedy_eval) e.push_back({"eval_seed0_greedy.json", "0-0", o.eval_episodes, false, ""});
+  e.push_back({"eval_generalisation.json",
+               std::to_string(o.generalisation_first) + "-" + std::to_string(o.generalisation_last), 1, true,
+               "resample"});
+  return e;
+}
+
+// The summary of one evaluation file: its totals, not its per-episode lists.
+nlohmann::json evaluation_summary(const fs::path& file) {
+  nlohmann::json summary = read_json_file(file.string()).at(0);
+  summary.erase("per_episode");
+  summary.erase("per_seed");
+  return summary;
+}
+
+// Q and success over the first `n` episodes of an evaluation file.
+nlohmann::json first_episodes(const fs::path& file, size_t n) {
+  const nlohmann::json episodes = read_json_file(file.string()).at(0).at("per_episode");
+  double q = 0, success = 0;
+  const size_t count = std::min(n, episodes.size());
+  for (size_t i = 0; i < count; ++i) {
+    q += episodes[i].at("q").get<double>();
+    success += episodes[i].at("success").get<bool>();
+  }
+  return {{"episodes", count}, {"q", q / std::max<size_t>(count, 1)}, {"success_rate", success / std::max<size_t>(count, 1)}};
+}
+
+// A cell's work, one child after another: train (or resume), the
+// evaluations, then cell.json.
 class CellRun {
  public:
-  CellRun(Cell cell, const ReproduceOptions& o) : cell_(std::move(cell)), o_(o) {}
+  CellRun(Cell cell, const ReproduceOptions& o) : cell_(std::move(cell)), o_(o), evaluations_(cell_evaluations(o)) {}
   const Cell& cell() const { return cell_; }
 
   // Starts the next child; false when the cell has nothing left to run.
   // `what` says what the child does.
   bool start_next(std::string& what) {
-    const fs::path log = cell_.dir / "train.log";
-    const std::string range = std::to_string(o_.generalisation_first) + "-" + std::to_string(o_.generalisation_last);
-    const std::string steps = std::to_string(o_.steps);
-    switch (stage_++) {
-      case 0:
-        what = "training (" + log.string() + ")";
-        started_ = Clock::now();
-        if (fs::exists(cell_.dir / "checkpoint.pt")) {
-          pid_ = spawn({"train", "--resume", cell_.dir.string(), "--steps", steps}, "/dev/null", log);
-        } else {
-          const TrainOptions t = train_options(cell_, o_);
-          std::vector<std::string> args = {"train",
-                                           "--activity",
-                                           t.activity,
-                                           "--baseline",
-                                           t.baseline,
-                                           "--seed",
-                                           std::to_string(t.seed),
-                                           "--steps",
-                                           steps,
-                                           "--mode",
-                                           t.mode,
-                                           "--threads",
-                                           std::to_string(t.threads),
-                                           "--out",
-                                           t.out};
-          for (const std::string& setting : t.settings) args.insert(args.end(), {"--set", setting});
-          pid_ = spawn(args, "/dev/null", log);
-        }
-        return true;
-      case 1:
-        what = "evaluating at seed 0";
-        eval_started_ = Clock::now();
-        evaluate("0-0", o_.eval_episodes, "eval_seed0.json");
-        return true;
-      case 2:
-        what = "evaluating on seeds " + range;
-        fs::rename(cell_.dir / "eval_seed0.json.part", cell_.dir / "eval_seed0.json");
-        evaluate(range, 1, "eval_generalisation.json");
-        return true;
-      case 3: {
-        fs::rename(cell_.dir / "eval_generalisation.json.part", cell_.dir / "eval_generalisation.json");
-        nlohmann::json summary = {
-            {"spec", cell_spec(cell_, o_)},
-            {"train_wall_s", last_metric(cell_.dir / "metrics.csv", "wall_s", 0.0)},
-            {"eval_wall_s", std::chrono::duration<double>(Clock::now() - eval_started_).count()},
-            {"seed0", read_json_file((cell_.dir / "eval_seed0.json").string()).at(0)},
-            {"generalisation", read_json_file((cell_.dir / "eval_generalisation.json").string()).at(0)}};
-        // The per-episode lists stay in the eval files; the summary keeps the totals.
-        for (const char* key : {"seed0", "generalisation"}) {
-          summary[key].erase("per_episode");
-          summary[key].erase("per_seed");
-        }
-        write_text(cell_.dir / "cell.json", summary.dump(2) + "\n");
-        return false;
-      }
-      default:
-        return false;
+    const size_t stage = stage_++;
+    if (stage == 0) {
+      train(what);
+      return true;
     }
+    if (stage >= 2) {  // the evaluation before this one finished
+      const std::string done = evaluations_[stage - 2].file;
+      fs::rename(cell_.dir / (done + ".part"), cell_.dir / done);
+    }
+    if (stage == 1) eval_started_ = Clock::now();
+    if (stage <= evaluations_.size()) {
+      const CellEvaluation& e = evaluations_[stage - 1];
+      what = std::string("evaluating ") + (e.sample ? "sampled" : "greedy") + " on seeds " + e.seeds;
+      evaluate(e);
+      return true;
+    }
+    if (stage == evaluations_.size() + 1) write_summary();
+    return false;
   }
   pid_t pid() const { return pid_; }
   // The log of the child now running, for a failure's report.
@@ -234,16 +234,49 @@ class CellRun {
   double seconds() const { return std::chrono::duration<double>(Clock::now() - started_).count(); }
 
  private:
-  // `chore eval` of the run's checkpoint, sampling, its JSON to `file`.part.
-  void evaluate(const std::string& seeds, int episodes, const std::string& file) {
-    pid_ = spawn({"eval", "--checkpoint", (cell_.dir / "checkpoint.pt").string(), "--sample", "--seeds", seeds,
-                  "--episodes", std::to_string(episodes), "--threads", "1", "--json"},
-                 cell_.dir / (file + ".part"), cell_.dir / "eval.log");
+  void train(std::string& what) {
+    const fs::path log = cell_.dir / "train.log";
+    const std::string steps = std::to_string(o_.steps);
+    what = "training (" + log.string() + ")";
+    started_ = Clock::now();
+    if (fs::exists(cell_.dir / "checkpoint.pt")) {
+      pid_ = spawn({"train", "--resume", cell_.dir.string(), "--steps", steps}, "/dev/null", log);
+      return;
+    }
+    const TrainOptions t = train_options(cell_, o_);
+    std::vector<std::string> args = {"train",  "--activity", t.activity, "--baseline", t.baseline,
+                                     "--seed", std::to_string(t.seed), "--steps", steps, "--mode",
+                                     t.mode,   "--threads", std::to_string(t.threads), "--out", t.out};
+    for (const std::string& setting : t.settings) args.insert(args.end(), {"--set", setting});
+    pid_ = spawn(args, "/dev/null", log);
+  }
+
+  // `chore eval` of the run's checkpoint, its JSON to `file`.part.
+  void evaluate(const CellEvaluation& e) {
+    std::vector<std::string> args = {"eval", "--checkpoint", (cell_.dir / "checkpoint.pt").string()};
+    if (e.sample) args.push_back("--sample");
+    if (!e.instances.empty()) args.insert(args.end(), {"--instances", e.instances});
+    args.insert(args.end(), {"--seeds", e.seeds, "--episodes", std::to_string(e.episodes), "--threads", "1", "--json"});
+    pid_ = spawn(args, cell_.dir / (e.file + ".part"), cell_.dir / "eval.log");
+  }
+
+  void write_summary() {
+    nlohmann::json summary = {
+        {"spec", cell_spec(cell_, o_)},
+        {"train_wall_s", last_metric(cell_.dir / "metrics.csv", "wall_s", 0.0)},
+        {"eval_wall_s", std::chrono::duration<double>(Clock::now() - eval_started_).count()},
+        {"seed0", evaluation_summary(cell_.dir / "eval_seed0.json")},
+        {"generalisation", evaluation_summary(cell_.dir / "eval_generalisation.json")}};
+    if (o_.greedy_eval) summary["seed0_greedy"] = evaluation_summary(cell_.dir / "eval_seed0_greedy.json");
+    // The appendix's protocol as chore read it before issue 53: ten sampled episodes.
+    summary["seed0_first10"] = first_episodes(cell_.dir / "eval_seed0.json", 10);
+    write_text(cell_.dir / "cell.json", summary.dump(2) + "\n");
   }
 
   Cell cell_;
   const ReproduceOptions& o_;
-  int stage_ = 0;
+  std::vector<CellEvaluation> evaluations_;
+  size_t stage_ = 0;
   pid_t pid_ = -1;
   Clock::time_point started_, eval_started_;
 };

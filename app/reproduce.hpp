@@ -39,7 +39,8 @@ struct ReproduceOptions {
   int64_t steps = 30000;                                           // training env steps per run (the paper's)
   std::string mode = "physical";                                   // primitive execution (the paper's)
   int jobs = 2;                                                    // runs at once
-  int eval_episodes = 10;                                          // episodes at evaluation seed 0
+  int eval_episodes = 100;                                         // episodes at evaluation seed 0, each policy
+  bool greedy_eval = true;  // evaluate at seed 0 greedily as well as sampling (the table's Q)
   uint64_t generalisation_first = 100, generalisation_last = 119;  // one episode each
   std::string out = "results";
   bool videos = true;

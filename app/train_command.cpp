@@ -113,8 +113,13 @@ TrainConfig new_run_config(const TrainOptions& o) {
   if (config.env.action_space == "primitives") config.env.max_episode_steps = 60;
   if (o.episode_steps > 0) config.env.max_episode_steps = o.episode_steps;
   if (o.history > 0) {
-    if (config.baseline != "rl-prim-hist") throw Error("train: --history is for rl-prim-hist");
-    config.ppo.history = o.history;
+    if (config.baseline == "rl-prim-hist") {
+      config.ppo.frames = o.history;
+    } else if (config.baseline == "rl-prim-action-hist") {
+      config.ppo.history = o.history;
+    } else {
+      throw Error("train: --history is for rl-prim-hist and rl-prim-action-hist");
+    }
   }
   for (const std::string& setting : o.settings) config = with_setting(config, setting);
   return config;

@@ -18,6 +18,8 @@ namespace {
 constexpr double kActionDt = Env::kPhysicsSubsteps / 120.0;
 constexpr double kBaseSpeed = 0.5, kTurnSpeed = 1.0;  // m/s, rad/s at |action| = 1
 constexpr double kTorsoSpeed = 0.1, kJointSpeed = 1.0;
+// derive_seed's stream of a fixed instance's draws (EnvConfig::instances).
+constexpr uint64_t kFixedInstanceStream = 7;
 bool wants(const EnvConfig& c, const std::string& name) {
   return std::find(c.observations.begin(), c.observations.end(), name) != c.observations.end();
 }
@@ -114,6 +116,9 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
                 " must be positive");
   }
   if (config_.max_episode_steps <= 0) throw Error("env config: max_episode_steps must be positive");
+  if (config_.instances != "resample" && config_.instances != "fixed") {
+    throw Error("env config: unknown instances '" + config_.instances + "' (known: resample, fixed)");
+  }
   if (scene_->has_robot() != config_.robot) {
     throw Error("env config: scene '" + scene_->name() + "' was compiled " +
                 (scene_->has_robot() ? "with" : "without") + " a robot, the config says otherwise");
@@ -159,9 +164,9 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
       throw Error("env config: the primitive action space needs an activity and the robot");
     }
     if (config_.policy_failure_repeats < 1) throw Error("env config: policy_failure_repeats must be >= 1");
-    if (config_.policy_failure_rule != "precondition" && config_.policy_failure_rule != "paper") {
-      throw Error("env config: unknown policy_failure_rule '" + config_.policy_failure_rule +
-                  "' (known: precondition, paper)");
+    const std::string& rule = config_.policy_failure_rule;
+    if (rule != "none" && rule != "precondition" && rule != "paper") {
+      throw Error("env config: unknown policy_failure_rule '" + rule + "' (known: none, precondition, paper)");
     }
     primitive_actions_ = chore::primitive_actions(*activity_, *world_);
     action_space_ = Space::discrete(static_cast<int64_t>(primitive_actions_.size()));
@@ -233,10 +238,15 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   check_open();
   if (seed) rng_.seed(*seed);
   episode_seed_ = seed ? *seed : episode_seed_ + 1;
+  // The instance (the robot's start pose, then the activity's objects):
+  // drawn from the episode's stream, or with fixed instances from a stream of
+  // the instance's own.
+  Rng fixed_instance(derive_seed(config_.instance, kFixedInstanceStream));
+  Rng& instance_rng = config_.instances == "fixed" ? fixed_instance : rng_;
   Pose2 start = scene_->robot_start();
-  start.x += config_.start_jitter * uniform(rng_, -1, 1);
-  start.y += config_.start_jitter * uniform(rng_, -1, 1);
-  start.yaw += 10 * config_.start_jitter * uniform(rng_, -1, 1);
+  start.x += config_.start_jitter * uniform(instance_rng, -1, 1);
+  start.y += config_.start_jitter * uniform(instance_rng, -1, 1);
+  start.yaw += 10 * config_.start_jitter * uniform(instance_rng, -1, 1);
   world_->reset(start);
   sensors_->reset(seed);
   if (config_.randomization.any()) world_->randomize_appearance(config_.randomization, sensors_->rng());
@@ -250,9 +260,9 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   std::string out_of_reach;
   for (int attempt = 0; attempt < kInstanceAttempts; ++attempt) {
     if (attempt > 0) world_->reset(start);
-    activity_->instantiate(*world_, rng_);
+    activity_->instantiate(*world_, instance_rng);
     if (!config_.reachable_instances) break;
-    out_of_reach = first_out_of_reach(rng_());
+    out_of_reach = first_out_of_reach(instance_rng());
     if (out_of_reach.empty()) break;
   }
   if (!out_of_reach.empty()) {
@@ -301,7 +311,8 @@ Env::Impl::Outcome Env::Impl::advance(std::span<const float> action) {
   }
   if (!report.diverged) out.reward = reward_->reward({config_, *world_, potential_before, potential_});
   // The seed's policy failure: the same invalid action repeated ends the episode.
-  const bool policy_failure = invalid_repeats_ >= config_.policy_failure_repeats;
+  const bool policy_failure =
+      config_.policy_failure_rule != "none" && invalid_repeats_ >= config_.policy_failure_repeats;
   out.terminated = out.terminated || policy_failure;
   out.truncated = !out.terminated && (report.diverged || elapsed_ >= config_.max_episode_steps);
   out.info = make_info(score ? &*score : nullptr);

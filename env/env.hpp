@@ -72,16 +72,32 @@ struct EnvConfig {
   // primitive action space, but picks of what :init puts inside something.
   // Whatever the action space, so that both see the same instances.
   bool reachable_instances = true;
-  // The seed's policy failure: this many identical invalid actions in a row
-  // end the episode (terminated, info.policy_failure). What is invalid:
-  //   "precondition"  a primitive whose precondition fails (chore's rule; a
-  //                   navigate to what is already within reach is one: the
-  //                   paper's example, "requesting to navigate to the bin
-  //                   when it is already in front of the bin")
-  //   "paper"         as the paper's words read too: any primitive that
+  // The policy failure of the seed's real-robot setup (appendix G: "we
+  // consider policy failures when the policy selects the same invalid action
+  // three times in a row ... we decide to terminate early"): this many
+  // identical invalid actions in a row end the episode (terminated,
+  // info.policy_failure). What is invalid:
+  //   "none"          nothing: no episode ends this way (the default: the
+  //                   simulated baselines of appendix F end episodes only
+  //                   by success or the time limit)
+  //   "precondition"  a primitive whose precondition fails (a navigate to
+  //                   what is already within reach is one: the appendix's
+  //                   example, "requesting to navigate to the bin when it
+  //                   is already in front of the bin")
+  //   "paper"         as the appendix's words read too: any primitive that
   //                   fails (planning, grasp, place failures as well)
   int policy_failure_repeats = 3;
-  std::string policy_failure_rule = "precondition";
+  std::string policy_failure_rule = "none";
+  // Which instance of the activity a reset puts the world in:
+  //   "resample"  drawn afresh from the episode's seed at every reset
+  //   "fixed"     instance number `instance`, the same at every reset
+  //               whatever the episode's seed (OmniGibson's BehaviorTask
+  //               loads one pre-sampled instance, instance 0, by default);
+  //               the robot's start pose is the instance's too. What
+  //               happens after reset (primitives' samples, sensor noise,
+  //               appearance randomisation) still follows the episode's seed.
+  std::string instances = "resample";
+  uint64_t instance = 0;
   // "activity": BEHAVIOR's potential reward (0 without an activity). "reach": a
   // dense task for testing continuous-control learners, minus the distance (m)
   // from the gripper to `reach_target`, a point fixed in the robot's base frame

@@ -9,7 +9,8 @@ namespace chore {
 nlohmann::json to_json(const NetworkSpec& s) {
   return {{"height", s.height},           {"width", s.width},
           {"state_size", s.state_size},   {"feature_size", s.feature_size},
-          {"history", s.history},         {"num_actions", s.num_actions},
+          {"frames", s.frames},           {"history", s.history},
+          {"num_actions", s.num_actions},
           {"action_size", s.action_size}, {"hidden", s.hidden}};
 }
 
@@ -20,6 +21,7 @@ NetworkSpec network_spec_from_json(const nlohmann::json& j) {
     s.width = j.at("width").get<int>();
     s.state_size = j.at("state_size").get<int>();
     s.feature_size = j.at("feature_size").get<int>();
+    s.frames = j.value("frames", 1);  // checkpoints from before frames were stacked: one
     s.history = j.at("history").get<int>();
     s.num_actions = j.at("num_actions").get<int64_t>();
     s.action_size = j.at("action_size").get<int>();
@@ -28,6 +30,7 @@ NetworkSpec network_spec_from_json(const nlohmann::json& j) {
     within("width", s.width, 0, 4096);
     within("state_size", s.state_size, 0, 100000);
     within("feature_size", s.feature_size, 1, 100000);
+    within("frames", s.frames, 1, 64);
     within("history", s.history, 0, 64);
     within<int64_t>("num_actions", s.num_actions, 0, 1000000);
     within("action_size", s.action_size, 0, 10000);
@@ -40,7 +43,7 @@ NetworkSpec network_spec_from_json(const nlohmann::json& j) {
   }
 }
 
-NetworkSpec network_spec(const Space& observation, const Space& action, int history) {
+NetworkSpec network_spec(const Space& observation, const Space& action, int frames, int history) {
   NetworkSpec s;
   for (const auto& [name, space] : observation.fields) {
     if (name == "rgb") {
@@ -55,6 +58,7 @@ NetworkSpec network_spec(const Space& observation, const Space& action, int hist
   } else {
     s.action_size = static_cast<int>(action.element_count());
   }
+  s.frames = frames;
   s.history = history;
   return s;
 }

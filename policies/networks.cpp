@@ -113,8 +113,8 @@ struct MaxPool2x2Function : public torch::autograd::Function<MaxPool2x2Function>
 // 128 -> 32 -> 16 -> 8 -> 4 with 16/32/32 channels, ~5 M multiply-adds per
 // image, so a batch-64 update stays under 100 ms on this 2-core CPU
 // (docs/training.md has the measurements).
-nn::Sequential make_trunk() {
-  return nn::Sequential(nn::Conv2d(nn::Conv2dOptions(3, 16, 8).stride(4).padding(2)), nn::ReLU(), MaxPool2x2(),
+nn::Sequential make_trunk(int64_t channels) {
+  return nn::Sequential(nn::Conv2d(nn::Conv2dOptions(channels, 16, 8).stride(4).padding(2)), nn::ReLU(), MaxPool2x2(),
                         nn::Conv2d(nn::Conv2dOptions(16, 32, 3).padding(1)), nn::ReLU(), MaxPool2x2(),
                         nn::Conv2d(nn::Conv2dOptions(32, 32, 3).padding(1)), nn::ReLU(), MaxPool2x2(), nn::Flatten());
 }
@@ -203,18 +203,19 @@ torch::Tensor MaxPool2x2Impl::forward(const torch::Tensor& x) {
 
 int64_t trunk_output_size(int height, int width) {
   torch::NoGradGuard no_grad;
-  return make_trunk()->forward(torch::zeros({1, 3, height, width})).size(1);
+  return make_trunk(3)->forward(torch::zeros({1, 3, height, width})).size(1);
 }
 
-EncoderImpl::EncoderImpl(const NetworkSpec& spec) {
+EncoderImpl::EncoderImpl(const NetworkSpec& spec) : frames_(spec.frames) {
   int64_t width = 0;
   if (spec.has_rgb()) {
-    trunk_ = register_module("trunk", make_trunk());
+    trunk_ = register_module("trunk", make_trunk(3 * frames_));
     rgb_norm_ = register_module("rgb_norm", RunningNorm(3, 5.0));
     width += trunk_output_size(spec.height, spec.width);
   }
   if (spec.state_size > 0) {
-    state_net_ = register_module("state_net", nn::Sequential(nn::Linear(spec.state_size, kStateEncoding), nn::ReLU()));
+    state_net_ = register_module("state_net",
+                                 nn::Sequential(nn::Linear(frames_ * spec.state_size, kStateEncoding), nn::ReLU()));
     state_norm_ = register_module("state_norm", RunningNorm(spec.state_size, 5.0));
     width += kStateEncoding;
   }
@@ -222,16 +223,27 @@ EncoderImpl::EncoderImpl(const NetworkSpec& spec) {
   mlp_ = register_module("mlp", nn::Sequential(nn::Linear(width, spec.feature_size), nn::ReLU()));
 }
 
+// Each frame is normalised by the same statistics: those of one observation.
 torch::Tensor EncoderImpl::forward(const ObsTensors& obs) {
   std::vector<torch::Tensor> parts;
-  if (trunk_) parts.push_back(trunk_->forward(rgb_norm_->forward_bytes(obs.rgb)));
-  if (state_net_) parts.push_back(state_net_->forward(state_norm_->forward(obs.state, 1)));
+  if (trunk_) {
+    const int64_t b = obs.rgb.size(0), h = obs.rgb.size(2), w = obs.rgb.size(3);
+    const torch::Tensor frames = rgb_norm_->forward_bytes(obs.rgb.reshape({b * frames_, 3, h, w}));
+    parts.push_back(trunk_->forward(frames.reshape({b, 3 * frames_, h, w})));
+  }
+  if (state_net_) {
+    const int64_t b = obs.state.size(0);
+    const torch::Tensor frames = state_norm_->forward(obs.state.reshape({b * frames_, -1}), 1);
+    parts.push_back(state_net_->forward(frames.reshape({b, -1})));
+  }
   return mlp_->forward(torch::cat(parts, 1));
 }
 
+// From the newest frame alone: the statistics of one observation, whatever
+// the stack (its older frames are the same observations again, or zeros).
 void EncoderImpl::update_normalizers(const ObsTensors& obs) {
-  if (trunk_) rgb_norm_->update(obs.rgb.permute({0, 2, 3, 1}).reshape({-1, 3}));
-  if (state_net_) state_norm_->update(obs.state);
+  if (trunk_) rgb_norm_->update(obs.rgb.narrow(1, 0, 3).permute({0, 2, 3, 1}).reshape({-1, 3}));
+  if (state_net_) state_norm_->update(obs.state.narrow(1, 0, obs.state.size(1) / frames_));
 }
 
 ActorCriticImpl::ActorCriticImpl(const NetworkSpec& spec) {
@@ -294,6 +306,55 @@ void History::reset(std::span<const int> env_ids) {
   for (int id : env_ids) {
     ensure(id);
     memory_[id].zero_();
+  }
+}
+
+FrameStack::FrameStack(int frames) : frames_(frames) {}
+
+ObsTensors FrameStack::stacked(std::span<const int> env_ids, const ObsTensors& newest) {
+  if (!memory_.state.defined()) {  // the sizes come with the first observation
+    const auto zeros = [&](const torch::Tensor& t) {
+      if (!t.defined()) return t;
+      std::vector<int64_t> shape = t.sizes().vec();
+      shape[0] = 0;
+      shape[1] *= frames_;
+      return torch::zeros(shape, t.options());
+    };
+    memory_ = {zeros(newest.rgb), zeros(newest.state)};
+  }
+  for (int id : env_ids) {
+    if (id < memory_.state.size(0)) continue;
+    const auto grow = [&](const torch::Tensor& t) {
+      if (!t.defined()) return t;
+      std::vector<int64_t> shape = t.sizes().vec();
+      shape[0] = id + 1 - t.size(0);
+      return torch::cat({t, torch::zeros(shape, t.options())});
+    };
+    memory_ = {grow(memory_.rgb), grow(memory_.state)};
+  }
+  const torch::Tensor ids = torch::tensor(std::vector<int64_t>(env_ids.begin(), env_ids.end()));
+  // Newest first: the new frame, then all but the oldest of the stack.
+  const auto shift = [&](const torch::Tensor& stack, const torch::Tensor& frame) {
+    if (!stack.defined()) return stack;
+    const int64_t width = frame.size(1);
+    return torch::cat({frame, stack.index_select(0, ids).narrow(1, 0, (frames_ - 1) * width)}, 1);
+  };
+  return {shift(memory_.rgb, newest.rgb), shift(memory_.state, newest.state)};
+}
+
+ObsTensors FrameStack::push(std::span<const int> env_ids, const ObsTensors& newest) {
+  ObsTensors s = stacked(env_ids, newest);
+  const torch::Tensor ids = torch::tensor(std::vector<int64_t>(env_ids.begin(), env_ids.end()));
+  if (s.rgb.defined()) memory_.rgb.index_copy_(0, ids, s.rgb);
+  memory_.state.index_copy_(0, ids, s.state);
+  return s;
+}
+
+void FrameStack::reset(std::span<const int> env_ids) {
+  for (int id : env_ids) {
+    if (!memory_.state.defined() || id >= memory_.state.size(0)) continue;  // zeros when first used
+    if (memory_.rgb.defined()) memory_.rgb[id].zero_();
+    memory_.state[id].zero_();
   }
 }
 
@@ -365,13 +426,23 @@ class RowGenerators {
 class PpoPolicy : public Policy {
  public:
   PpoPolicy(ActorCritic net, const NetworkSpec& spec, ActingMode mode)
-      : net_(std::move(net)), spec_(spec), history_(std::max(spec.history, 1), spec.num_actions), generators_(mode) {
+      : net_(std::move(net)),
+        spec_(spec),
+        history_(std::max(spec.history, 1), spec.num_actions),
+        frames_(spec.frames),
+        generators_(mode) {
     net_->eval();
   }
 
   void act(const Batch& batch, std::span<float> actions) override {
     torch::NoGradGuard no_grad;
-    const ObsTensors obs = obs_tensors(*batch.obs, spec_);
+    ObsTensors obs = obs_tensors(*batch.obs, spec_);
+    if (spec_.frames > 1) {
+      for (int i = 0; i < batch.size(); ++i) {
+        if (batch.infos[i].elapsed_steps == 0) frames_.reset(batch.env_ids.subspan(i, 1));
+      }
+      obs = frames_.push(batch.env_ids, obs);
+    }
     if (spec_.history > 0) remember_results(batch);
     const torch::Tensor history = spec_.history > 0 ? history_.rows(batch.env_ids) : torch::Tensor();
     const ActorCriticOutput out = net_->forward(obs, history);
@@ -390,6 +461,7 @@ class PpoPolicy : public Policy {
 
   void reset(std::span<const int> env_ids) override {
     history_.reset(env_ids);
+    frames_.reset(env_ids);
     for (int id : env_ids) pending(id) = -1;
   }
 
@@ -418,6 +490,7 @@ class PpoPolicy : public Policy {
   ActorCritic net_;
   NetworkSpec spec_;
   History history_;
+  FrameStack frames_;
   std::vector<int64_t> pending_;
   RowGenerators generators_;
 };

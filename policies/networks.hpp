@@ -6,9 +6,12 @@
 //   Encoder      128x128x3 RGB, normalised by a per-channel running mean/std,
 //                -> Conv-ReLU-MaxPool x3 -> Flatten;  state (is_grasping,
 //                proprio), normalised per dimension, -> Linear-ReLU;  both
-//                -> Linear-ReLU to a 128-d feature.
+//                -> Linear-ReLU to a 128-d feature. With K frames
+//                (RL-Prim.Hist.), the K observations' RGB as 3K channels
+//                and their states side by side, each frame normalised alike.
 //   ActorCritic  (PPO) feature [+ history of the K past primitives and how
-//                each ended] -> action logits over primitives, value.
+//                each ended: rl-prim-action-hist] -> action logits over
+//                primitives, value.
 //   SacActor     feature -> tanh-squashed Gaussian over the low-level action.
 //   SacCritic    its own Encoder + twin Q heads on (feature, action).
 #pragma once
@@ -27,7 +30,8 @@
 namespace chore {
 
 // A batch of observations as tensors: rgb (B, 3, H, W) uint8 (undefined when
-// not observed), state (B, S) float32 (S may be 0).
+// not observed), state (B, S) float32 (S may be 0); stacked K frames (FrameStack):
+// rgb (B, 3K, H, W), state (B, K * S), newest frame first.
 struct ObsTensors {
   torch::Tensor rgb, state;
   ObsTensors index(const torch::Tensor& rows) const;
@@ -69,6 +73,7 @@ class EncoderImpl : public torch::nn::Module {
   void update_normalizers(const ObsTensors& obs);
 
  private:
+  int64_t frames_;
   torch::nn::Sequential trunk_{nullptr}, state_net_{nullptr}, mlp_{nullptr};
   RunningNorm rgb_norm_{nullptr}, state_norm_{nullptr};
 };
@@ -95,12 +100,13 @@ class ActorCriticImpl : public torch::nn::Module {
 };
 TORCH_MODULE(ActorCritic);
 
-// RL-Prim.Hist.'s memory: per env, its last K primitives (one-hot) and how
-// each ended (one-hot PrimitiveStatus), newest first; zeros before an
-// episode's first step. What a policy without it cannot know is its own
-// recent failures: the image after a failed primitive looks as before it, and
-// the paper's RL-Prim. "tends to get stuck in a repetitive action loop because
-// the agent is unaware of its action history" (appendix G, on the real robot).
+// rl-prim-action-hist's memory (chore's own variant of RL-Prim.Hist.): per
+// env, its last K primitives (one-hot) and how each ended (one-hot
+// PrimitiveStatus), newest first; zeros before an episode's first step. What
+// a memoryless policy cannot know is its own recent failures: the image after
+// a failed primitive looks as before it, and the paper's RL-Prim. "tends to
+// get stuck in a repetitive action loop because the agent is unaware of its
+// action history" (appendix G, on the real robot).
 class History {
  public:
   History(int steps, int64_t num_actions);
@@ -116,6 +122,24 @@ class History {
   int steps_;
   int64_t num_actions_;
   torch::Tensor memory_;  // (envs, K, A + kPrimitiveStatuses)
+};
+
+// RL-Prim.Hist.'s memory, "the history of observations" (appendix F): per
+// env, the encoder's inputs of its last K steps, newest first, as one
+// stacked observation (ObsTensors); zeros before an episode's first step,
+// as Stable-Baselines3's VecFrameStack pads.
+class FrameStack {
+ public:
+  explicit FrameStack(int frames);
+  // Row i: env env_ids[i]'s observation now (one frame) -> the stack it makes
+  // with the env's earlier frames; stacked() leaves the memory as it was.
+  ObsTensors push(std::span<const int> env_ids, const ObsTensors& newest);
+  ObsTensors stacked(std::span<const int> env_ids, const ObsTensors& newest);
+  void reset(std::span<const int> env_ids);  // their next push starts an episode
+
+ private:
+  int frames_;
+  ObsTensors memory_;  // per env its stack, (envs, 3K, H, W) and (envs, K * S)
 };
 
 struct SacSample {

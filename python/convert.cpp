@@ -113,6 +113,14 @@ EnvConfig env_config(const py::dict& d) {
       c.reward = text(v, key);
     } else if (key == "reachable_instances") {
       c.reachable_instances = flag(v, key);
+    } else if (key == "policy_failure_rule") {
+      c.policy_failure_rule = text(v, key);
+    } else if (key == "policy_failure_repeats") {
+      c.policy_failure_repeats = integer(v, key, 1, 1 << 30);
+    } else if (key == "instances") {
+      c.instances = text(v, key);
+    } else if (key == "instance") {
+      c.instance = static_cast<uint64_t>(integer(v, key, 0, 1 << 30));
     } else if (key == "robot") {
       c.robot = flag(v, key);
     } else if (key == "object_states") {
@@ -122,7 +130,8 @@ EnvConfig env_config(const py::dict& d) {
     } else {
       throw Error("config: unknown key '" + key +
                   "' (known: task, activity, scene, width, height, observations, action_space, mode, "
-                  "max_episode_steps, reward, reachable_instances, robot, object_states, cloth)");
+                  "max_episode_steps, reward, reachable_instances, policy_failure_rule, policy_failure_repeats, instances, "
+                  "instance, robot, object_states, cloth)");
     }
   }
   return c;

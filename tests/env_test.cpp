@@ -183,6 +183,37 @@ TEST(EnvActivity, EachResetSamplesAFreshInstanceFixedByTheSeed) {
   EXPECT_NE(position(a), first);
 }
 
+// A fixed instance (OmniGibson's default): every reset, whatever its seed,
+// puts the robot and the activity's objects where instance 0 has them; after
+// the reset, the episode's seed rules (its draws, here the physics of a
+// random action, are the seed's).
+TEST(EnvActivity, FixedInstancesAreTheSameAtEveryReset) {
+  EnvConfig c;
+  c.activity = "collect_trash";
+  c.observations = {"proprio"};
+  c.instances = "fixed";
+  Env env(c);
+  const auto qpos = [&] {
+    const mjData* d = env.world().data();
+    return std::vector<double>(d->qpos, d->qpos + env.world().model()->nq);
+  };
+  env.reset(7);
+  const std::vector<double> first = qpos();
+  std::mt19937 rng(1);
+  env.step(random_action(rng));
+  env.reset(8);
+  EXPECT_EQ(qpos(), first);
+  env.reset();  // no seed: the next episode of the stream, the same instance
+  EXPECT_EQ(qpos(), first);
+  c.instance = 1;
+  Env other(c);
+  other.reset(7);
+  const mjData* d = other.world().data();
+  EXPECT_NE(std::vector<double>(d->qpos, d->qpos + other.world().model()->nq), first);
+  c.instances = "cached";
+  EXPECT_THROW(Env{c}, Error);
+}
+
 // The reach reward: minus the gripper's distance to a point carried along in
 // the base frame, so driving and turning the base with the arm still keep it.
 TEST(Env, ReachRewardIsMinusTheGripperDistanceToATargetInTheBaseFrame) {

@@ -196,8 +196,12 @@ TEST(Primitives, EachFailureKindIsReportedWithItsCause) {
   EXPECT_EQ(r.info.primitive_counts[static_cast<int>(PrimitiveStatus::grasp_failure)], 1);
 }
 
+// The real robot's rule (appendix G), an option: by default nothing ends an
+// episode but success and the time limit.
 TEST(Primitives, TheSameInvalidActionThreeTimesInARowEndsTheEpisode) {
-  Env env(primitive_config("store_decoration", ExecutionMode::symbolic));
+  EnvConfig config = primitive_config("store_decoration", ExecutionMode::symbolic);
+  config.policy_failure_rule = "precondition";
+  Env env(config);
   env.reset(1);
   for (int k = 1; k <= 2; ++k) {
     const Env::Impl::Outcome r = act(env, "place(cabinet.n.01_1)");
@@ -223,7 +227,7 @@ TEST(Primitives, TheSameInvalidActionThreeTimesInARowEndsTheEpisode) {
 // one whose precondition fails. Picking a pumpkin out of reach fails its
 // motion planning: three in a row end the episode under the paper's rule only.
 TEST(Primitives, ThePapersPolicyFailureRuleCountsEveryFailedPrimitive) {
-  for (const std::string rule : {"precondition", "paper"}) {
+  for (const std::string rule : {"none", "precondition", "paper"}) {
     EnvConfig config = primitive_config("store_decoration", ExecutionMode::symbolic);
     config.policy_failure_rule = rule;
     Env env(config);
@@ -243,6 +247,24 @@ TEST(Primitives, ThePapersPolicyFailureRuleCountsEveryFailedPrimitive) {
   EnvConfig bad = primitive_config("store_decoration", ExecutionMode::symbolic);
   bad.policy_failure_rule = "strict";
   EXPECT_THROW(Env{bad}, Error);
+}
+
+// Without the rule (the default), repeating an invalid primitive goes on
+// until the time limit.
+TEST(Primitives, NoPolicyFailureRuleByDefault) {
+  EnvConfig config = primitive_config("store_decoration", ExecutionMode::symbolic);
+  config.max_episode_steps = 6;
+  ASSERT_EQ(config.policy_failure_rule, "none");
+  Env env(config);
+  env.reset(1);
+  Env::Impl::Outcome r;
+  for (int k = 1; k <= 6; ++k) {
+    r = act(env, "place(cabinet.n.01_1)");
+    ASSERT_EQ(r.info.primitive_status, static_cast<int>(PrimitiveStatus::precondition_failure));
+    ASSERT_FALSE(r.terminated) << k;
+    EXPECT_FALSE(r.info.policy_failure);
+  }
+  EXPECT_TRUE(r.truncated);
 }
 
 TEST(Primitives, TheExpertStoresBothPumpkinsInTheRightOrder) {

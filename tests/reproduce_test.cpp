@@ -90,7 +90,18 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   const std::string md = read_text(out / "baselines.md");
   EXPECT_NE(md.find("(paper 0.49 ± 0.04)"), std::string::npos) << md;
   EXPECT_NE(md.find("| RL-Prim. |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| policy failure (same invalid action 3x) |"), std::string::npos) << "the default rule\n" << md;
+  EXPECT_NE(md.find("| policy failure (not applied) |"), std::string::npos) << "the default rule\n" << md;
+  // Greedy beside sampled, over the same episodes; the first ten sampled
+  // episodes' Q (here both of them).
+  for (int s = 0; s < 2; ++s) {
+    const fs::path dir = runs / ("rl-prim_seed" + std::to_string(s));
+    const nlohmann::json greedy = read_json(dir / "eval_seed0_greedy.json")[0];
+    EXPECT_EQ(greedy["per_episode"].size(), 2u);
+    EXPECT_EQ(greedy["seeds"], read_json(dir / "eval_seed0.json")[0]["seeds"]);
+    EXPECT_DOUBLE_EQ(table["runs"][s]["q_seed0_greedy"].get<double>(), greedy["q"]["mean"].get<double>());
+    EXPECT_DOUBLE_EQ(table["runs"][s]["q_seed0_first10"].get<double>(), q[s]);
+  }
+  EXPECT_NE(md.find("## Success score Q at evaluation seed 0, acting greedily"), std::string::npos) << md;
   EXPECT_GT(fs::file_size(out / "curves" / "collect_trash.png"), 1000u);
   // Interval estimates over the runs: the statistic itself, and a bootstrap
   // interval around it within the runs' range; the performance profile drawn.

@@ -20,6 +20,7 @@
 #include "policies/networks.hpp"
 #include "test_util.hpp"
 #include "training/checkpoint.hpp"
+#include "training/gae.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -52,8 +53,8 @@ TrainConfig collect_trash_config(const std::string& baseline = "rl-prim") {
 
 // PPO's learning task: one bottle from the coffee table into the bin (four
 // primitives), symbolic, 12-step episodes; the goal is worth 1 (BEHAVIOR's potential).
-TrainConfig one_bottle_config() {
-  TrainConfig c = baseline_config("rl-prim", std::string(CHORE_TEST_DATA) + "/bddl/collect_one_bottle.bddl");
+TrainConfig one_bottle_config(const std::string& baseline = "rl-prim") {
+  TrainConfig c = baseline_config(baseline, std::string(CHORE_TEST_DATA) + "/bddl/collect_one_bottle.bddl");
   c.env.scene = "studio";
   c.env.observations = {"proprio", "is_grasping"};
   c.env.primitive_mode = ExecutionMode::symbolic;
@@ -105,8 +106,11 @@ TEST(Training, SacLearnsToReach) {
   EXPECT_GT(last.mean_return, rows.front().mean_return + 5);
 }
 
-TEST(Training, PpoLearnsToPutABottleInTheBin) {
-  TrainConfig config = one_bottle_config();
+class PpoLearns : public ::testing::TestWithParam<std::string> {};
+
+// RL-Prim.'s policy, and RL-Prim.Hist.'s over its last four observations.
+TEST_P(PpoLearns, ToPutABottleInTheBin) {
+  TrainConfig config = one_bottle_config(GetParam());
   config.ppo.lr = 1e-3;
   const double random = random_return(config.env, 40, 1000);
   auto trainer = make_trainer(config);
@@ -116,6 +120,58 @@ TEST(Training, PpoLearnsToPutABottleInTheBin) {
   EXPECT_LT(random, 0.25);
   EXPECT_GT(rows.back().mean_return, random + 0.4) << "random " << random;
   EXPECT_GT(rows.back().success_rate, 0.6);
+}
+
+INSTANTIATE_TEST_SUITE_P(Baselines, PpoLearns, ::testing::Values("rl-prim", "rl-prim-hist"));
+
+// GAE by hand: two envs, three steps, a value network that answers 0.5
+// everywhere (final observations and the one after the rollout included),
+// gamma 0.9, lambda 0.8. Env 0 terminates at step 1; env 1 is truncated at
+// steps 0 and 2 (bootstrapped: its reward gains 0.9 x 0.5 = 0.45).
+TEST(Training, AdvantagesOfAHandComputedRolloutWithBothEnds) {
+  RolloutSteps steps;
+  const torch::Tensor v = torch::full({2}, 0.5f);
+  steps.rewards = {torch::tensor({1.0f, 0.0f}), torch::tensor({0.0f, 1.0f}), torch::tensor({2.0f, 0.0f})};
+  steps.values = {v, v, v};
+  steps.terminated = {torch::tensor({0.0f, 0.0f}), torch::tensor({1.0f, 0.0f}), torch::tensor({0.0f, 0.0f})};
+  steps.truncated = {torch::tensor({0.0f, 1.0f}), torch::tensor({0.0f, 0.0f}), torch::tensor({0.0f, 1.0f})};
+  steps.final_values = {torch::tensor({0.0f, 0.5f}), torch::zeros({2}), torch::tensor({0.0f, 0.5f})};
+  const Advantages a = estimate_advantages(steps, v, 0.9, 0.8);
+  // Env 0: delta_2 = 2 + 0.9 x 0.5 - 0.5 = 1.95; step 1 ends the episode:
+  // delta_1 = 0 - 0.5, nothing flows back from step 2; A_0 = (1 + 0.45 -
+  // 0.5) + 0.9 x 0.8 x (-0.5) = 0.59. Env 1: each truncated step's delta is
+  // 0.45 - 0.5 = -0.05, with nothing after it; A_1 = 0.95 + 0.72 x (-0.05).
+  const torch::Tensor advantages = torch::tensor({{0.59f, -0.05f}, {-0.5f, 0.914f}, {1.95f, -0.05f}});
+  EXPECT_TRUE(torch::allclose(a.advantages, advantages, 1e-6, 1e-6)) << a.advantages;
+  EXPECT_TRUE(torch::allclose(a.returns, advantages + 0.5f, 1e-6, 1e-6)) << a.returns;
+}
+
+// RL-Prim.Hist.'s observation history: newest first, zeros before the
+// episode's first step, per env; stacked() looks without remembering.
+TEST(Training, FrameStackKeepsTheLastKObservationsNewestFirst) {
+  FrameStack stack(3);
+  const auto frame = [](uint8_t pixel, float state) {
+    return ObsTensors{torch::full({1, 3, 2, 2}, pixel, torch::kUInt8), torch::full({1, 2}, state)};
+  };
+  const int env1[] = {1}, env0[] = {0};
+  stack.push(env1, frame(10, 1.0f));
+  const ObsTensors two = stack.push(env1, frame(20, 2.0f));
+  EXPECT_TRUE(torch::equal(two.state, torch::tensor({{2.0f, 2.0f, 1.0f, 1.0f, 0.0f, 0.0f}})));
+  ASSERT_EQ(two.rgb.sizes(), (std::vector<int64_t>{1, 9, 2, 2}));
+  EXPECT_EQ(two.rgb[0][0][0][0].item<int>(), 20);
+  EXPECT_EQ(two.rgb[0][3][1][1].item<int>(), 10);
+  EXPECT_EQ(two.rgb[0][6][0][1].item<int>(), 0);
+  const ObsTensors peek = stack.stacked(env1, frame(30, 3.0f));
+  EXPECT_TRUE(torch::equal(peek.state, torch::tensor({{3.0f, 3.0f, 2.0f, 2.0f, 1.0f, 1.0f}})));
+  const ObsTensors three = stack.push(env1, frame(40, 4.0f));  // the peek was not remembered
+  EXPECT_TRUE(torch::equal(three.state, torch::tensor({{4.0f, 4.0f, 2.0f, 2.0f, 1.0f, 1.0f}})));
+  const ObsTensors four = stack.push(env1, frame(50, 5.0f));  // the oldest falls out
+  EXPECT_TRUE(torch::equal(four.state, torch::tensor({{5.0f, 5.0f, 4.0f, 4.0f, 2.0f, 2.0f}})));
+  EXPECT_TRUE(torch::equal(stack.push(env0, frame(7, 7.0f)).state, torch::tensor({{7.0f, 7.0f, 0.0f, 0.0f, 0.0f, 0.0f}})));
+  stack.reset(env1);
+  const ObsTensors fresh = stack.push(env1, frame(60, 6.0f));
+  EXPECT_TRUE(torch::equal(fresh.state, torch::tensor({{6.0f, 6.0f, 0.0f, 0.0f, 0.0f, 0.0f}})));
+  EXPECT_EQ(fresh.rgb.narrow(1, 3, 6).sum().item<int64_t>(), 0);
 }
 
 // Everything but timings.
@@ -146,8 +202,12 @@ void expect_deterministic(const TrainConfig& config, int64_t steps) {
   EXPECT_NE(a->parameters(), c->parameters());
 }
 
-TEST(Training, PpoWithHistoryIsDeterministicOnOneThread) {
+TEST(Training, PpoWithObservationHistoryIsDeterministicOnOneThread) {
   expect_deterministic(collect_trash_config("rl-prim-hist"), 600);
+}
+
+TEST(Training, PpoWithActionHistoryIsDeterministicOnOneThread) {
+  expect_deterministic(collect_trash_config("rl-prim-action-hist"), 600);
 }
 
 // --set's overrides: one field by its JSON path, of the field's own type.
@@ -468,10 +528,16 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   auto load_error = [](const std::string& path) { return test::error_of([&] { load_policy(path); }); };
   auto resume_error = [](const std::string& path) { return test::error_of([&] { resume_trainer(path); }); };
 
+  // A byte of the last tensor's data (the generator's state, ~5 KB, before
+  // the 8-byte checksum): framing intact, contents changed.
   std::string corrupt = bytes;
-  corrupt[bytes.size() / 2] ^= 0x5a;
+  corrupt[bytes.size() - 8 - 16] ^= 0x5a;
   const std::string corrupt_path = write("corrupt.pt", corrupt);
-  EXPECT_NE(load_error(corrupt_path).find("corrupt (checksum mismatch)"), std::string::npos);
+  EXPECT_NE(load_error(corrupt_path).find("corrupt (checksum mismatch)"), std::string::npos) << load_error(corrupt_path);
+  // A byte of the framing (a tensor's shape) is named as such.
+  std::string reshaped = bytes;
+  reshaped[bytes.size() / 2] ^= 0x5a;
+  EXPECT_NE(load_error(write("reshaped.pt", reshaped)).find("checkpoint"), std::string::npos);
   EXPECT_NE(resume_error(corrupt_path).find("corrupt"), std::string::npos);
 
   for (size_t size : {size_t{3}, size_t{20}, bytes.size() / 2, bytes.size() - 1}) {

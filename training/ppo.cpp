@@ -5,7 +5,9 @@
 // shuffled minibatches optimise the clipped surrogate, the value loss and the
 // entropy bonus with Adam (eps 1e-5) and global gradient clipping, optionally
 // stopping an update early on approx-KL (SB3's target_kl). Episode ends
-// by truncation bootstrap from the value of the final observation.
+// by truncation bootstrap from the value of the final observation
+// (training/gae.hpp). RL-Prim.Hist.'s policy sees its last K observations
+// (FrameStack); rl-prim-action-hist's its last K primitives (History).
 #include <chrono>
 #include <numeric>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "base/memory.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
+#include "training/gae.hpp"
 #include "training/torch_support.hpp"
 #include "training/trainer.hpp"
 
@@ -29,7 +32,8 @@ double seconds_since(Clock::time_point start) {
 // One rollout: T steps of N envs, flattened to T * N rows at update time.
 struct Rollout {
   std::vector<ObsTensors> obs;
-  std::vector<torch::Tensor> history, actions, log_probs, values, rewards, dones;
+  std::vector<torch::Tensor> history, actions, log_probs;
+  RolloutSteps steps;  // rewards, values, episode ends
   void clear() { *this = Rollout(); }
 };
 
@@ -43,14 +47,16 @@ class PpoTrainer : public Trainer {
   PpoTrainer(const TrainConfig& config, const CheckpointFile* resume)
       : config_(config),
         env_(vector_env_config(config)),
-        spec_(network_spec(env_.single_observation_space(), env_.single_action_space(),
-                           config.baseline == "rl-prim-hist" ? config.ppo.history : 0)),
+        spec_(network_spec(env_.single_observation_space(), env_.single_action_space(), config.ppo.frames,
+                           config.ppo.history)),
         stats_(config.num_envs) {
     const PpoConfig& p = config_.ppo;
     if (env_.single_action_space().kind != Space::Kind::discrete) {
       throw Error("ppo: needs the primitive (Discrete) action space, got " + env_.single_action_space().to_string());
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
+    if (p.frames < 1 || p.frames > 64) throw Error("ppo: frames must be 1..64, got " + std::to_string(p.frames));
+    if (p.history < 0 || p.history > 64) throw Error("ppo: history must be 0..64, got " + std::to_string(p.history));
     check_fits_in_memory(p.buffer * spec_.observation_bytes(),
                          "ppo.buffer = " + std::to_string(p.buffer) + ": a rollout of its observations");
     if (!(p.target_kl >= 0))
@@ -59,10 +65,13 @@ class PpoTrainer : public Trainer {
     net_ = ActorCritic(spec_);
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
     if (spec_.history > 0) history_.emplace(spec_.history, spec_.num_actions);
+    if (spec_.frames > 1) frames_.emplace(spec_.frames);
+    env_ids_.resize(config_.num_envs);
+    std::iota(env_ids_.begin(), env_ids_.end(), 0);
     steps_per_rollout_ = (p.buffer + config_.num_envs - 1) / config_.num_envs;
     if (resume) load(*resume);
     // A resumed run restarts its envs; seed + steps keeps it reproducible.
-    obs_ = obs_tensors(*env_.reset(config_.seed + static_cast<uint64_t>(steps_)).obs, spec_);
+    obs_ = observe(*env_.reset(config_.seed + static_cast<uint64_t>(steps_)).obs);
     if (!resume) net_->encoder->update_normalizers(obs_);
   }
 
@@ -123,16 +132,21 @@ class PpoTrainer : public Trainer {
     return history_ ? history_->rows(env_ids) : torch::Tensor();
   }
 
+  // The envs' observations as the policy sees them: with frames, stacked
+  // onto each env's earlier ones.
+  ObsTensors observe(const ArrayDict& obs) {
+    ObsTensors now = obs_tensors(obs, spec_);
+    return frames_ ? frames_->push(env_ids_, now) : now;
+  }
+
   // Runs the policy for steps_per_rollout_ vector steps, filling rollout_.
   void collect() {
     torch::NoGradGuard no_grad;
     rollout_.clear();
     const int n = config_.num_envs;
-    std::vector<int> ids(n);
-    std::iota(ids.begin(), ids.end(), 0);
     std::vector<float> action_values(n);
     for (int t = 0; t < steps_per_rollout_; ++t) {
-      const torch::Tensor history = history_rows(ids);
+      const torch::Tensor history = history_rows(env_ids_);
       const ActorCriticOutput out = net_->forward(obs_, history);
       const torch::Tensor log_probs = torch::log_softmax(out.logits, 1);
       const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1, false, generator_).squeeze(1);
@@ -140,34 +154,39 @@ class PpoTrainer : public Trainer {
       rollout_.history.push_back(history);
       rollout_.actions.push_back(actions);
       rollout_.log_probs.push_back(log_probs.gather(1, actions.unsqueeze(1)).squeeze(1));
-      rollout_.values.push_back(out.value);
+      rollout_.steps.values.push_back(out.value);
 
       for (int i = 0; i < n; ++i) action_values[i] = static_cast<float>(actions[i].item<int64_t>());
       const Batch batch = env_.step(action_values);
-      // Rows are in env order; an ended row's history is cleared below, after
-      // its bootstrap value has seen it.
+      // Rows are in env order; an ended row's memories are cleared below,
+      // after its bootstrap value has seen them.
       if (history_) history_->push(batch.env_ids, actions, step_results(batch));
-      torch::Tensor rewards = torch::from_blob(const_cast<float*>(batch.rewards.data()), {n}).clone();
-      torch::Tensor dones = torch::zeros({n});
+      torch::Tensor terminated = torch::zeros({n}), truncated = torch::zeros({n}), final_values = torch::zeros({n});
       std::vector<int> ended;
       std::optional<ObsTensors> final_obs;
       for (int i = 0; i < n; ++i) {
         if (!batch.terminated[i] && !batch.truncated[i]) continue;
-        dones[i] = 1.0f;
         ended.push_back(batch.env_ids[i]);
-        // Cut off by the time limit, not ended by the task: bootstrap.
-        if (!batch.terminated[i]) {
-          if (!final_obs) final_obs = obs_tensors(*batch.final_obs, spec_);
-          const int id[] = {batch.env_ids[i]};
-          const ObsTensors last = final_obs->index(torch::tensor({static_cast<int64_t>(i)}));
-          rewards[i] += config_.ppo.gamma * net_->forward(last, history_rows(id)).value[0];
+        if (batch.terminated[i]) {
+          terminated[i] = 1.0f;
+          continue;
         }
+        // Cut off by the time limit, not ended by the task: bootstrapped.
+        truncated[i] = 1.0f;
+        if (!final_obs) final_obs = obs_tensors(*batch.final_obs, spec_);
+        const int id[] = {batch.env_ids[i]};
+        ObsTensors last = final_obs->index(torch::tensor({static_cast<int64_t>(i)}));
+        if (frames_) last = frames_->stacked(id, last);
+        final_values[i] = net_->forward(last, history_rows(id)).value[0];
       }
-      rollout_.rewards.push_back(rewards);
-      rollout_.dones.push_back(dones);
+      rollout_.steps.rewards.push_back(torch::from_blob(const_cast<float*>(batch.rewards.data()), {n}).clone());
+      rollout_.steps.terminated.push_back(terminated);
+      rollout_.steps.truncated.push_back(truncated);
+      rollout_.steps.final_values.push_back(final_values);
       stats_.record(batch);
       if (history_) history_->reset(ended);
-      obs_ = obs_tensors(*batch.obs, spec_);
+      if (frames_) frames_->reset(ended);
+      obs_ = observe(*batch.obs);
       steps_ += n;
     }
   }
@@ -176,31 +195,19 @@ class PpoTrainer : public Trainer {
   // the rollout's observations (constant while one rollout is acted and learned).
   UpdateStats update() {
     const PpoConfig& p = config_.ppo;
-    const int64_t steps = steps_per_rollout_;
-    torch::Tensor advantages = torch::zeros({steps, config_.num_envs});
-    {
+    const torch::Tensor next_value = [&] {
       torch::NoGradGuard no_grad;
-      std::vector<int> ids(config_.num_envs);
-      std::iota(ids.begin(), ids.end(), 0);
-      torch::Tensor next_value = net_->forward(obs_, history_rows(ids)).value;
-      torch::Tensor next_advantage = torch::zeros({config_.num_envs});
-      for (int64_t t = steps - 1; t >= 0; --t) {
-        const torch::Tensor live = 1.0 - rollout_.dones[t];
-        const torch::Tensor delta = rollout_.rewards[t] + p.gamma * next_value * live - rollout_.values[t];
-        next_advantage = delta + p.gamma * p.gae_lambda * live * next_advantage;
-        advantages[t] = next_advantage;
-        next_value = rollout_.values[t];
-      }
-    }
+      return net_->forward(obs_, history_rows(env_ids_)).value;
+    }();
+    const Advantages estimate = estimate_advantages(rollout_.steps, next_value, p.gamma, p.gae_lambda);
     // Flatten (T, N) to rows.
     const torch::Tensor rgb = spec_.has_rgb() ? cat_field(&ObsTensors::rgb) : torch::Tensor();
     const ObsTensors obs{rgb, cat_field(&ObsTensors::state)};
     const torch::Tensor history = history_ ? torch::cat(rollout_.history) : torch::Tensor();
     const torch::Tensor actions = torch::cat(rollout_.actions);
     const torch::Tensor old_log_probs = torch::cat(rollout_.log_probs);
-    const torch::Tensor values = torch::cat(rollout_.values);
-    advantages = advantages.reshape({-1});
-    const torch::Tensor returns = advantages + values;
+    const torch::Tensor advantages = estimate.advantages.reshape({-1});
+    const torch::Tensor returns = estimate.returns.reshape({-1});
     const int64_t rows = actions.size(0);
 
     UpdateStats s;
@@ -267,6 +274,8 @@ class PpoTrainer : public Trainer {
   ActorCritic net_{nullptr};
   std::optional<torch::optim::Adam> optimizer_;
   std::optional<History> history_;
+  std::optional<FrameStack> frames_;
+  std::vector<int> env_ids_;  // 0..num_envs - 1: a step's rows are in env order
   EpisodeStats stats_;
   Rollout rollout_;
   ObsTensors obs_;  // the envs' current observations

@@ -95,7 +95,7 @@ class SacTrainer : public Trainer {
   SacTrainer(const TrainConfig& config, const CheckpointFile* resume)
       : config_(config),
         env_(vector_env_config(config)),
-        spec_(with_hidden(network_spec(env_.single_observation_space(), env_.single_action_space(), 0),
+        spec_(with_hidden(network_spec(env_.single_observation_space(), env_.single_action_space(), 1, 0),
                           config.sac.hidden)),
         stats_(config.num_envs),
         replay_(checked_capacity(spec_, config.sac.buffer)) {

@@ -73,6 +73,8 @@ nlohmann::json to_json(const EnvConfig& c) {
                       {"primitive_mode", to_string(c.primitive_mode)},
                       {"policy_failure_repeats", c.policy_failure_repeats},
                       {"policy_failure_rule", c.policy_failure_rule},
+                      {"instances", c.instances},
+                      {"instance", c.instance},
                       {"reward", c.reward},
                       {"reach_target", c.reach_target}};
   j.update(sensors);
@@ -100,6 +102,9 @@ EnvConfig env_config_from_json(const nlohmann::json& j) {
     c.policy_failure_repeats = j.at("policy_failure_repeats").get<int>();
     // Runs written before the rule was a setting ran chore's.
     c.policy_failure_rule = j.value("policy_failure_rule", std::string("precondition"));
+    // ...and drew an instance at every reset.
+    c.instances = j.value("instances", std::string("resample"));
+    c.instance = j.value("instance", uint64_t{0});
     c.reward = j.at("reward").get<std::string>();
     c.reach_target = j.at("reach_target").get<std::array<double, 3>>();
     sensor_fields(c, [&](const char* group, const char* name, auto& value) {
@@ -132,6 +137,7 @@ nlohmann::json to_json(const TrainConfig& c) {
             {"entropy_coef", p.entropy_coef},
             {"value_coef", p.value_coef},
             {"max_grad_norm", p.max_grad_norm},
+            {"frames", p.frames},
             {"history", p.history},
             {"normalize_advantage", p.normalize_advantage},
             {"target_kl", p.target_kl}}},
@@ -184,6 +190,7 @@ void validate(const TrainConfig& c) {
   within("ppo.entropy_coef", p.entropy_coef, 0.0, 1e3);
   within("ppo.value_coef", p.value_coef, 0.0, 1e3);
   within("ppo.max_grad_norm", p.max_grad_norm, 1e-9, 1e6);
+  within("ppo.frames", p.frames, 1, 64);
   within("ppo.history", p.history, 0, 64);
   within("ppo.target_kl", p.target_kl, 0.0, 1e3);
   within("sac.lr", s.lr, 1e-12, 1.0);
@@ -213,9 +220,9 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
     c.ppo = {p.at("lr").get<double>(), p.at("buffer").get<int>(), p.at("batch").get<int>(), p.at("epochs").get<int>(),
              p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(), p.at("clip").get<double>(),
              p.at("entropy_coef").get<double>(), p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
-             p.at("history").get<int>(),
-             // Runs saved before these fields existed normalised and never stopped early.
-             p.value("normalize_advantage", true), p.value("target_kl", 0.0)};
+             // Runs saved before these fields existed saw one frame, normalised and never stopped early.
+             p.value("frames", 1), p.at("history").get<int>(), p.value("normalize_advantage", true),
+             p.value("target_kl", 0.0)};
     const nlohmann::json& s = j.at("sac");
     c.sac = {s.at("lr").get<double>(),
              s.at("buffer").get<int>(),

@@ -5,7 +5,9 @@
 //
 //   rl-vmc        SAC on the 14-d low-level control, RGB + proprio + is-grasping
 //   rl-prim       PPO over the primitive action space, RGB + is-grasping
-//   rl-prim-hist  rl-prim whose policy also sees the last K steps
+//   rl-prim-hist  rl-prim whose policy sees its last K observations
+//   rl-prim-action-hist  rl-prim whose policy also sees its last K
+//                 primitives and how each ended (chore's variant)
 //
 //   auto trainer = chore::make_trainer(config);
 //   trainer->train(30000, [](const chore::MetricsRow& row) { ... });
@@ -36,7 +38,11 @@ struct PpoConfig {
   int epochs = 10;
   double gamma = 0.99, gae_lambda = 0.99, clip = 0.2;
   double entropy_coef = 0.0, value_coef = 0.5, max_grad_norm = 0.5;
-  int history = 4;  // rl-prim-hist: past steps the policy sees (K)
+  // Memory (baselines.cpp sets it): the observations the policy sees, this
+  // step's and frames - 1 before it (RL-Prim.Hist.: K = 4); and the past
+  // primitives with how each ended (rl-prim-action-hist: K = 4).
+  int frames = 1;
+  int history = 0;
   // Advantages scaled to mean 0, std 1 per minibatch (SB3's and CleanRL's default).
   bool normalize_advantage = true;
   // SB3's target_kl: an update stops before a minibatch whose approx-KL from
@@ -57,7 +63,7 @@ struct SacConfig {
 };
 
 struct TrainConfig {
-  std::string baseline = "rl-prim";  // rl-vmc, rl-prim or rl-prim-hist
+  std::string baseline = "rl-prim";  // baselines(): rl-vmc, rl-prim, rl-prim-hist, rl-prim-action-hist
   EnvConfig env;
   int num_envs = 1;
   int threads = 1;  // VectorEnv workers (at most num_envs) and torch's intra-op threads
@@ -160,7 +166,7 @@ struct Algorithm {
 struct Baseline {
   std::string name;                    // "rl-prim-hist"
   std::string algorithm;               // "ppo"
-  void (*setup)(TrainConfig& config);  // observations, action space, primitive mode, history
+  void (*setup)(TrainConfig& config);  // observations, action space, primitive mode, memory
 };
 const std::vector<Algorithm>& algorithms();
 const std::vector<Baseline>& baselines();

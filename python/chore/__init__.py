@@ -24,7 +24,8 @@ from ._chore import VectorEnv as _VectorEnv
 __all__ = ["Env", "VectorEnv", "Error", "mujoco_version", "make", "spaces", "evaluate", "format_evaluation", "load_policy"]
 
 _CONFIG_KEYS = ("width", "height", "observations", "max_episode_steps", "reward", "reachable_instances",
-                "robot", "object_states", "cloth")
+                "policy_failure_rule", "policy_failure_repeats", "instances", "instance", "robot", "object_states",
+                "cloth")
 
 
 def _config(task, scene, action_space, mode, observations, options):
@@ -217,7 +218,9 @@ def make(task=None, *, num_envs=None, **kwargs):
     observations, action_space ("low_level" | "primitives"), mode ("physical"
     | "symbolic"), autoreset_mode ("next_step" | "same_step"), seed, copy, and
     the env options width, height, max_episode_steps, reward,
-    reachable_instances, robot, object_states, cloth."""
+    reachable_instances, policy_failure_rule ("none" | "precondition" |
+    "paper"), policy_failure_repeats, instances ("resample" | "fixed"),
+    instance, robot, object_states, cloth."""
     if num_envs is None:
         for vector_only in ("num_threads", "batch_size", "autoreset_mode", "seed"):
             if vector_only in kwargs:

@@ -151,6 +151,27 @@ def test_a_task_is_an_activity_or_a_scene():
         chore.make("kitchen_of_nowhere")
 
 
+def test_the_baselines_protocol_options_reach_the_env():
+    """A fixed instance is the same at every reset; the policy-failure rule is off by default."""
+    with chore.make(ACTIVITY, observations=["proprio"], instances="fixed") as env:
+        first = np.array(env.reset(seed=3)[0]["proprio"])
+        assert np.array_equal(np.array(env.reset(seed=4)[0]["proprio"]), first)
+    with chore.make(ACTIVITY, observations=["proprio"]) as env:
+        assert not np.array_equal(np.array(env.reset(seed=4)[0]["proprio"]), first)
+    with chore.make(ACTIVITY, action_space="primitives", mode="symbolic", observations=["is_grasping"],
+                    max_episode_steps=5) as env:
+        env.reset(seed=0)
+        place = next(i for i, a in enumerate(env.primitive_actions) if a.startswith("place("))
+        for _ in range(5):  # placing with an empty hand: invalid, again and again
+            _, _, terminated, truncated, info = env.step(np.array([place]))
+            assert not terminated and not info["policy_failure"]
+        assert truncated
+    with pytest.raises(chore.Error, match="unknown instances 'cached'"):
+        chore.make(ACTIVITY, instances="cached")
+    with pytest.raises(chore.Error, match="unknown policy_failure_rule 'strict'"):
+        chore.make(ACTIVITY, action_space="primitives", policy_failure_rule="strict")
+
+
 def test_bad_configs_raise_chore_error_with_chores_message():
     with pytest.raises(chore.Error, match="unknown option"):
         chore.make(ACTIVITY, colour="red")
