@@ -186,6 +186,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     for (const std::string& m : o.methods) {
       const auto& done = by[{a, m}];
       std::vector<double> q0, s0, qg, sg, q0_greedy, q0_first10;
+      int64_t primitives = 0;  // chosen in all evaluation episodes (env steps)
       nlohmann::json failed = nlohmann::json::object(), ended = nlohmann::json::object();
       for (const nlohmann::json& c : done) {
         q0.push_back(c["seed0"]["q"]["mean"]);
@@ -196,6 +197,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
         if (c.contains("seed0_first10")) q0_first10.push_back(c["seed0_first10"]["q"]);
         for (const char* key : kEvaluations) {
           if (!c.contains(key)) continue;
+          primitives += c[key].value("env_steps", 0);
           for (const auto& [k, v] : c[key]["failed_primitives"].items()) failed[k] = failed.value(k, 0) + v.get<int>();
           for (const auto& [k, v] : c[key]["episodes_ended_by"].items()) ended[k] = ended.value(k, 0) + v.get<int>();
         }
@@ -214,7 +216,8 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                       {"q_generalisation_intervals", intervals(qg, a + "/" + m + "/q_generalisation")},
                       {"paper_q", {{"mean", paper.mean}, {"std", paper.std}}},
                       {"failed_primitives", failed},
-                      {"episodes_ended_by", ended}});
+                      {"episodes_ended_by", ended},
+                      {"primitives", primitives}});
     }
   }
 
@@ -281,6 +284,20 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     }
   }
 
+  // The scripted expert's evaluation per activity, where reproduce ran it.
+  nlohmann::json expert = nlohmann::json::object();
+  for (const std::string& a : o.activities) {
+    const fs::path file = out / "expert" / (a + ".json");
+    if (!fs::exists(file)) continue;
+    nlohmann::json e = read_json_file(file.string()).at(0);
+    expert[a] = {{"q", e.at("q").at("mean")},
+                 {"success_rate", e.at("success_rate").at("mean")},
+                 {"primitives", e.at("env_steps")},
+                 {"episodes", e.at("per_episode").size()},
+                 {"failed_primitives", e.at("failed_primitives")},
+                 {"episodes_ended_by", e.at("episodes_ended_by")}};
+  }
+
   nlohmann::json seeds_by_method = nlohmann::json::object();
   for (const std::string& m : o.methods) seeds_by_method[m] = seeds_of(o, m);
   nlohmann::json result = {{"protocol",
@@ -305,6 +322,7 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                            {"curves", curves},
                            {"orderings", orderings},
                            {"profiles", profiles},
+                           {"expert", expert},
                            {"train_wall_s", train_s},
                            {"eval_wall_s", eval_s}};
   return result;
@@ -475,16 +493,32 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
   md << "\n";
 
   md << "## How episodes ended and which primitives failed (all evaluation episodes, summed over runs)\n\n"
+     << "Failures as counts and, in brackets, per 100 primitives chosen; the scripted expert's on the "
+        "episodes of evaluation seed 0 (the same instances) where `scripts/reproduce` ran it.\n\n"
      << "| Activity | Method | success | policy failure (" << policy_failure_words(r["protocol"]["policy_failure"])
-     << ") | time limit | motion planning | grasp | place | precondition |\n|---|---|---|---|---|---|---|---|---|\n";
-  for (const nlohmann::json& row : r["rows"]) {
-    if (row["runs"].get<int>() == 0) continue;
-    const nlohmann::json& e = row["episodes_ended_by"];
-    const nlohmann::json& f = row["failed_primitives"];
-    md << "| " << activity_title(row["activity"]) << " | " << method_title(row["method"]) << " | "
-       << e.value("success", 0) << " | " << e.value("policy_failure", 0) << " | " << e.value("time_limit", 0) << " | "
-       << f.value("motion_planning_failure", 0) << " | " << f.value("grasp_failure", 0) << " | "
-       << f.value("place_failure", 0) << " | " << f.value("precondition_failure", 0) << " |\n";
+     << ") | time limit | primitives | motion planning | grasp | place | precondition |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  const auto failure_row = [&](const std::string& activity, const std::string& who, const nlohmann::json& e,
+                               const nlohmann::json& f, int64_t primitives) {
+    const auto cell = [&](const char* kind) {
+      const int64_t n = f.value(kind, int64_t{0});
+      return std::to_string(n) + (primitives > 0 ? " (" + fixed(100.0 * n / primitives) + ")" : "");
+    };
+    md << "| " << activity_title(activity) << " | " << who << " | " << e.value("success", 0) << " | "
+       << e.value("policy_failure", 0) << " | " << e.value("time_limit", 0) << " | " << primitives << " | "
+       << cell("motion_planning_failure") << " | " << cell("grasp_failure") << " | " << cell("place_failure")
+       << " | " << cell("precondition_failure") << " |\n";
+  };
+  for (const std::string& a : o.activities) {
+    for (const nlohmann::json& row : r["rows"]) {
+      if (row["activity"] != a || row["runs"].get<int>() == 0) continue;
+      failure_row(a, method_title(row["method"]), row["episodes_ended_by"], row["failed_primitives"],
+                  row.value("primitives", int64_t{0}));
+    }
+    if (r.contains("expert") && r["expert"].contains(a)) {
+      const nlohmann::json& x = r["expert"][a];
+      failure_row(a, "scripted expert", x["episodes_ended_by"], x["failed_primitives"], x["primitives"].get<int64_t>());
+    }
   }
   md << "\nRL-VMC acts in the low-level action space: it has no primitives to fail.\n\n";
 

@@ -423,6 +423,35 @@ nlohmann::json make_videos(const nlohmann::json& runs, const ReproduceOptions& o
   return videos;
 }
 
+// The scripted expert on the episodes the policies are evaluated on (seed 0,
+// the runs' instances), once per activity: how often its primitives fail,
+// beside the policies' (baselines_report reads OUT/expert/ACTIVITY.json).
+void run_expert(const ReproduceOptions& o, const EnvConfig& env, std::ostream& log) {
+  for (const std::string& a : o.activities) {
+    const fs::path file = fs::path(o.out) / "expert" / (a + ".json");
+    if (fs::exists(file)) {
+      try {
+        const nlohmann::json e = read_json_file(file.string()).at(0);
+        if (e.at("mode") == o.mode && e.at("episodes_per_seed") == o.eval_episodes) continue;
+      } catch (const std::exception&) {
+      }  // another table's or unreadable: run it again
+    }
+    fs::create_directories(file.parent_path());
+    log << "reproduce: the scripted expert on " << a << std::endl;
+    const fs::path part = file.string() + ".part", elog = file.string() + ".log";
+    const pid_t pid = spawn({"eval", "--expert", "--activity", a, "--mode", o.mode, "--instances", env.instances,
+                             "--seeds", "0-0", "--episodes", std::to_string(o.eval_episodes), "--threads", "1", "--json"},
+                            part, elog);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+      fs::rename(part, file);
+    } else {
+      log << "reproduce: the scripted expert failed on " << a << " (see " << elog.string() << ")\n";
+    }
+  }
+}
+
 }  // namespace
 
 nlohmann::json reproduce(const ReproduceOptions& o, std::ostream& log) {
@@ -430,12 +459,15 @@ nlohmann::json reproduce(const ReproduceOptions& o, std::ostream& log) {
   const auto start = Clock::now();
   std::vector<Cell> cells = cells_of(o);
   nlohmann::json failures = nlohmann::json::array();
-  if (!o.report_only) failures = run_cells(cells, o, log);
+  // The rule and instances as the runs' own config builder sets them
+  // (defaults, then --set): the same for every cell of a table.
+  const EnvConfig env = new_run_config(train_options(cells.front(), o)).env;
+  if (!o.report_only) {
+    failures = run_cells(cells, o, log);
+    run_expert(o, env, log);
+  }
   for (Cell& c : cells) c.done = cell_done(c, o);
   nlohmann::json result = baselines_report(cells, o, log);
-  // The rule as the runs' own config builder sets it (defaults, then --set):
-  // the same for every cell of a table, the failure table's header names it.
-  const EnvConfig env = new_run_config(train_options(cells.front(), o)).env;
   result["protocol"]["policy_failure"] = {{"rule", env.policy_failure_rule}, {"repeats", env.policy_failure_repeats}};
   result["failures"] = failures;
   result["videos"] = make_videos(result["runs"], o, log);

@@ -90,16 +90,22 @@ class ChoreEncoder(BaseFeaturesExtractor):
 
 
 class Metrics(BaseCallback):
-    """metrics.csv as chore train writes its first columns, a row per rollout."""
+    """metrics.csv as chore train writes it, a row per rollout and its
+    update: the first columns (episode means over the last 20), then the
+    update's entropy, approx-KL and clip fraction as SB3 logged them (chore's
+    names). SB3 logs an update after the next rollout has begun, so a row is
+    written then (the last one when training ends)."""
 
     def __init__(self, path):
         super().__init__()
         self.file = open(path, "w")
-        self.file.write("env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length\n")
+        self.file.write("env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length,"
+                        "entropy,approx_kl,clip_fraction\n")
         self.recent = collections.deque(maxlen=WINDOW)
         self.episodes = 0
         self.ret = 0.0
         self.start = time.monotonic()
+        self.pending = None  # the last rollout's columns, waiting for its update's
 
     def _on_step(self):
         self.ret += float(self.locals["rewards"][0])
@@ -112,9 +118,24 @@ class Metrics(BaseCallback):
 
     def _on_rollout_end(self):
         r = np.array(self.recent) if self.recent else np.zeros((1, 4))
-        self.file.write(f"{self.num_timesteps},{time.monotonic() - self.start:.3f},{self.episodes},"
-                        f"{r[:, 3].mean():.6g},{r[:, 1].mean():.6g},{r[:, 0].mean():.6g},{r[:, 2].mean():.6g}\n")
+        self.pending = (f"{self.num_timesteps},{time.monotonic() - self.start:.3f},{self.episodes},"
+                        f"{r[:, 3].mean():.6g},{r[:, 1].mean():.6g},{r[:, 0].mean():.6g},{r[:, 2].mean():.6g}")
+
+    def _write_pending(self):
+        if self.pending is None:
+            return
+        logged = self.model.logger.name_to_value
+        self.file.write(f"{self.pending},{-logged.get('train/entropy_loss', float('nan')):.6g},"
+                        f"{logged.get('train/approx_kl', float('nan')):.6g},"
+                        f"{logged.get('train/clip_fraction', float('nan')):.6g}\n")
         self.file.flush()
+        self.pending = None
+
+    def _on_rollout_start(self):
+        self._write_pending()
+
+    def _on_training_end(self):
+        self._write_pending()
 
 
 def evaluate(model, activity, mode, episodes, deterministic):

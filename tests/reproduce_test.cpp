@@ -102,6 +102,11 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
     EXPECT_DOUBLE_EQ(table["runs"][s]["q_seed0_first10"].get<double>(), q[s]);
   }
   EXPECT_NE(md.find("## Success score Q at evaluation seed 0, acting greedily"), std::string::npos) << md;
+  // The scripted expert on the same episodes, beside the policies' failures.
+  const nlohmann::json& expert = table["expert"]["collect_trash"];
+  EXPECT_EQ(expert["episodes"], 2);
+  EXPECT_GT(expert["primitives"].get<int>(), 0);
+  EXPECT_NE(md.find("| CollectTrash | scripted expert |"), std::string::npos) << md;
   EXPECT_GT(fs::file_size(out / "curves" / "collect_trash.png"), 1000u);
   // Interval estimates over the runs: the statistic itself, and a bootstrap
   // interval around it within the runs' range; the performance profile drawn.
