@@ -284,6 +284,36 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     }
   }
 
+  // Against another table (a protocol study's reference): per activity and
+  // method, P(a run here > a run there) of Q at evaluation seed 0.
+  nlohmann::json comparisons = nlohmann::json::array();
+  if (!o.compare_with.empty()) {
+    const fs::path other_file = fs::path(o.compare_with) / "baselines.json";
+    const nlohmann::json other = read_json_file(other_file.string());
+    const JsonReader reader(other, other_file.string());
+    if (!other.contains("runs") || !other["runs"].is_array()) reader.fail("no runs");
+    for (const std::string& a : o.activities) {
+      for (const std::string& m : o.methods) {
+        const auto mapped = o.compare_methods.find(m);
+        const std::string theirs = mapped == o.compare_methods.end() ? m : mapped->second;
+        std::vector<double> y;
+        for (const nlohmann::json& run : other["runs"]) {
+          if (run.value("activity", "") == a && run.value("method", "") == theirs) y.push_back(run.at("q_seed0"));
+        }
+        const std::vector<double> x = q_runs(a, m);
+        if (x.empty() || y.empty()) continue;
+        const Interval p = probability_of_improvement(x, y, stream(a + "/" + m + ">" + o.compare_with + "/" + theirs));
+        comparisons.push_back({{"activity", a},
+                               {"method", m},
+                               {"other_method", theirs},
+                               {"mean", mean(x)},
+                               {"other_mean", mean(y)},
+                               {"probability_of_improvement", to_json(p)},
+                               {"verdict", improvement_verdict(p, std::min(x.size(), y.size()))}});
+      }
+    }
+  }
+
   // The scripted expert's evaluation per activity, where reproduce ran it.
   nlohmann::json expert = nlohmann::json::object();
   for (const std::string& a : o.activities) {
@@ -323,6 +353,8 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
                            {"orderings", orderings},
                            {"profiles", profiles},
                            {"expert", expert},
+                           {"compared_with", o.compare_with.empty() ? nlohmann::json() : nlohmann::json(o.compare_with)},
+                           {"comparisons", comparisons},
                            {"train_wall_s", train_s},
                            {"eval_wall_s", eval_s}};
   return result;
@@ -481,6 +513,19 @@ std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& 
     for (const nlohmann::json& c : r["orderings"]) {
       md << "| " << activity_title(c["activity"]) << " | " << method_title(c["better"]) << " > "
          << method_title(c["worse"]) << " | " << bracket(c["probability_of_improvement"]) << " | "
+         << c["verdict"].get<std::string>() << " |\n";
+    }
+  }
+  if (!r["comparisons"].empty()) {
+    md << "\nAgainst the table in `" << r["compared_with"].get<std::string>()
+       << "`: the probability that a run here scores a higher Q at evaluation seed 0 than a run there (ties one "
+          "half), its 95% bootstrap interval and the verdict, as above.\n\n"
+          "| Activity | Method here | Mean Q here | Method there | Mean Q there | P(here > there) | Verdict |\n"
+          "|---|---|---|---|---|---|---|\n";
+    for (const nlohmann::json& c : r["comparisons"]) {
+      md << "| " << activity_title(c["activity"]) << " | " << method_title(c["method"]) << " | "
+         << fixed(c["mean"].get<double>()) << " | " << method_title(c["other_method"]) << " | "
+         << fixed(c["other_mean"].get<double>()) << " | " << bracket(c["probability_of_improvement"]) << " | "
          << c["verdict"].get<std::string>() << " |\n";
     }
   }

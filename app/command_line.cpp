@@ -87,7 +87,7 @@ struct CommandLineParser::Impl {
   struct Values {
     CommandLine c;
     std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119";
-    std::vector<std::string> reproduce_seeds = {"0", "1", "2"}, reproduce_seeds_for;
+    std::vector<std::string> reproduce_seeds = {"0", "1", "2"}, reproduce_seeds_for, compare_methods;
     int64_t train_steps = 0;
     std::string model_cache = default_model_cache_dir();
   } values;
@@ -318,6 +318,11 @@ CommandLineParser::Impl::Impl() {
   reproduce_cmd->add_flag("!--no-greedy-eval", c.reproduce.greedy_eval,
                           "Evaluate at seed 0 by sampling only (tables run before issue 53)");
   reproduce_cmd->add_flag("--report-only", c.reproduce.report_only, "Train and evaluate nothing: report the runs done");
+  reproduce_cmd->add_option("--compare-with", c.reproduce.compare_with,
+                            "Another table's OUT: per cell, P(a run here scores above a run there)")
+      ->check(CLI::ExistingDirectory);
+  reproduce_cmd->add_option("--compare-method", values.compare_methods,
+                            "METHOD=OTHER: compare this table's METHOD with OTHER of --compare-with's table");
   reproduce_cmd->add_option(
       "--set", c.reproduce.settings,
       "KEY=VALUE for every new run's chore train --set (ppo.* for the PPO methods, sac.* for SAC)");
@@ -388,6 +393,16 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
         const std::string method = text.substr(0, eq);
         if (c.reproduce.seeds_for.contains(method)) throw Error("--seeds-for " + method + ": given twice");
         c.reproduce.seeds_for[method] = table_seeds({text.substr(eq + 1)}, "--seeds-for " + method);
+      }
+      for (const std::string& text : values.compare_methods) {
+        const size_t eq = text.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+          throw Error("--compare-method '" + text + "': expected METHOD=OTHER, e.g. rl-prim-action-hist=rl-prim-hist");
+        }
+        c.reproduce.compare_methods[text.substr(0, eq)] = text.substr(eq + 1);
+      }
+      if (!c.reproduce.compare_methods.empty() && c.reproduce.compare_with.empty()) {
+        throw Error("--compare-method needs --compare-with");
       }
       std::tie(c.reproduce.generalisation_first, c.reproduce.generalisation_last) =
           seed_range(values.generalisation_seeds, "--generalisation-seeds");

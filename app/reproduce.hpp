@@ -49,6 +49,12 @@ struct ReproduceOptions {
   // methods and sac.* only SAC's, so a method's runs are shared between tables
   // whose settings differ only for the other algorithm.
   std::vector<std::string> settings;
+  // Another table's OUT to set this one against (a protocol study's variant
+  // against its reference): per activity and method, P(a run here scores
+  // above a run there) with its interval and verdict. A method is compared
+  // with its namesake there, or with the one `compare_methods` maps it to.
+  std::string compare_with;
+  std::map<std::string, std::string> compare_methods;
   std::string command_line;  // as typed, for the report
 };
 

@@ -107,6 +107,20 @@ TEST(Reproduce, ReportsTheRunsOwnEvaluationsAndResumesWhatIsMissing) {
   EXPECT_EQ(expert["episodes"], 2);
   EXPECT_GT(expert["primitives"].get<int>(), 0);
   EXPECT_NE(md.find("| CollectTrash | scripted expert |"), std::string::npos) << md;
+  // Set against itself (as a study's variant against its reference): a run
+  // here beats a run there half the time, and the runs cannot tell.
+  const fs::path compared = out.string() + "_compared";
+  fs::remove_all(compared);
+  fs::copy(out, compared, fs::copy_options::recursive);
+  ASSERT_EQ(reproduce_small_table(compared, log, false, " --report-only --compare-with " + out.string()), 0) << log;
+  const nlohmann::json compared_table = read_json(compared / "baselines.json");
+  const nlohmann::json& against = compared_table["comparisons"];
+  ASSERT_EQ(against.size(), 1u) << against;
+  EXPECT_DOUBLE_EQ(against[0]["probability_of_improvement"]["point"].get<double>(), 0.5);
+  EXPECT_EQ(against[0]["other_method"], "rl-prim");
+  EXPECT_NE(read_text(compared / "baselines.md").find("| CollectTrash | RL-Prim. |"), std::string::npos);
+  EXPECT_EQ(reproduce_small_table(compared, log, false, " --report-only --compare-method rl-prim=rl-prim-hist"), 2);
+  EXPECT_NE(log.find("--compare-method needs --compare-with"), std::string::npos) << log;
   EXPECT_GT(fs::file_size(out / "curves" / "collect_trash.png"), 1000u);
   // Interval estimates over the runs: the statistic itself, and a bootstrap
   // interval around it within the runs' range; the performance profile drawn.
