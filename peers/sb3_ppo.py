@@ -171,13 +171,16 @@ def main():
     parser.add_argument("--steps", type=int, default=30000)
     parser.add_argument("--mode", choices=["symbolic", "physical"], default="symbolic")
     parser.add_argument("--eval-episodes", type=int, default=100)
+    # SB3's value loss is the mean squared error, chore's half of it (CleanRL's):
+    # 0.25 here weighs it as chore's 0.5 does.
+    parser.add_argument("--vf-coef", type=float, default=0.5)
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     torch.set_num_threads(1)
     env = PrimitiveEnv(args.activity, args.mode, args.seed)
     model = PPO("MultiInputPolicy", env, learning_rate=3e-4, n_steps=300, batch_size=64, n_epochs=10, gamma=0.99,
-                gae_lambda=0.99, clip_range=0.2, ent_coef=0.0, vf_coef=0.5, max_grad_norm=0.5,
+                gae_lambda=0.99, clip_range=0.2, ent_coef=0.0, vf_coef=args.vf_coef, max_grad_norm=0.5,
                 normalize_advantage=True, seed=args.seed, device="cpu",
                 policy_kwargs={"features_extractor_class": ChoreEncoder, "net_arch": {"pi": [], "vf": []},
                                "share_features_extractor": True})
@@ -186,6 +189,7 @@ def main():
     train_s = time.monotonic() - start
     model.save(os.path.join(args.out, "model.zip"))
     result = {"activity": args.activity, "seed": args.seed, "steps": args.steps, "mode": args.mode,
+              "vf_coef": args.vf_coef,
               "train_wall_s": train_s, "sb3": sys.modules["stable_baselines3"].__version__,
               "torch": torch.__version__,
               "seed0": evaluate(model, args.activity, args.mode, args.eval_episodes, deterministic=False),
