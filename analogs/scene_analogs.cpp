@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <regex>
 
 #include "base/csv_file.hpp"
 #include "base/error.hpp"
@@ -16,6 +15,15 @@
 
 namespace chore {
 namespace {
+
+// TYPE_INDEX: lowercase letters and underscores, '_', digits ("living_room_1").
+bool is_room_name(const std::string& room) {
+  const size_t underscore = room.rfind('_');
+  if (underscore == std::string::npos || underscore == 0 || underscore + 1 == room.size()) return false;
+  const auto in = [](char c, char low, char high) { return c >= low && c <= high; };
+  return std::all_of(room.begin(), room.begin() + underscore, [&](char c) { return in(c, 'a', 'z') || c == '_'; }) &&
+         std::all_of(room.begin() + underscore + 1, room.end(), [&](char c) { return in(c, '0', '9'); });
+}
 
 constexpr double kWall = 0.1;        // wall thickness (m)
 constexpr double kDoorway = 1.2;     // width of a doorway: the base passes with its margin
@@ -427,15 +435,13 @@ std::vector<SceneInventory> read_scene_inventories(const std::string& inventory_
   const JsonReader root(file, inventory_path);
   const JsonReader scenes = root.at("scenes");
   if (!file["scenes"].is_object()) scenes.fail("expected an object of scenes");
-  static const std::regex room_name(R"(([a-z_]+)_(\d+))");
   std::vector<SceneInventory> inventories;
   for (const auto& [scene, rooms] : file["scenes"].items()) {
     const JsonReader where = scenes.at(scene.c_str());
     if (!rooms.is_object()) where.fail("expected an object of rooms");
     SceneInventory inventory{scene, {}};
     for (const auto& [room, objects] : rooms.items()) {
-      std::smatch m;
-      if (!std::regex_match(room, m, room_name)) where.fail("room '" + room + "' is not TYPE_INDEX");
+      if (!is_room_name(room)) where.fail("room '" + room + "' is not TYPE_INDEX");
       if (!objects.is_object()) where.at(room.c_str()).fail("expected an object of counts");
       std::map<std::string, int> counts;
       for (const auto& [model, count] : objects.items()) {
@@ -445,11 +451,11 @@ std::vector<SceneInventory> read_scene_inventories(const std::string& inventory_
           where.at(room.c_str()).fail("category '" + category + "' is not in " + category_path);
         }
         if (!count.is_number_integer() || count.get<int64_t>() < 1 || count.get<int64_t>() > 100000) {
-          where.at(room.c_str()).fail("'" + model + "' = " + count.dump() + " is not a count");
+          where.at(room.c_str()).fail("'" + model + "' = " + json_text(count) + " is not a count");
         }
         counts[synset->second] += count.get<int>();
       }
-      inventory.rooms.push_back({room, m[1], {counts.begin(), counts.end()}});
+      inventory.rooms.push_back({room, room.substr(0, room.rfind('_')), {counts.begin(), counts.end()}});
     }
     inventories.push_back(std::move(inventory));
   }

@@ -29,7 +29,9 @@ namespace fs = std::filesystem;
 namespace chore {
 
 std::string failure_cause(const std::string& error) {
-  std::string cause = error;
+  // std::regex recurses along a match: a bound first (an error may quote a
+  // 40,000-character token), well past what a cause needs to be told apart.
+  std::string cause = error.substr(0, kMaxCauseChars);
   // A leading location ("path/file.bddl:12:3: ", "path/file.json: ") and the
   // activity and scene an Activity error starts with.
   cause = std::regex_replace(cause, std::regex(R"(^\S+\.(bddl|json):(\d+:\d+:)?\s*)"), "");

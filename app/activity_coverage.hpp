@@ -32,7 +32,9 @@ std::string format_coverage(const nlohmann::json& coverage);
 
 // An error message with its location, synsets, names with a '.' or '/', and
 // numbers blanked, so that failures of one cause read alike:
-// "f.bddl:3:4: unknown synset 'x.n.01'" -> "unknown synset '_'".
+// "f.bddl:3:4: unknown synset 'x.n.01'" -> "unknown synset '_'". Only the
+// message's first kMaxCauseChars characters are read.
+inline constexpr size_t kMaxCauseChars = 300;
 std::string failure_cause(const std::string& error);
 
 }  // namespace chore

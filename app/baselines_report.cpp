@@ -110,7 +110,7 @@ nlohmann::json read_cell_summary(const fs::path& path) {
       if (!value.is_object()) reader.fail("expected an object of counts");
       for (const auto& [name, count] : value.items()) {
         if (!count.is_number_integer() || count.get<int64_t>() < 0 || count.get<int64_t>() > 1000000000) {
-          reader.fail("'" + name + "' = " + count.dump() + " is not a count");
+          reader.fail("'" + name + "' = " + json_text(count) + " is not a count");
         }
       }
     }
@@ -291,14 +291,15 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
     const fs::path other_file = fs::path(o.compare_with) / "baselines.json";
     const nlohmann::json other = read_json_file(other_file.string());
     const JsonReader reader(other, other_file.string());
-    if (!other.contains("runs") || !other["runs"].is_array()) reader.fail("no runs");
+    if (!other.is_object() || !other.contains("runs") || !other["runs"].is_array()) reader.fail("no runs");
     for (const std::string& a : o.activities) {
       for (const std::string& m : o.methods) {
         const auto mapped = o.compare_methods.find(m);
         const std::string theirs = mapped == o.compare_methods.end() ? m : mapped->second;
         std::vector<double> y;
-        for (const nlohmann::json& run : other["runs"]) {
-          if (run.value("activity", "") == a && run.value("method", "") == theirs) y.push_back(run.at("q_seed0"));
+        for (size_t i = 0; i < other["runs"].size(); ++i) {
+          const JsonReader run = reader.at("runs").at(i);
+          if (run.string("activity", "") == a && run.string("method", "") == theirs) y.push_back(run.number("q_seed0"));
         }
         const std::vector<double> x = q_runs(a, m);
         if (x.empty() || y.empty()) continue;
@@ -319,13 +320,15 @@ nlohmann::json baselines_report(const std::vector<TableCell>& cells, const Repro
   for (const std::string& a : o.activities) {
     const fs::path file = out / "expert" / (a + ".json");
     if (!fs::exists(file)) continue;
-    nlohmann::json e = read_json_file(file.string()).at(0);
-    expert[a] = {{"q", e.at("q").at("mean")},
-                 {"success_rate", e.at("success_rate").at("mean")},
-                 {"primitives", e.at("env_steps")},
-                 {"episodes", e.at("per_episode").size()},
-                 {"failed_primitives", e.at("failed_primitives")},
-                 {"episodes_ended_by", e.at("episodes_ended_by")}};
+    expert[a] = reading_json(file.string(), [&]() -> nlohmann::json {
+      const nlohmann::json e = read_json_file(file.string()).at(0);
+      return {{"q", e.at("q").at("mean")},
+              {"success_rate", e.at("success_rate").at("mean")},
+              {"primitives", e.at("env_steps")},
+              {"episodes", e.at("per_episode").size()},
+              {"failed_primitives", e.at("failed_primitives")},
+              {"episodes_ended_by", e.at("episodes_ended_by")}};
+    });
   }
 
   nlohmann::json seeds_by_method = nlohmann::json::object();
@@ -387,6 +390,8 @@ std::string format_hours(double seconds) {
 }
 
 double last_metric(const fs::path& path, const std::string& column, double fallback) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return fallback;  // a FIFO would block
   std::ifstream in(path);
   std::string header, line, last;
   if (!std::getline(in, header)) return fallback;
@@ -400,7 +405,11 @@ double last_metric(const fs::path& path, const std::string& column, double fallb
   const auto it = std::find(names.begin(), names.end(), column);
   const size_t k = static_cast<size_t>(it - names.begin());
   if (it == names.end() || k >= values.size()) return fallback;
-  return std::stod(values[k]);
+  try {
+    return std::stod(values[k]);
+  } catch (const std::exception&) {  // a row cut short by a kill
+    return fallback;
+  }
 }
 
 std::string baselines_markdown(const nlohmann::json& r, const ReproduceOptions& o) {

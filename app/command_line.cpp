@@ -2,8 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <ostream>
-#include <regex>
+#include <string_view>
 #include <tuple>
 
 #include "app/cli_numbers.hpp"
@@ -20,16 +21,18 @@ constexpr uint64_t kMaxTableSeeds = 1000;
 
 // "A-B" (or "A") as a seed range, each seed in [0, kMaxSeed].
 std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::string& option) {
-  std::smatch m;
-  uint64_t first = 0, last = 0;
   const std::string expected = "': expected a seed or a range A-B of seeds in [0, " + std::to_string(kMaxSeed) + "]";
-  try {
-    if (!std::regex_match(text, m, std::regex(R"((\d{1,13})(?:-(\d{1,13}))?)"))) throw std::invalid_argument(text);
-    first = std::stoull(m[1]);
-    last = m[2].matched ? std::stoull(m[2]) : first;
-  } catch (const std::exception&) {
-    throw Error(option + " '" + text + expected);
-  }
+  // Up to 13 digits each: kMaxSeed has 13, and nothing longer reaches stoull.
+  const auto number = [&](std::string_view digits) {
+    if (digits.empty() || digits.size() > 13 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      throw Error(option + " '" + text + expected);
+    }
+    return std::stoull(std::string(digits));
+  };
+  const size_t dash = text.find('-');
+  const uint64_t first = number(std::string_view(text).substr(0, dash));
+  const uint64_t last = dash == std::string::npos ? first : number(std::string_view(text).substr(dash + 1));
   if (first > kMaxSeed || last > kMaxSeed) throw Error(option + " '" + text + expected);
   if (last < first) throw Error(option + " '" + text + "': B is below A");
   return {first, last};

@@ -12,6 +12,7 @@
 #include "app/activity_coverage.hpp"
 #include "app/command_line.hpp"
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "policies/evaluate.hpp"
 #include "training/checkpoint.hpp"
 
@@ -64,9 +65,48 @@ std::vector<chore::PolicySource> policy_sources(const chore::PolicyArgs& a, cons
   return sources;
 }
 
+// A stream's text, a line at a time, as valid UTF-8 (base/utf8.hpp): file
+// names, BDDL tokens and paths reach the output as the user wrote them.
+class ValidUtf8Lines : public std::streambuf {
+ public:
+  explicit ValidUtf8Lines(std::ostream& stream) : stream_(stream), target_(stream.rdbuf(this)) {}
+  ~ValidUtf8Lines() override {
+    sync();
+    stream_.rdbuf(target_);
+  }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    line_ += traits_type::to_char_type(c);
+    return c == '\n' && sync() != 0 ? traits_type::eof() : c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    for (std::streamsize i = 0; i < n; ++i) {
+      if (traits_type::eq_int_type(overflow(traits_type::to_int_type(s[i])), traits_type::eof())) return i;
+    }
+    return n;
+  }
+  int sync() override {
+    const std::string text = chore::valid_utf8(line_);
+    line_.clear();
+    if (target_->sputn(text.data(), static_cast<std::streamsize>(text.size())) !=
+        static_cast<std::streamsize>(text.size())) {
+      return -1;
+    }
+    return target_->pubsync();
+  }
+
+ private:
+  std::ostream& stream_;
+  std::streambuf* target_;
+  std::string line_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const ValidUtf8Lines out(std::cout), err(std::cerr);
   // glibc hands large freed blocks (image batches, tensors) back to the kernel
   // and maps them again at the next use; each new page is a fault, and faults
   // are dear on a VM: a StoreDecoration PPO minibatch update took 143-160 ms,
@@ -95,7 +135,7 @@ int main(int argc, char** argv) {
         break;
       case chore::Command::activity_coverage: {
         const nlohmann::json results = chore::activity_coverage(c.coverage, std::cerr);
-        std::cout << (c.json ? results.dump(2) + "\n" : chore::format_coverage(results));
+        std::cout << (c.json ? chore::json_text(results, 2) + "\n" : chore::format_coverage(results));
         break;
       }
       case chore::Command::scene_list:
@@ -103,12 +143,12 @@ int main(int argc, char** argv) {
         break;
       case chore::Command::scene_build: {
         const nlohmann::json result = chore::build_scene(c.scene_build);
-        std::cout << (c.json ? result.dump(2) + "\n" : chore::format_scene_build(result));
+        std::cout << (c.json ? chore::json_text(result, 2) + "\n" : chore::format_scene_build(result));
         break;
       }
       case chore::Command::expert: {
         const nlohmann::json results = chore::run_expert(c.expert, std::cerr);
-        std::cout << (c.json ? results.dump(2) + "\n" : chore::format_expert(results));
+        std::cout << (c.json ? chore::json_text(results, 2) + "\n" : chore::format_expert(results));
         break;
       }
       case chore::Command::eval: {
@@ -117,7 +157,7 @@ int main(int argc, char** argv) {
           results.push_back(chore::evaluate(source, c.eval, std::cerr));
           if (!c.json) std::cout << chore::format_evaluation(results.back());
         }
-        if (c.json) std::cout << results.dump(2) << std::endl;
+        if (c.json) std::cout << chore::json_text(results, 2) << std::endl;
         break;
       }
       case chore::Command::video: {
@@ -159,7 +199,7 @@ int main(int argc, char** argv) {
       }
       case chore::Command::bench: {
         const nlohmann::json results = chore::run_bench(c.bench, std::cerr);
-        std::cout << (c.json ? results.dump(2) + "\n" : chore::format_bench(results));
+        std::cout << (c.json ? chore::json_text(results, 2) + "\n" : chore::format_bench(results));
         break;
       }
     }

@@ -4,10 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <regex>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -15,6 +13,7 @@
 
 #include "app/png.hpp"
 #include "base/error.hpp"
+#include "base/input_file.hpp"
 
 namespace chore {
 namespace {
@@ -44,10 +43,12 @@ std::vector<std::string> split(const std::string& line) {
   return cells;
 }
 
+// A run's metrics.csv is a row per rollout: ~50 KB for the baselines' 30,000 steps.
+constexpr size_t kMaxMetricsBytes = 256u << 20;
+
 // The x and y columns of a metrics.csv; rows with an empty or nan y are skipped.
 Curve read_run(const std::string& path, const std::string& x, const std::string& y) {
-  std::ifstream in(path);
-  if (!in) throw Error("plot: cannot read '" + path + "'");
+  std::istringstream in(read_text_file(path, kMaxMetricsBytes, "a metrics.csv"));
   std::string line;
   if (!std::getline(in, line)) throw Error("plot: '" + path + "' is empty (expected a header row)");
   const std::vector<std::string> header = split(line);
@@ -93,8 +94,15 @@ std::pair<std::string, std::string> label_and_path(const std::string& run) {
   const std::filesystem::path path(run);
   std::string dir = path.parent_path().filename().string();
   if (dir.empty()) dir = path.stem().string();
-  std::smatch m;
-  if (std::regex_match(dir, m, std::regex(R"((.+?)[_-]?seed[_-]?\d+)"))) dir = m[1];
+  // NAME[_-]seed[_-]DIGITS -> NAME (rl-prim_seed3 -> rl-prim).
+  size_t end = dir.size();
+  while (end > 0 && dir[end - 1] >= '0' && dir[end - 1] <= '9') --end;
+  if (end < dir.size() && end > 0 && (dir[end - 1] == '_' || dir[end - 1] == '-')) --end;
+  if (end < dir.size() && end > 4 && dir.compare(end - 4, 4, "seed") == 0) {
+    end -= 4;
+    if (end > 1 && (dir[end - 1] == '_' || dir[end - 1] == '-')) --end;
+    dir.resize(end);
+  }
   return {dir, run};
 }
 

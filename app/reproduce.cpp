@@ -181,22 +181,28 @@ std::vector<CellEvaluation> cell_evaluations(const ReproduceOptions& o) {
 
 // The summary of one evaluation file: its totals, not its per-episode lists.
 nlohmann::json evaluation_summary(const fs::path& file) {
-  nlohmann::json summary = read_json_file(file.string()).at(0);
-  summary.erase("per_episode");
-  summary.erase("per_seed");
-  return summary;
+  return reading_json(file.string(), [&] {
+    nlohmann::json summary = read_json_file(file.string()).at(0);
+    summary.erase("per_episode");
+    summary.erase("per_seed");
+    return summary;
+  });
 }
 
 // Q and success over the first `n` episodes of an evaluation file.
 nlohmann::json first_episodes(const fs::path& file, size_t n) {
-  const nlohmann::json episodes = read_json_file(file.string()).at(0).at("per_episode");
-  double q = 0, success = 0;
-  const size_t count = std::min(n, episodes.size());
-  for (size_t i = 0; i < count; ++i) {
-    q += episodes[i].at("q").get<double>();
-    success += episodes[i].at("success").get<bool>();
-  }
-  return {{"episodes", count}, {"q", q / std::max<size_t>(count, 1)}, {"success_rate", success / std::max<size_t>(count, 1)}};
+  return reading_json(file.string(), [&]() -> nlohmann::json {
+    const nlohmann::json episodes = read_json_file(file.string()).at(0).at("per_episode");
+    double q = 0, success = 0;
+    const size_t count = std::min(n, episodes.size());
+    for (size_t i = 0; i < count; ++i) {
+      q += episodes[i].at("q").get<double>();
+      success += episodes[i].at("success").get<bool>();
+    }
+    return {{"episodes", count},
+            {"q", q / std::max<size_t>(count, 1)},
+            {"success_rate", success / std::max<size_t>(count, 1)}};
+  });
 }
 
 // A cell's work, one child after another: train (or resume), the
@@ -270,7 +276,7 @@ class CellRun {
     if (o_.greedy_eval) summary["seed0_greedy"] = evaluation_summary(cell_.dir / "eval_seed0_greedy.json");
     // The appendix's protocol as chore read it before issue 53: ten sampled episodes.
     summary["seed0_first10"] = first_episodes(cell_.dir / "eval_seed0.json", 10);
-    write_text(cell_.dir / "cell.json", summary.dump(2) + "\n");
+    write_text(cell_.dir / "cell.json", json_text(summary, 2) + "\n");
   }
 
   Cell cell_;
@@ -335,7 +341,12 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
     if (cell_done(c, o)) {
       log << "reproduce: " << c.label() << ": done already (" << (c.dir / "cell.json").string() << ")\n";
     } else {
-      if (fs::exists(c.dir / "checkpoint.pt")) check_resumable(c, o);
+      if (fs::exists(c.dir / "checkpoint.pt")) {
+        check_resumable(c, o);
+      } else if (fs::exists(c.dir) && !fs::exists(c.dir / kRunMarker) && !fs::is_empty(c.dir)) {
+        throw Error("reproduce: " + c.dir.string() + " holds files chore did not make (no " + kRunMarker +
+                    "); move them away or give another --out");
+      }
       todo.push_back(c);
     }
   }
@@ -348,6 +359,7 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
       auto run = std::make_unique<CellRun>(todo.front(), o);
       todo.pop_front();
       fs::create_directories(run->cell().dir);
+      mark_run_folder(run->cell().dir);
       std::string what;
       run->start_next(what);
       log << "reproduce: " << run->cell().label() << ": " << what << std::endl;
@@ -385,15 +397,18 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
 // the other activities keep the videos an earlier invocation made.
 nlohmann::json make_videos(const nlohmann::json& runs, const ReproduceOptions& o, std::ostream& log) {
   const fs::path out(o.out);
-  nlohmann::json videos =
-      fs::exists(out / "baselines.json")
-          ? read_json_file((out / "baselines.json").string()).value("videos", nlohmann::json::object())
-          : nlohmann::json::object();
-  // ...while their file and their run are still here (a run moved away takes its video's entry along).
-  for (auto it = videos.begin(); it != videos.end();) {
-    const bool here = fs::exists(it->value("file", "")) && fs::exists(fs::path(it->value("run", "")) / "cell.json");
-    it = here ? std::next(it) : videos.erase(it);
-  }
+  const std::string table = (out / "baselines.json").string();
+  nlohmann::json videos = fs::exists(table) ? reading_json(table, [&] {
+    nlohmann::json earlier = read_json_file(table).value("videos", nlohmann::json::object());
+    // ...while their file and their run are still here (a run moved away takes its video's entry along).
+    for (auto it = earlier.begin(); it != earlier.end();) {
+      const bool here =
+          fs::exists(it->value("file", "")) && fs::exists(fs::path(it->value("run", "")) / "cell.json");
+      it = here ? std::next(it) : earlier.erase(it);
+    }
+    return earlier;
+  })
+                                            : nlohmann::json::object();
   if (o.videos && !o.report_only) {
     fs::create_directories(out / "videos");
     for (const std::string& a : o.activities) {
@@ -472,7 +487,7 @@ nlohmann::json reproduce(const ReproduceOptions& o, std::ostream& log) {
   result["failures"] = failures;
   result["videos"] = make_videos(result["runs"], o, log);
   result["this_invocation_wall_s"] = std::chrono::duration<double>(Clock::now() - start).count();
-  write_text(fs::path(o.out) / "baselines.json", result.dump(2) + "\n");
+  write_text(fs::path(o.out) / "baselines.json", json_text(result, 2) + "\n");
   write_text(fs::path(o.out) / "baselines.md", baselines_markdown(result, o));
   log << "reproduce: " << (cells.size() - result["missing"].size()) << "/" << cells.size() << " runs done; "
       << (fs::path(o.out) / "baselines.md").string() << ", " << (fs::path(o.out) / "baselines.json").string()

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "training/checkpoint.hpp"
 #include "training/trainer.hpp"
 
@@ -42,9 +43,11 @@ std::optional<int64_t> row_steps(const std::string& line) {
   return steps;
 }
 
-// A new run's folder, made if missing (std::filesystem's errors named as the
-// option's). Until keep(), a failed run removes what it made: the folder if
-// it made it, else the files it wrote there.
+// A new run's folder: made if missing, else one that is empty or already
+// chore's (its marker, kRunMarker: a run that stopped before its first
+// checkpoint, or a folder reproduce made); chore never writes over files it
+// did not make. Until keep(), a failed run removes what it made: the folder
+// if it made it, else the files it wrote there.
 class RunFolder {
  public:
   explicit RunFolder(const fs::path& dir) : dir_(dir) {
@@ -54,6 +57,17 @@ class RunFolder {
       throw Error("train: --out " + dir.string() + ": cannot make the folder: " + error.message());
     }
     if (!fs::is_directory(dir)) throw Error("train: --out " + dir.string() + ": not a folder");
+    made_marker_ = !fs::exists(dir / kRunMarker);
+    if (made_marker_ && !fs::is_empty(dir)) {
+      std::string files;
+      int shown = 0;
+      for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+        if (shown++ < 3) files += (files.empty() ? "" : ", ") + entry.path().filename().string();
+      }
+      throw Error("train: --out " + dir.string() + ": a folder of other files (" + files + (shown > 3 ? ", ..." : "") +
+                  "), not a chore run; give a new or empty folder");
+    }
+    mark_run_folder(dir);
   }
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;
@@ -64,13 +78,14 @@ class RunFolder {
       fs::remove_all(dir_, ignored);
     } else {
       for (const char* file : {"config.json", "metrics.csv"}) fs::remove(dir_ / file, ignored);
+      if (made_marker_) fs::remove(dir_ / kRunMarker, ignored);
     }
   }
   void keep() { kept_ = true; }
 
  private:
   fs::path dir_;
-  bool made_dir_ = false, kept_ = false;
+  bool made_dir_ = false, made_marker_ = false, kept_ = false;
 };
 
 // Keeps metrics.csv's header and the rows up to `steps` (a resumed run redoes
@@ -97,6 +112,13 @@ void prepare_metrics(const fs::path& path, const std::string& header, int64_t st
 }
 
 }  // namespace
+
+void mark_run_folder(const fs::path& dir) {
+  if (fs::exists(dir / kRunMarker)) return;
+  std::ofstream marker(dir / kRunMarker);
+  marker << "A chore run folder: `chore train` and `chore reproduce` write here (docs/training.md).\n";
+  if (!marker) throw Error("train: cannot write " + (dir / kRunMarker).string());
+}
 
 TrainConfig new_run_config(const TrainOptions& o) {
   if (o.activity.empty()) throw Error("train: --activity is required");
@@ -141,6 +163,7 @@ void run_train(const TrainOptions& o, std::ostream& log) {
       throw Error("train: --resume continues in its own folder; drop --out or make it the same");
     }
     if (!fs::exists(checkpoint)) throw Error("train: --resume " + o.resume + ": no checkpoint.pt there");
+    remove_stale_checkpoint_temps(dir);
     trainer = resume_trainer(checkpoint.string());
     // The run's own config holds; only --steps may change (extend) it.
     if (!o.settings.empty()) throw Error("train: --set changes a new run; --resume continues one as it was");
@@ -161,9 +184,10 @@ void run_train(const TrainOptions& o, std::ostream& log) {
     const TrainConfig config = new_run_config(o);
     trainer = make_trainer(config);
     made.emplace(dir);
+    remove_stale_checkpoint_temps(dir);
     // The run's settings, readable without the checkpoint (the names --set takes).
     std::ofstream config_file(fs::path(dir) / "config.json");
-    config_file << to_json(config).dump(2) << "\n";
+    config_file << json_text(to_json(config), 2) << "\n";
     if (!config_file) throw Error("train: cannot write " + (fs::path(dir) / "config.json").string());
   }
   TrainConfig config = trainer->config();

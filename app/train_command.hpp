@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -27,6 +28,12 @@ struct TrainOptions {
   std::optional<int64_t> checkpoint_every;  // env steps; default 3000, or the resumed run's
   std::vector<std::string> settings;        // KEY=VALUE overrides of the config (with_setting)
 };
+
+// The file that marks a folder as a chore run's, which a new run may write
+// into (empty or not): train writes it into the folder of a new run, and
+// reproduce into its cells' before it starts their logs.
+inline constexpr const char* kRunMarker = ".chore-run";
+void mark_run_folder(const std::filesystem::path& dir);
 
 // The config of a new run from the options (not --resume's); throws chore::Error.
 TrainConfig new_run_config(const TrainOptions& options);

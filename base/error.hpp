@@ -6,11 +6,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/utf8.hpp"
+
 namespace chore {
 
+// Its message is valid UTF-8 (what it quotes may not be: base/utf8.hpp).
 class Error : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit Error(const std::string& message) : std::runtime_error(valid_utf8(message)) {}
+  explicit Error(const char* message) : Error(std::string(message)) {}
 };
 
 // `value`, checked to lie in [low, high]; else chore::Error

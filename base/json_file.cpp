@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "base/utf8.hpp"
 
 namespace chore {
 
@@ -80,21 +81,39 @@ nlohmann::json parse_json(const std::string& text, const std::string& where) {
   }
 }
 
-std::string read_text_file(const std::string& path, size_t max_bytes, const std::string& what) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(path + ": cannot open file");
-  const std::streamoff bytes = in.tellg();
-  if (bytes < 0 || static_cast<size_t>(bytes) > max_bytes) {
-    throw Error(path + ": larger than " + std::to_string(max_bytes >> 20) + " MB, the limit for " + what);
-  }
-  in.seekg(0);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 nlohmann::json read_json_file(const std::string& path) {
   return parse_json(read_text_file(path, kMaxJsonBytes, "a JSON file"), path);
+}
+
+namespace {
+
+nlohmann::json with_valid_strings(const nlohmann::json& value) {
+  switch (value.type()) {
+    case nlohmann::json::value_t::string:
+      return valid_utf8(value.get_ref<const std::string&>());
+    case nlohmann::json::value_t::array: {
+      nlohmann::json out = nlohmann::json::array();
+      for (const auto& v : value) out.push_back(with_valid_strings(v));
+      return out;
+    }
+    case nlohmann::json::value_t::object: {
+      nlohmann::json out = nlohmann::json::object();
+      for (const auto& [k, v] : value.items()) out[valid_utf8(k)] = with_valid_strings(v);
+      return out;
+    }
+    default:
+      return value;
+  }
+}
+
+}  // namespace
+
+std::string json_text(const nlohmann::json& value, int indent) {
+  try {
+    return value.dump(indent);
+  } catch (const nlohmann::json::type_error&) {  // 316: a string that is not UTF-8
+    return with_valid_strings(value).dump(indent);
+  }
 }
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string where) : value_(value), where_(std::move(where)) {}

@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
+#include "base/input_file.hpp"
+
 namespace chore {
 
 // Bounds on what a JSON input may make us do: files larger than
@@ -15,15 +18,26 @@ namespace chore {
 inline constexpr size_t kMaxJsonBytes = 256u << 20;
 inline constexpr int kMaxJsonDepth = 64;
 
-// A text file's bytes; a missing file, or one larger than max_bytes, throws
-// chore::Error naming the path (`what` names the kind: "a BDDL file").
-std::string read_text_file(const std::string& path, size_t max_bytes, const std::string& what);
-
 // Parses JSON text; a syntax error, nesting past kMaxJsonDepth or a number
 // out of double's range throws chore::Error naming `where` and line:column.
 nlohmann::json parse_json(const std::string& text, const std::string& where);
 // The same for a file, which must exist and be at most kMaxJsonBytes.
 nlohmann::json read_json_file(const std::string& path);
+// `value` as JSON text (indent as nlohmann's dump), strings that are not
+// valid UTF-8 escaped as base/utf8.hpp does: what chore writes and prints.
+std::string json_text(const nlohmann::json& value, int indent = -1);
+
+// read() over fields of a JSON file chore wrote (an evaluation, a table),
+// read without JsonReader: a field missing or of the wrong type (nlohmann's
+// json::exception) is chore::Error "PATH: not as chore writes it (...)".
+template <class Read>
+auto reading_json(const std::string& path, Read read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not as chore writes it (" + e.what() + ")");
+  }
+}
 
 // The closed range a number read must lie in: input outside it is an error
 // naming the field (a position of 1e308 m would reach the physics).

@@ -19,9 +19,10 @@ heads straight on it, orthogonal initialisation with SB3's gains, which are
 chore's), PPO's settings (Table A.12; SB3's defaults elsewhere, which chore
 took: 10 epochs, minibatch advantage normalisation, Adam eps 1e-5, gradient
 norm 0.5), the truncation bootstrap, one env, one thread. What differs is
-SB3's own: its images are scaled to [0, 1] (chore normalises each channel by
-a running mean and std, as appendix F.1 says), the state is not normalised,
-and its random streams are its own.
+SB3's own: its images are scaled to [0, 1] and the state is not normalised
+(chore normalises each image channel and each state dimension by a running
+mean and std, as appendix F.1 says: `--input-norm running` does as chore
+does), and its random streams are its own.
 """
 
 import argparse
@@ -69,12 +70,46 @@ class PrimitiveEnv(gymnasium.Env):
         self.env.close()
 
 
+class RunningNorm(nn.Module):
+    """chore's RunningNorm (policies/networks.cpp): a running mean and variance
+    per channel (Chan et al.'s parallel update, in float64, from mean 0 and
+    variance 1 before any sample), inputs normalised and clipped to +-5."""
+
+    def __init__(self, dims):
+        super().__init__()
+        self.register_buffer("mean", torch.zeros(dims, dtype=torch.float64))
+        self.register_buffer("var", torch.ones(dims, dtype=torch.float64))
+        self.register_buffer("count", torch.zeros(1, dtype=torch.float64))
+
+    def update(self, samples):  # (N, dims)
+        x = torch.as_tensor(samples, dtype=torch.float64)
+        n, count = float(x.shape[0]), float(self.count)
+        batch_mean, batch_var = x.mean(0), x.var(0, unbiased=False)
+        delta = batch_mean - self.mean
+        total = count + n
+        self.mean += delta * (n / total)
+        self.var.copy_((self.var * count + batch_var * n + delta * delta * (count * n / total)) / total)
+        self.count.fill_(total)
+
+    def forward(self, x, dim):
+        shape = [1] * x.dim()
+        shape[dim] = -1
+        std = (self.var.float() + 1e-8).sqrt().view(shape)
+        return ((x - self.mean.float().view(shape)) / std).clamp(-5.0, 5.0)
+
+
 class ChoreEncoder(BaseFeaturesExtractor):
     """chore's Encoder (policies/networks.cpp) for SB3: images (3, H, W) as
-    SB3 hands them, scaled to [0, 1]."""
+    SB3 hands them, scaled to [0, 1] by SB3 (input_norm "unit") or, as chore,
+    raw and normalised by running statistics with the state (input_norm
+    "running"; ChorePPO updates them)."""
 
-    def __init__(self, observation_space):
+    def __init__(self, observation_space, input_norm="unit"):
         super().__init__(observation_space, features_dim=128)
+        self.input_norm = input_norm
+        if input_norm == "running":
+            self.rgb_norm = RunningNorm(observation_space["rgb"].shape[0])
+            self.state_norm = RunningNorm(observation_space["is_grasping"].shape[0])
         self.trunk = nn.Sequential(
             nn.Conv2d(3, 16, 8, stride=4, padding=2), nn.ReLU(), nn.MaxPool2d(2),
             nn.Conv2d(16, 32, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
@@ -86,7 +121,30 @@ class ChoreEncoder(BaseFeaturesExtractor):
         self.mlp = nn.Sequential(nn.Linear(width + 32, 128), nn.ReLU())
 
     def forward(self, obs):
-        return self.mlp(torch.cat([self.trunk(obs["rgb"]), self.state(obs["is_grasping"])], 1))
+        rgb, state = obs["rgb"], obs["is_grasping"]
+        if self.input_norm == "running":
+            rgb, state = self.rgb_norm(rgb, 1), self.state_norm(state, 1)
+        return self.mlp(torch.cat([self.trunk(rgb), self.state(state)], 1))
+
+    def update_normalizers(self, observations):
+        """From a rollout's observations (SB3's buffer, flattened by its update
+        to (steps * envs, ...))."""
+        rgb = torch.as_tensor(observations["rgb"])
+        self.rgb_norm.update(rgb.reshape((-1,) + rgb.shape[-3:]).permute(0, 2, 3, 1).reshape(-1, rgb.shape[-3]))
+        state = torch.as_tensor(observations["is_grasping"])
+        self.state_norm.update(state.reshape(-1, state.shape[-1]))
+
+
+class ChorePPO(PPO):
+    """SB3's PPO; with running input statistics, updated as chore's trainer
+    does: after each update, from the rollout it learned from (constant while
+    one rollout is acted and learned)."""
+
+    def train(self):
+        super().train()
+        extractor = self.policy.features_extractor
+        if extractor.input_norm == "running":
+            extractor.update_normalizers(self.rollout_buffer.observations)
 
 
 class Metrics(BaseCallback):
@@ -174,22 +232,26 @@ def main():
     # SB3's value loss is the mean squared error, chore's half of it (CleanRL's):
     # 0.25 here weighs it as chore's 0.5 does.
     parser.add_argument("--vf-coef", type=float, default=0.5)
+    parser.add_argument("--input-norm", choices=["unit", "running"], default="unit",
+                        help="unit: SB3's images / 255, the state as it is; running: chore's running statistics")
     parser.add_argument("--out", required=True)
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     torch.set_num_threads(1)
     env = PrimitiveEnv(args.activity, args.mode, args.seed)
-    model = PPO("MultiInputPolicy", env, learning_rate=3e-4, n_steps=300, batch_size=64, n_epochs=10, gamma=0.99,
+    model = ChorePPO("MultiInputPolicy", env, learning_rate=3e-4, n_steps=300, batch_size=64, n_epochs=10, gamma=0.99,
                 gae_lambda=0.99, clip_range=0.2, ent_coef=0.0, vf_coef=args.vf_coef, max_grad_norm=0.5,
                 normalize_advantage=True, seed=args.seed, device="cpu",
-                policy_kwargs={"features_extractor_class": ChoreEncoder, "net_arch": {"pi": [], "vf": []},
-                               "share_features_extractor": True})
+                policy_kwargs={"features_extractor_class": ChoreEncoder,
+                               "features_extractor_kwargs": {"input_norm": args.input_norm},
+                               "normalize_images": args.input_norm == "unit",
+                               "net_arch": {"pi": [], "vf": []}, "share_features_extractor": True})
     start = time.monotonic()
     model.learn(total_timesteps=args.steps, callback=Metrics(os.path.join(args.out, "metrics.csv")))
     train_s = time.monotonic() - start
     model.save(os.path.join(args.out, "model.zip"))
     result = {"activity": args.activity, "seed": args.seed, "steps": args.steps, "mode": args.mode,
-              "vf_coef": args.vf_coef,
+              "vf_coef": args.vf_coef, "input_norm": args.input_norm,
               "train_wall_s": train_s, "sb3": sys.modules["stable_baselines3"].__version__,
               "torch": torch.__version__,
               "seed0": evaluate(model, args.activity, args.mode, args.eval_episodes, deterministic=False),

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "policies/evaluate.hpp"
 #include "python/convert.hpp"
 #include "training/checkpoint.hpp"
@@ -161,7 +162,7 @@ std::string run_evaluation(const PolicySource& source, uint64_t first, uint64_t 
     py::gil_scoped_release release;
     report = evaluate(source, {first, last, episodes, threads}, verbose ? std::cerr : log);
   }
-  return report.dump();
+  return json_text(report);
 }
 
 }  // namespace

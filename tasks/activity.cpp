@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -104,7 +103,9 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   a->problem_ = load_bddl(path, {.vocabulary = &vocabulary});
   // BEHAVIOR-1K keeps an activity's instances as NAME/problemN.bddl: its name is the folder's.
   const fs::path file(path);
-  const bool instance = std::regex_match(file.stem().string(), std::regex(R"(problem\d+)"));
+  const std::string stem = file.stem().string();
+  const bool instance = stem.size() > 7 && stem.starts_with("problem") &&
+                        std::all_of(stem.begin() + 7, stem.end(), [](char c) { return c >= '0' && c <= '9'; });
   a->name_ = instance && file.has_parent_path() ? file.parent_path().filename().string() : file.stem().string();
   a->kb_ = kb ? std::move(kb) : dialect_knowledge_base(a->problem_.domain);
   const std::string where = "activity '" + a->name_ + "' in scene '" + scene.name() + "'";

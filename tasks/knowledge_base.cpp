@@ -136,7 +136,7 @@ std::map<std::string, Annotations> read_properties(const std::string& path) {
           parameters[parameter.key()] = value.get<double>();
         } else if (is_text_parameter(parameter.key())) {
           annotations.texts[property.key()][parameter.key()] =
-              value.is_string() ? value.get<std::string>() : value.dump();
+              value.is_string() ? value.get<std::string>() : json_text(value);
         } else {
           throw Error(property_where + "." + parameter.key() + ": expected a number or true/false");
         }

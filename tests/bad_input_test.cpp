@@ -3,7 +3,9 @@
 // fault), a signal (an abort from a worker thread), a wrapped number or a
 // half-made run folder.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -13,7 +15,9 @@
 #include <vector>
 
 #include "app/command_line.hpp"
+#include "app/train_command.hpp"
 #include "base/memory.hpp"
+#include "base/utf8.hpp"
 #include "test_util.hpp"
 #include "training/checkpoint.hpp"
 
@@ -23,21 +27,24 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Outcome {
-  int status = -1;  // exit status, or -1 after a signal
-  std::string err;  // stderr
+  int status = -1;       // exit status, or -1 after a signal (137: killed at the time limit)
+  std::string err, out;  // stderr, stdout
 };
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
 
 Outcome run(const std::string& args) {
   // Beside the test's own files: ctest runs the tests of this file in parallel.
-  const fs::path err =
-      fs::path(test::scratch_dir("bad_input_stderr_" +
-                                 std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()))) /
-      "stderr.txt";
-  const std::string command = std::string(CHORE_BINARY) + " " + args + " > /dev/null 2> " + err.string();
+  const fs::path dir = test::scratch_dir("bad_input_stderr_" +
+                                         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  // A hang (a FIFO read) ends at the time limit as a failure, not the suite's.
+  const std::string command = "timeout -s KILL 300 " + std::string(CHORE_BINARY) + " " + args + " > " +
+                              (dir / "stdout.txt").string() + " 2> " + (dir / "stderr.txt").string();
   const int status = std::system(command.c_str());
-  std::ifstream in(err);
-  Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, {std::istreambuf_iterator<char>(in), {}}};
-  return r;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(dir / "stderr.txt"), read_text(dir / "stdout.txt")};
 }
 
 void expect_error(const std::string& args, const std::string& message) {
@@ -76,6 +83,103 @@ TEST(BadInput, FailuresOfDependenciesAndWorkersAreErrors) {
   expect_error("train --activity no_such_activity --baseline rl-prim --out " + (dir / "unknown").string(),
                "chore: error: unknown activity 'no_such_activity'");
   EXPECT_FALSE(fs::exists(dir / "unknown"));
+}
+
+// Files that are not files, text that is not UTF-8, tokens and paths longer
+// than anyone writes, and a table of the wrong shape (issue 54): each is an
+// error naming it, never a hang, a crash or "internal error".
+TEST(BadInput, SpecialFilesAreRefusedBeforeTheyAreRead) {
+  const fs::path dir = test::scratch_dir("cli_special_files");
+  expect_error("activity check /dev/zero", "chore: error: /dev/zero: not a file (a character device)");
+  const fs::path fifo = dir / "metrics.csv";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_error("plot " + fifo.string() + " --out " + (dir / "p.png").string(),
+               "chore: error: " + fifo.string() + ": not a file (a FIFO); expected a metrics.csv");
+  expect_error("plot " + std::string(40000, 'r') + "_seed1/metrics.csv --out " + (dir / "p.png").string(),
+               "chore: error: ");
+}
+
+TEST(BadInput, TextThatIsNotUtf8IsEscapedInEveryOutput) {
+  const fs::path dir = test::scratch_dir("cli_utf8");
+  fs::remove_all(dir / "corpus");
+  fs::create_directories(dir / "corpus");
+  const fs::path bddl = dir / "corpus" / "bad_\xFF_name.bddl";
+  std::ofstream(bddl) << "(define (problem p\xFE\xFF)\n  (:domain omnigibson)\n  (:objects x\xC0\x80.n.01_1 - \xFF)\n";
+  const Outcome check = run("activity check '" + bddl.string() + "'");
+  EXPECT_EQ(check.status, 2) << check.err;
+  EXPECT_EQ(check.err, valid_utf8(check.err)) << check.err;
+  EXPECT_NE(check.err.find("bad_\\xFF_name.bddl"), std::string::npos) << check.err;
+  const Outcome coverage = run("activity coverage " + (dir / "corpus").string() + " --json");
+  ASSERT_EQ(coverage.status, 0) << coverage.err;
+  EXPECT_EQ(coverage.out, valid_utf8(coverage.out));
+  const nlohmann::json report = nlohmann::json::parse(coverage.out);  // throws on invalid UTF-8
+  EXPECT_NE(report.dump().find("bad_\\\\xFF_name"), std::string::npos) << report.dump();
+}
+
+TEST(BadInput, LongTokensAreErrorsNotStackOverflows) {
+  // std::regex recursed along a match: a 40,000-character token in :init
+  // overflowed the stack where activity coverage read the failure's cause.
+  const fs::path dir = test::scratch_dir("cli_long_token");
+  fs::remove_all(dir / "corpus");
+  fs::create_directories(dir / "corpus");
+  std::ofstream(dir / "corpus" / "long.bddl")
+      << "(define (problem long_token)\n  (:domain omnigibson)\n  (:objects apple.n.01_1 - apple.n.01)\n"
+      << "  (:init (ontop apple.n.01_1 " << std::string(40000, 'k') << ".n.01_1))\n  (:goal (not (cooked apple.n.01_1))))\n";
+  const Outcome coverage = run("activity coverage " + (dir / "corpus").string() + " --json");
+  ASSERT_EQ(coverage.status, 0) << coverage.err;
+  const nlohmann::json report = nlohmann::json::parse(coverage.out);
+  EXPECT_NE(report.dump().find("long_token"), std::string::npos) << report.dump().substr(0, 2000);
+}
+
+TEST(BadInput, ATableOfTheWrongShapeIsAnErrorAndIsKept) {
+  const fs::path out = test::scratch_dir("cli_table_shape");
+  std::ofstream(out / "baselines.json") << "[1, 2]\n";
+  expect_error("reproduce --report-only --activities collect_trash --methods rl-prim --seeds 0 --mode symbolic "
+               "--no-videos --out " + out.string(),
+               "chore: error: " + (out / "baselines.json").string() + ": not as chore writes it");
+  EXPECT_EQ(read_text(out / "baselines.json"), "[1, 2]\n");
+}
+
+// chore never writes over or removes a file it did not make (issue 54): a new
+// run refuses a folder of other files and leaves them as they were; a folder
+// it marked as its own (a run stopped before its first checkpoint) is taken
+// up again; a checkpoint's temporary file left by a killed writer goes at the
+// next start.
+TEST(BadInput, TrainNeverWritesOverFilesItDidNotMake) {
+  const fs::path dir = test::scratch_dir("cli_run_folders");
+  const fs::path theirs = dir / "theirs";
+  fs::remove_all(theirs);
+  fs::create_directories(theirs);
+  std::ofstream(theirs / "config.json") << "{\"mine\": true}\n";
+  std::ofstream(theirs / "metrics.csv") << "a,b\n1,2\n";
+  const std::string train = "train --activity collect_trash --baseline rl-prim --mode symbolic --steps 60 "
+                            "--checkpoint-every 30 --out ";
+  expect_error(train + theirs.string(), "chore: error: train: --out " + theirs.string() +
+                                            ": a folder of other files (");
+  EXPECT_EQ(read_text(theirs / "config.json"), "{\"mine\": true}\n");
+  EXPECT_EQ(read_text(theirs / "metrics.csv"), "a,b\n1,2\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(theirs), {}), 2);
+
+  // A run of chore's that stopped before its first checkpoint: its own files, taken up again.
+  const fs::path ours = dir / "ours";
+  fs::remove_all(ours);
+  fs::create_directories(ours);
+  mark_run_folder(ours);
+  std::ofstream(ours / "config.json") << "{}\n";
+  std::ofstream(ours / "train.log") << "the first attempt\n";
+  Outcome r = run(train + ours.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(ours / "checkpoint.pt"));
+  EXPECT_EQ(read_text(ours / "train.log"), "the first attempt\n");
+
+  // A writer killed mid-write left its temporary file; the next start removes it, not a live one's.
+  std::ofstream(ours / "checkpoint.pt.tmp999999999") << "half";
+  std::ofstream(ours / ("checkpoint.pt.tmp" + std::to_string(::getpid()))) << "writing";
+  r = run("train --resume " + ours.string() + " --steps 90");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(ours / "checkpoint.pt.tmp999999999"));
+  EXPECT_TRUE(fs::exists(ours / ("checkpoint.pt.tmp" + std::to_string(::getpid()))));
 }
 
 // Buffers whose size a setting requests are checked against the machine's

@@ -362,7 +362,7 @@ TEST(BddlParser, MalformedFilesNameWhatAndWhere) {
     EXPECT_EQ(test::error_of([&] { load_bddl(path); }), path + ":" + c.error);
   }
   EXPECT_EQ(test::error_of([] { load_bddl("/nonexistent/problem0.bddl"); }),
-            "/nonexistent/problem0.bddl: cannot open file");
+            "/nonexistent/problem0.bddl: no such file; expected a BDDL file");
 }
 
 TEST(BddlParser, RoomsInInroomAreNotObjects) {

@@ -92,7 +92,7 @@ plot_dir="$(mktemp -d)"
 mkdir -p "$plot_dir/ppo_seed0"
 printf 'env_steps,wall_s,episodes,success_rate,mean_q,mean_return,mean_length\n0,0,0,0,0,0,0\n100,1,4,0.5,0.6,0.5,9\n' > "$plot_dir/ppo_seed0/metrics.csv"
 expect 2 "--out is required" -- "$chore" plot "$plot_dir/ppo_seed0/metrics.csv"
-expect 2 "cannot read '$plot_dir/none.csv'" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/none.csv"
+expect 2 "$plot_dir/none.csv: no such file; expected a metrics.csv" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/none.csv"
 expect 2 "has no column 'kl'" -- "$chore" plot --out "$plot_dir/c.png" --y kl "$plot_dir/ppo_seed0/metrics.csv"
 expect 0 "ppo (1 run)" -- "$chore" plot --out "$plot_dir/c.png" "$plot_dir/ppo_seed0/metrics.csv"
 if [[ ! -s "$plot_dir/c.png" ]]; then echo "FAIL: $plot_dir/c.png was not written"; failures=$((failures + 1)); fi

@@ -114,7 +114,7 @@ TEST(Plot, BadFilesAreErrorsNamingThem) {
   PlotOptions options;
   options.out = (dir / "x.png").string();
   options.runs = {(dir / "missing.csv").string()};
-  EXPECT_EQ(test::error_of([&] { plot_curves(options); }), "plot: cannot read '" + options.runs[0] + "'");
+  EXPECT_EQ(test::error_of([&] { plot_curves(options); }), options.runs[0] + ": no such file; expected a metrics.csv");
   test::write_file(dir / "a" / "metrics.csv", std::string(kHeader) + "100,1,1,0.5,0.5,0,1,3\n200,1,1,oops,0.5,0,1,3\n");
   options.runs = {(dir / "a/metrics.csv").string()};
   EXPECT_EQ(test::error_of([&] { plot_curves(options); }),

@@ -199,7 +199,7 @@ TEST(Scene, MissingRobotFileNamesThePath) {
   SceneOptions options;
   options.assets_dir = dir.string();
   const std::string e = test::error_of([&] { Scene::load(test::box_room(), options); });
-  EXPECT_NE(e.find("robots/tiago.xml: cannot open file"), std::string::npos) << e;
+  EXPECT_NE(e.find("robots/tiago.xml: no such file; expected a robot file"), std::string::npos) << e;
 }
 
 // A robot MuJoCo accepts but chore cannot drive is refused before the scene is
@@ -285,6 +285,22 @@ TEST(Scene, CompiledModelsAreCachedByTheirMjcf) {
   }
   EXPECT_EQ(cached_files(dir / "models").size(), static_cast<size_t>(kModelCacheFiles));
   EXPECT_TRUE(Scene::build(wider, options)->from_cache()) << "the most recent stays";
+
+  // Files the cache did not write stay whatever their name (a user's own
+  // model, a file named as the cache's but not in its format); a temporary
+  // file of a writer that died goes.
+  const auto models = dir / "models";
+  std::ofstream(models / "mine.mjb") << "a user's own model";
+  std::ofstream(models / "123.mjb") << "not chore's format";
+  std::ofstream(models / "456.mjb.tmp.999999999.0") << "half a file";
+  for (int i = 0; i < 3; ++i) {
+    wider.rooms[0].rects[0][2] += 0.01;
+    Scene::build(wider, options);
+  }
+  EXPECT_TRUE(std::filesystem::exists(models / "mine.mjb"));
+  EXPECT_TRUE(std::filesystem::exists(models / "123.mjb"));
+  EXPECT_FALSE(std::filesystem::exists(models / "456.mjb.tmp.999999999.0"));
+  EXPECT_EQ(cached_files(models).size(), static_cast<size_t>(kModelCacheFiles) + 2);
 }
 
 }  // namespace

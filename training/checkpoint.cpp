@@ -1,8 +1,11 @@
 #include "training/checkpoint.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -140,7 +143,7 @@ uint64_t checkpoint_checksum(std::string_view bytes) {
 void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint) {
   std::string bytes(kMagic, sizeof kMagic);
   put(bytes, kCheckpointVersion);
-  const std::string meta = checkpoint.meta.dump();
+  const std::string meta = json_text(checkpoint.meta);
   put(bytes, static_cast<uint64_t>(meta.size()));
   bytes += meta;
   put_tensors(bytes, checkpoint.tensors);
@@ -168,6 +171,20 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
   if (const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); dfd >= 0) {
     ::fsync(dfd);  // makes the rename itself durable
     ::close(dfd);
+  }
+}
+
+void remove_stale_checkpoint_temps(const std::string& dir) {
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const size_t tmp = name.rfind(".pt.tmp");
+    if (tmp == std::string::npos || !name.starts_with("checkpoint")) continue;
+    const std::string pid = name.substr(tmp + 7);
+    if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), ::isdigit)) continue;
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // still writing
+    std::error_code ignored;
+    std::filesystem::remove(it->path(), ignored);
   }
 }
 

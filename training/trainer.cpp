@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "base/random.hpp"
 #include "base/registry.hpp"
 
@@ -164,7 +165,7 @@ void check_read_back(const nlohmann::json& given, const nlohmann::json& read, co
       if (read.contains(key)) check_read_back(value, read.at(key), path.empty() ? key : path + "." + key);
     }
   } else if (given != read) {
-    throw Error(path + " = " + given.dump() + " does not fit the setting (it would read as " + read.dump() + ")");
+    throw Error(path + " = " + json_text(given) + " does not fit the setting (it would read as " + json_text(read) + ")");
   }
 }
 

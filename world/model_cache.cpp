@@ -2,10 +2,12 @@
 
 #include <mujoco/mujoco.h>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -73,6 +75,31 @@ mjModel* read_cached(const fs::path& path, const Header& want) {
   return model;
 }
 
+// A file this cache wrote: named HASH.mjb and starting with its magic.
+bool is_cache_file(const fs::path& path) {
+  const std::string stem = path.stem().string();
+  if (path.extension() != ".mjb" || stem.empty() || stem.size() > 20 ||
+      !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  Header h;
+  return in.read(reinterpret_cast<char*>(&h), sizeof h) && std::memcmp(h.magic, Header().magic, sizeof h.magic) == 0;
+}
+
+// HASH.mjb.tmp.PID.N of a process that is no longer running.
+bool is_stale_temp(const fs::path& path) {
+  const std::string name = path.filename().string();
+  const size_t tmp = name.find(".mjb.tmp.");
+  if (tmp == std::string::npos) return false;
+  const std::string rest = name.substr(tmp + 9);
+  const std::string pid = rest.substr(0, rest.find('.'));
+  if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return false;
+  }
+  return ::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH;
+}
+
 // Writes beside, then renames: a reader never sees half a file. Failures
 // leave the model uncached.
 void write_cached(const fs::path& dir, const fs::path& path, Header h, const mjModel* model) {
@@ -99,10 +126,17 @@ void write_cached(const fs::path& dir, const fs::path& path, Header h, const mjM
   }
   fs::rename(temp, path, ec);
   if (ec) fs::remove(temp, ec);
-  // The most recently used files stay.
+  // The most recently used of chore's files stay; other files (a user's own
+  // .mjb) are not the cache's to remove. Temporary files of writers that
+  // died mid-write go.
   std::vector<std::pair<fs::file_time_type, fs::path>> files;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->path().extension() == ".mjb") files.push_back({it->last_write_time(ec), it->path()});
+    if (is_cache_file(it->path())) {
+      files.push_back({it->last_write_time(ec), it->path()});
+    } else if (is_stale_temp(it->path())) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
   }
   if (files.size() <= static_cast<size_t>(kModelCacheFiles)) return;
   std::sort(files.begin(), files.end());
