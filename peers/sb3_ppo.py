@@ -18,11 +18,13 @@ Conv-ReLU-MaxPool trunk and 32-unit state encoder into a 128-d feature, the
 heads straight on it, orthogonal initialisation with SB3's gains, which are
 chore's), PPO's settings (Table A.12; SB3's defaults elsewhere, which chore
 took: 10 epochs, minibatch advantage normalisation, Adam eps 1e-5, gradient
-norm 0.5), the truncation bootstrap, one env, one thread. What differs is
-SB3's own: its images are scaled to [0, 1] and the state is not normalised
-(chore normalises each image channel and each state dimension by a running
-mean and std, as appendix F.1 says: `--input-norm running` does as chore
-does), and its random streams are its own.
+norm 0.5), the value loss (the squared error weighed by Table A.12's c2),
+the state as observed, the truncation bootstrap, one env, one thread. What
+differs is SB3's own: its images are scaled to [0, 1] (chore normalises each
+channel by running statistics, as appendix F.1 says: `--input-norm running`
+does as chore does), and its random streams are its own. (The diagnostic
+runs of results/peer_diag/sb3_input_norm_running and sb3_as_chore, made with
+this script at commit 5d76876, normalised the state too, as chore did then.)
 """
 
 import argparse
@@ -101,15 +103,14 @@ class RunningNorm(nn.Module):
 class ChoreEncoder(BaseFeaturesExtractor):
     """chore's Encoder (policies/networks.cpp) for SB3: images (3, H, W) as
     SB3 hands them, scaled to [0, 1] by SB3 (input_norm "unit") or, as chore,
-    raw and normalised by running statistics with the state (input_norm
-    "running"; ChorePPO updates them)."""
+    raw and normalised by running statistics (input_norm "running"; ChorePPO
+    updates them). The state as observed, as chore's PPO takes it."""
 
     def __init__(self, observation_space, input_norm="unit"):
         super().__init__(observation_space, features_dim=128)
         self.input_norm = input_norm
         if input_norm == "running":
             self.rgb_norm = RunningNorm(observation_space["rgb"].shape[0])
-            self.state_norm = RunningNorm(observation_space["is_grasping"].shape[0])
         self.trunk = nn.Sequential(
             nn.Conv2d(3, 16, 8, stride=4, padding=2), nn.ReLU(), nn.MaxPool2d(2),
             nn.Conv2d(16, 32, 3, padding=1), nn.ReLU(), nn.MaxPool2d(2),
@@ -121,18 +122,14 @@ class ChoreEncoder(BaseFeaturesExtractor):
         self.mlp = nn.Sequential(nn.Linear(width + 32, 128), nn.ReLU())
 
     def forward(self, obs):
-        rgb, state = obs["rgb"], obs["is_grasping"]
-        if self.input_norm == "running":
-            rgb, state = self.rgb_norm(rgb, 1), self.state_norm(state, 1)
-        return self.mlp(torch.cat([self.trunk(rgb), self.state(state)], 1))
+        rgb = self.rgb_norm(obs["rgb"], 1) if self.input_norm == "running" else obs["rgb"]
+        return self.mlp(torch.cat([self.trunk(rgb), self.state(obs["is_grasping"])], 1))
 
     def update_normalizers(self, observations):
         """From a rollout's observations (SB3's buffer, flattened by its update
         to (steps * envs, ...))."""
         rgb = torch.as_tensor(observations["rgb"])
         self.rgb_norm.update(rgb.reshape((-1,) + rgb.shape[-3:]).permute(0, 2, 3, 1).reshape(-1, rgb.shape[-3]))
-        state = torch.as_tensor(observations["is_grasping"])
-        self.state_norm.update(state.reshape(-1, state.shape[-1]))
 
 
 class ChorePPO(PPO):
@@ -229,8 +226,8 @@ def main():
     parser.add_argument("--steps", type=int, default=30000)
     parser.add_argument("--mode", choices=["symbolic", "physical"], default="symbolic")
     parser.add_argument("--eval-episodes", type=int, default=100)
-    # SB3's value loss is the mean squared error, chore's half of it (CleanRL's):
-    # 0.25 here weighs it as chore's 0.5 does.
+    # Table A.12's c2. (chore's PPO halved the squared error until issue 53's
+    # correction: 0.25 here weighs the value loss as it did.)
     parser.add_argument("--vf-coef", type=float, default=0.5)
     parser.add_argument("--input-norm", choices=["unit", "running"], default="unit",
                         help="unit: SB3's images / 255, the state as it is; running: chore's running statistics")

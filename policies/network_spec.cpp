@@ -11,7 +11,8 @@ nlohmann::json to_json(const NetworkSpec& s) {
           {"state_size", s.state_size},   {"feature_size", s.feature_size},
           {"frames", s.frames},           {"history", s.history},
           {"num_actions", s.num_actions},
-          {"action_size", s.action_size}, {"hidden", s.hidden}};
+          {"action_size", s.action_size}, {"hidden", s.hidden},
+          {"normalize_state", s.normalize_state}};
 }
 
 NetworkSpec network_spec_from_json(const nlohmann::json& j) {
@@ -26,6 +27,7 @@ NetworkSpec network_spec_from_json(const nlohmann::json& j) {
     s.num_actions = j.at("num_actions").get<int64_t>();
     s.action_size = j.at("action_size").get<int>();
     s.hidden = j.at("hidden").get<int>();
+    s.normalize_state = j.value("normalize_state", true);  // checkpoints from before it was a choice: true
     within("height", s.height, 0, 4096);
     within("width", s.width, 0, 4096);
     within("state_size", s.state_size, 0, 100000);

@@ -20,6 +20,11 @@ struct NetworkSpec {
   int64_t num_actions = 0;    // PPO: Discrete size
   int action_size = 0;        // SAC: Box size
   int hidden = 256;           // SAC actor/critic MLP width
+  // Whether the state is normalised by running statistics as the image is.
+  // PPO's is not: appendix F.1 normalises "the image input" of RL-Prim.'s
+  // encoder alone. SAC's is (proprio's joint positions and velocities differ
+  // in scale), as are PPO checkpoints of before issue 53's correction.
+  bool normalize_state = true;
   bool has_rgb() const { return height > 0; }
   // Bytes of one (stacked) observation as the networks' buffers hold it: uint8 RGB, float32 state.
   double observation_bytes() const { return frames * (3.0 * height * width + 4.0 * state_size); }

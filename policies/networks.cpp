@@ -216,7 +216,7 @@ EncoderImpl::EncoderImpl(const NetworkSpec& spec) : frames_(spec.frames) {
   if (spec.state_size > 0) {
     state_net_ = register_module("state_net",
                                  nn::Sequential(nn::Linear(frames_ * spec.state_size, kStateEncoding), nn::ReLU()));
-    state_norm_ = register_module("state_norm", RunningNorm(spec.state_size, 5.0));
+    if (spec.normalize_state) state_norm_ = register_module("state_norm", RunningNorm(spec.state_size, 5.0));
     width += kStateEncoding;
   }
   if (width == 0) throw Error("network: the observation has neither rgb nor a state field");
@@ -233,7 +233,8 @@ torch::Tensor EncoderImpl::forward(const ObsTensors& obs) {
   }
   if (state_net_) {
     const int64_t b = obs.state.size(0);
-    const torch::Tensor frames = state_norm_->forward(obs.state.reshape({b * frames_, -1}), 1);
+    const torch::Tensor state = obs.state.reshape({b * frames_, -1});
+    const torch::Tensor frames = state_norm_ ? state_norm_->forward(state, 1) : state;
     parts.push_back(state_net_->forward(frames.reshape({b, -1})));
   }
   return mlp_->forward(torch::cat(parts, 1));
@@ -243,7 +244,7 @@ torch::Tensor EncoderImpl::forward(const ObsTensors& obs) {
 // the stack (its older frames are the same observations again, or zeros).
 void EncoderImpl::update_normalizers(const ObsTensors& obs) {
   if (trunk_) rgb_norm_->update(obs.rgb.narrow(1, 0, 3).permute({0, 2, 3, 1}).reshape({-1, 3}));
-  if (state_net_) state_norm_->update(obs.state.narrow(1, 0, obs.state.size(1) / frames_));
+  if (state_norm_) state_norm_->update(obs.state.narrow(1, 0, obs.state.size(1) / frames_));
 }
 
 ActorCriticImpl::ActorCriticImpl(const NetworkSpec& spec) {

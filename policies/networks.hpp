@@ -5,7 +5,8 @@
 //
 //   Encoder      128x128x3 RGB, normalised by a per-channel running mean/std,
 //                -> Conv-ReLU-MaxPool x3 -> Flatten;  state (is_grasping,
-//                proprio), normalised per dimension, -> Linear-ReLU;  both
+//                proprio), normalised per dimension where the spec says
+//                (NetworkSpec::normalize_state), -> Linear-ReLU;  both
 //                -> Linear-ReLU to a 128-d feature. With K frames
 //                (RL-Prim.Hist.), the K observations' RGB as 3K channels
 //                and their states side by side, each frame normalised alike.

@@ -21,6 +21,7 @@
 #include "test_util.hpp"
 #include "training/checkpoint.hpp"
 #include "training/gae.hpp"
+#include "training/ppo_loss.hpp"
 #include "training/trainer.hpp"
 
 namespace chore {
@@ -128,6 +129,30 @@ INSTANTIATE_TEST_SUITE_P(Baselines, PpoLearns, ::testing::Values("rl-prim", "rl-
 // everywhere (final observations and the one after the rollout included),
 // gamma 0.9, lambda 0.8. Env 0 terminates at step 1; env 1 is truncated at
 // steps 0 and 2 (bootstrapped: its reward gains 0.9 x 0.5 = 0.45).
+// PPO's loss on a hand-computed minibatch of two: the clipped surrogate
+// clips the second sample (ratio 0.5 < 0.8), the value loss is the squared
+// error of Schulman's Eq. 9 (Table A.12's c2 weighs it; CleanRL's half of it
+// would read 0.5), approx-KL is the k3 estimator.
+TEST(Training, PpoLossOfAHandComputedMinibatch) {
+  const torch::Tensor logits = torch::tensor({{0.0f, 0.0f}, {std::log(3.0f), 0.0f}});  // probs (.5, .5), (.75, .25)
+  const torch::Tensor actions = torch::tensor({0, 1}, torch::kInt64);
+  const torch::Tensor old_log_probs = torch::full({2}, std::log(0.5f));                // ratios 1 and 0.5
+  const torch::Tensor values = torch::tensor({0.5f, 0.0f}), returns = torch::tensor({1.5f, -1.0f});
+  const PpoLoss l = ppo_loss(logits, values, actions, old_log_probs, torch::tensor({1.0f, -1.0f}), returns,
+                             /*clip=*/0.2, /*value_coef=*/0.5, /*entropy_coef=*/0.01, /*normalize_advantage=*/false);
+  EXPECT_NEAR(l.policy.item<double>(), (-1.0 + 0.8) / 2, 1e-6);  // max(-A r, -A clip(r)) per sample
+  EXPECT_NEAR(l.value.item<double>(), 1.0, 1e-6);
+  const double entropy = (std::log(2.0) - 0.75 * std::log(0.75) - 0.25 * std::log(0.25)) / 2;
+  EXPECT_NEAR(l.entropy.item<double>(), entropy, 1e-6);
+  EXPECT_NEAR(l.total.item<double>(), -0.1 + 0.5 * 1.0 - 0.01 * entropy, 1e-6);
+  EXPECT_NEAR(l.approx_kl, (0.0 + (0.5 - 1 - std::log(0.5))) / 2, 1e-6);
+  EXPECT_DOUBLE_EQ(l.clip_fraction, 0.5);
+  // Normalised over the minibatch: advantages +-1/sqrt(2) (torch's unbiased std of +-1 is sqrt(2)).
+  const PpoLoss n = ppo_loss(logits, values, actions, old_log_probs, torch::tensor({1.0f, -1.0f}), returns, 0.2, 0.5,
+                             0.01, true);
+  EXPECT_NEAR(n.policy.item<double>(), (-1.0 + 0.8) / 2 / std::sqrt(2.0), 1e-6);
+}
+
 TEST(Training, AdvantagesOfAHandComputedRolloutWithBothEnds) {
   RolloutSteps steps;
   const torch::Tensor v = torch::full({2}, 0.5f);
@@ -204,6 +229,27 @@ void expect_deterministic(const TrainConfig& config, int64_t steps) {
 
 TEST(Training, PpoWithObservationHistoryIsDeterministicOnOneThread) {
   expect_deterministic(collect_trash_config("rl-prim-hist"), 600);
+}
+
+// PPO's encoder normalises the image alone ("The image input is normalized
+// using a per-channel moving average", appendix F.1): its state reaches the
+// state encoder as observed. A checkpoint of before, which normalised the
+// state too, says so by lacking the field, and is rebuilt as it was.
+TEST(Training, PpoNormalisesTheImageNotTheState) {
+  TrainConfig config = collect_trash_config();
+  config.ppo.buffer = 32;
+  config.ppo.batch = 16;
+  auto trainer = make_trainer(config);
+  train(*trainer, 32);
+  const std::string path = (test::scratch_dir("ppo_state_norm") / "checkpoint.pt").string();
+  trainer->save(path);
+  const CheckpointFile file = read_checkpoint(path);
+  EXPECT_FALSE(read_checkpoint_meta(file).network.normalize_state);
+  for (const auto& [name, tensor] : file.tensors) EXPECT_EQ(name.find("state_norm"), std::string::npos) << name;
+  nlohmann::json before = file.meta["network"];
+  before.erase("normalize_state");
+  EXPECT_TRUE(network_spec_from_json(before).normalize_state);
+  EXPECT_EQ(ActorCritic(network_spec_from_json(before))->named_buffers().contains("encoder.state_norm.mean"), true);
 }
 
 TEST(Training, PpoWithActionHistoryIsDeterministicOnOneThread) {

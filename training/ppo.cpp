@@ -3,7 +3,7 @@
 // a vector env collects a rollout of `buffer` transitions with the current
 // policy; GAE(gamma, lambda) gives advantages and returns; `epochs` passes of
 // shuffled minibatches optimise the clipped surrogate, the value loss and the
-// entropy bonus with Adam (eps 1e-5) and global gradient clipping, optionally
+// entropy bonus (training/ppo_loss.hpp) with Adam (eps 1e-5) and global gradient clipping, optionally
 // stopping an update early on approx-KL (SB3's target_kl). Episode ends
 // by truncation bootstrap from the value of the final observation
 // (training/gae.hpp). RL-Prim.Hist.'s policy sees its last K observations
@@ -17,6 +17,7 @@
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
 #include "training/gae.hpp"
+#include "training/ppo_loss.hpp"
 #include "training/torch_support.hpp"
 #include "training/trainer.hpp"
 
@@ -42,13 +43,22 @@ struct UpdateStats {
   double update_ms = 0;  // per minibatch update
 };
 
+// The image normalised, the state as observed (appendix F.1: "The image input
+// is normalized using a per-channel moving average"); a resumed run keeps its
+// checkpoint's choice.
+NetworkSpec ppo_network_spec(const VectorEnv& env, const TrainConfig& config, const CheckpointFile* resume) {
+  NetworkSpec spec =
+      network_spec(env.single_observation_space(), env.single_action_space(), config.ppo.frames, config.ppo.history);
+  spec.normalize_state = resume ? read_checkpoint_meta(*resume).network.normalize_state : false;
+  return spec;
+}
+
 class PpoTrainer : public Trainer {
  public:
   PpoTrainer(const TrainConfig& config, const CheckpointFile* resume)
       : config_(config),
         env_(vector_env_config(config)),
-        spec_(network_spec(env_.single_observation_space(), env_.single_action_space(), config.ppo.frames,
-                           config.ppo.history)),
+        spec_(ppo_network_spec(env_, config, resume)),
         stats_(config.num_envs) {
     const PpoConfig& p = config_.ppo;
     if (env_.single_action_space().kind != Space::Kind::discrete) {
@@ -219,38 +229,26 @@ class PpoTrainer : public Trainer {
       for (int64_t begin = 0; begin < rows; begin += p.batch) {
         const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
         const ActorCriticOutput out = net_->forward(obs.index(idx), history_ ? history.index_select(0, idx) : history);
-        const torch::Tensor log_probs_all = torch::log_softmax(out.logits, 1);
-        const torch::Tensor log_probs = log_probs_all.gather(1, actions.index_select(0, idx).unsqueeze(1)).squeeze(1);
-        const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
-        const torch::Tensor log_ratio = log_probs - old_log_probs.index_select(0, idx);
-        const torch::Tensor ratio = log_ratio.exp();
-        const double approx_kl = [&] {
-          torch::NoGradGuard no_grad;
-          return ((ratio - 1) - log_ratio).mean().item<double>();
-        }();
+        const PpoLoss l = ppo_loss(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
+                                   advantages.index_select(0, idx), returns.index_select(0, idx), p.clip, p.value_coef,
+                                   p.entropy_coef, p.normalize_advantage);
         // As SB3: the policy has moved far enough from the rollout's; this
         // minibatch and the rest of the update are skipped.
-        if (p.target_kl > 0 && approx_kl > 1.5 * p.target_kl) {
+        if (p.target_kl > 0 && l.approx_kl > 1.5 * p.target_kl) {
           stopped_early = true;
           break;
         }
-        torch::Tensor adv = advantages.index_select(0, idx);
-        if (p.normalize_advantage && adv.size(0) > 1) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
-        const torch::Tensor policy_loss =
-            torch::max(-adv * ratio, -adv * torch::clamp(ratio, 1 - p.clip, 1 + p.clip)).mean();
-        const torch::Tensor value_loss = 0.5 * (out.value - returns.index_select(0, idx)).pow(2).mean();
-        const torch::Tensor loss = policy_loss - p.entropy_coef * entropy + p.value_coef * value_loss;
         optimizer_->zero_grad();
-        loss.backward();
+        l.total.backward();
         torch::nn::utils::clip_grad_norm_(net_->parameters(), p.max_grad_norm);
         optimizer_->step();
 
         torch::NoGradGuard no_grad;
-        s.policy_loss += policy_loss.item<double>();
-        s.value_loss += value_loss.item<double>();
-        s.entropy += entropy.item<double>();
-        s.approx_kl += approx_kl;
-        s.clip_fraction += ((ratio - 1).abs() > p.clip).to(torch::kFloat32).mean().item<double>();
+        s.policy_loss += l.policy.item<double>();
+        s.value_loss += l.value.item<double>();
+        s.entropy += l.entropy.item<double>();
+        s.approx_kl += l.approx_kl;
+        s.clip_fraction += l.clip_fraction;
         ++updates;
       }
     }
