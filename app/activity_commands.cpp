@@ -10,6 +10,7 @@
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
 #include "tasks/activity.hpp"
+#include "tasks/agent_roles.hpp"
 #include "world/renderer.hpp"
 
 namespace chore {
@@ -22,6 +23,7 @@ int check_activities(const std::vector<std::string>& files, std::ostream& out, s
       // Predicates and arities, room types and synsets checked where they are written.
       const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
       const GroundGoal goal = ground_goal(p, synset_type_test(dialect_knowledge_base(p.domain)));
+      check_agent_roles(p, goal);
       size_t literals = 0;
       for (const GroundOption& o : goal.options) literals = std::max(literals, o.size());
       out << file << ": " << p.name << " (" << to_string(p.domain) << "): " << p.objects.size() << " objects, "

@@ -1,7 +1,9 @@
 #include "app/activity_coverage.hpp"
 
 #include <algorithm>
-#include <atomic>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -10,7 +12,6 @@
 #include <map>
 #include <regex>
 #include <sstream>
-#include <thread>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -18,6 +19,7 @@
 #include "app/activity_commands.hpp"
 #include "app/png.hpp"
 #include "base/error.hpp"
+#include "base/json_file.hpp"
 #include "base/random.hpp"
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
@@ -46,6 +48,12 @@ std::string failure_cause(const std::string& error) {
 }
 
 namespace {
+
+// BEHAVIOR-1K's NAME/problem0.bddl is NAME; any other file its stem.
+std::string activity_name(const std::string& file) {
+  return fs::path(file).stem() == "problem0" ? fs::path(file).parent_path().filename().string()
+                                             : fs::path(file).stem().string();
+}
 
 struct Result {
   std::string name, file, stage = "instantiated", error;
@@ -114,8 +122,7 @@ void run_in_vector_env(const EnvConfig& config, const Env& env, uint64_t seed, i
 Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t seed, int steps, bool picture) {
   Result r;
   r.file = file;
-  r.name = fs::path(file).stem() == "problem0" ? fs::path(file).parent_path().filename().string()
-                                               : fs::path(file).stem().string();
+  r.name = activity_name(file);
   const auto start = std::chrono::steady_clock::now();
   try {
     r.stage = "parse";
@@ -146,6 +153,97 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t s
   return r;
 }
 
+// A Result as the child that made it writes it for the parent: JSON, then
+// the picture's bytes.
+void write_result(const fs::path& path, const Result& r) {
+  const nlohmann::json j = {{"name", r.name},       {"file", r.file},
+                            {"stage", r.stage},     {"error", r.error},
+                            {"seconds", r.seconds}, {"out_of_reach", r.out_of_reach},
+                            {"ran", r.ran},         {"rows", r.picture.rows},
+                            {"cols", r.picture.cols}};
+  std::ofstream out(path, std::ios::binary);
+  out << json_text(j) << "\n";
+  if (!r.picture.empty()) {
+    const cv::Mat picture = r.picture.isContinuous() ? r.picture : r.picture.clone();
+    out.write(reinterpret_cast<const char*>(picture.data), static_cast<std::streamsize>(picture.total() * 3));
+  }
+}
+
+Result read_result(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::getline(in, line);
+  const nlohmann::json j = nlohmann::json::parse(line);
+  Result r;
+  r.name = j["name"];
+  r.file = j["file"];
+  r.stage = j["stage"];
+  r.error = j["error"];
+  r.seconds = j["seconds"];
+  r.out_of_reach = j["out_of_reach"];
+  r.ran = j["ran"];
+  if (const int rows = j["rows"], cols = j["cols"]; rows > 0) {
+    r.picture = cv::Mat(rows, cols, CV_8UC3);
+    in.read(reinterpret_cast<char*>(r.picture.data), static_cast<std::streamsize>(r.picture.total() * 3));
+  }
+  return r;
+}
+
+// Each activity in a child process, `threads` at a time: an activity that
+// crashes the simulator (a signal inside MuJoCo) is reported as crashed, with
+// its signal, and the others go on. The parent forks before it starts any
+// thread of its own, and a child renders in an EGL context of its own.
+std::vector<Result> run_each_in_a_child(const std::vector<std::string>& files, const Vocabulary& vocabulary,
+                                        const CoverageOptions& options, std::ostream& log) {
+  const fs::path scratch = fs::temp_directory_path() / ("chore-coverage-" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  std::vector<Result> results(files.size());
+  std::map<pid_t, size_t> running;
+  size_t next = 0, done = 0;
+  const auto result_file = [&](size_t i) { return scratch / std::to_string(i); };
+  while (next < files.size() || !running.empty()) {
+    while (next < files.size() && running.size() < static_cast<size_t>(std::max(options.threads, 1))) {
+      const pid_t pid = ::fork();
+      if (pid < 0) throw Error(std::string("activity coverage: fork failed: ") + std::strerror(errno));
+      if (pid == 0) {
+        int status = 0;
+        try {
+          write_result(result_file(next), run_one(files[next], vocabulary, options.seed, options.steps,
+                                                  !options.sheet.empty()));
+        } catch (...) {
+          status = 1;
+        }
+        ::_exit(status);  // no destructors: the parent's objects are the parent's to free
+      }
+      running[pid] = next++;
+    }
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0) throw Error(std::string("activity coverage: waitpid failed: ") + std::strerror(errno));
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const size_t i = it->second;
+    running.erase(it);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+      results[i] = read_result(result_file(i));
+    } else {
+      Result& r = results[i];
+      r.file = files[i];
+      r.name = activity_name(files[i]);
+      r.stage = "crashed";
+      r.error = WIFSIGNALED(status) ? std::string("the process died of signal ") + std::to_string(WTERMSIG(status)) +
+                                          " (" + strsignal(WTERMSIG(status)) + ")"
+                                    : "the process exited with status " + std::to_string(WEXITSTATUS(status));
+    }
+    std::error_code ignored;
+    fs::remove(result_file(i), ignored);
+    if (++done % 50 == 0 || done == files.size()) log << "coverage: " << done << "/" << files.size() << std::endl;
+  }
+  std::error_code ignored;
+  fs::remove_all(scratch, ignored);
+  return results;
+}
+
 // A domain definition (predicates), not an activity: BEHAVIOR's folders hold one.
 bool is_domain_file(const fs::path& path) {
   std::ifstream in(path);
@@ -169,19 +267,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   if (files.empty()) throw Error("activity coverage: no .bddl file under '" + options.dir + "'");
 
   const Vocabulary vocabulary = load_vocabulary();
-  std::vector<Result> results(files.size());
-  std::atomic<size_t> next = 0, done = 0;
-  auto work = [&] {
-    for (size_t i; (i = next++) < files.size();) {
-      results[i] = run_one(files[i], vocabulary, options.seed, options.steps, !options.sheet.empty());
-      if (const size_t n = ++done; n % 50 == 0 || n == files.size())
-        log << "coverage: " << n << "/" << files.size() << std::endl;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < options.threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  const std::vector<Result> results = run_each_in_a_child(files, vocabulary, options, log);
 
   if (!options.sheet.empty()) write_contact_sheet(options.sheet, results);
 
@@ -191,7 +277,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0, ran = 0;
   std::vector<double> seconds;
   for (const Result& r : results) {
-    parsed += r.stage != "parse";
+    parsed += r.stage != "parse" && r.stage != "crashed";
     instantiated += r.stage == "instantiated" || r.stage == "run";
     ran += r.ran;
     if (r.stage == "instantiated" || r.stage == "run") {

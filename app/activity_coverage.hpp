@@ -19,7 +19,7 @@ namespace chore {
 struct CoverageOptions {
   std::string dir;
   uint64_t seed = 0;
-  int threads = 1;  // files instantiated at once
+  int threads = 1;  // files instantiated at once, each in a child process (a crash is reported, not shared)
   // After instantiating, run each in a VectorEnv for this many random
   // low-level steps (0: not run), checking it starts as the Env did.
   int steps = 0;

@@ -74,6 +74,9 @@ const std::vector<PrimitiveAction>& Env::primitive_actions() const {
 const EnvConfig& Env::config() const {
   return impl_->config_;
 }
+void Env::release_thread() {
+  if (impl_->renderer_) impl_->renderer_->release_thread();
+}
 void Env::close() {
   impl_->close();
 }

@@ -144,6 +144,11 @@ class Env : public EnvState {
   // stream continues (as Gymnasium's reset() without seed).
   ResetResult reset(std::optional<uint64_t> seed = std::nullopt);
   StepResult step(std::span<const float> action);
+  // An Env serves one thread at a time, any thread in turn: called on the
+  // thread that used it last, before another uses it (its renderer's EGL
+  // context is current on one thread at a time). Python's Env does it after
+  // each call; C++ callers that hand an Env between threads do the same.
+  void release_thread();
   // Idempotent; any other call after it throws chore::Error.
   void close();
   bool closed() const;

@@ -7,8 +7,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,40 +29,94 @@ namespace {
 
 using namespace python;
 
+// Who may call an env: the process that made it, one thread at a time. A
+// child of fork() holds a copy of the parent's env whose worker threads and
+// EGL context are not in the child: a call there is chore.Error, and close()
+// and the destructor leave its memory to the process's end rather than join
+// threads that do not exist. A second thread calling while one is inside is
+// chore.Error rather than two threads inside MuJoCo; one after the other, any
+// thread may call (Env::release_thread after each).
+class CallGuard {
+ public:
+  explicit CallGuard(std::string what) : what_(std::move(what)), pid_(::getpid()) {}
+  bool forked() const { return ::getpid() != pid_; }
+  // Held for the call (taken with the GIL held, never waiting).
+  std::unique_lock<std::mutex> enter() {
+    if (forked()) {
+      throw Error(what_ + ": made in process " + std::to_string(pid_) + " before a fork; make a new one in process " +
+                  std::to_string(::getpid()));
+    }
+    std::unique_lock<std::mutex> lock(busy_, std::try_to_lock);
+    if (!lock) {
+      throw Error(what_ + ": in use by another thread; it serves one call at a time (chore.VectorEnv steps envs in "
+                          "parallel)");
+    }
+    return lock;
+  }
+
+ private:
+  std::string what_;
+  pid_t pid_;
+  std::mutex busy_;
+};
+
 // ---- Env ----
+
+// The next call may come from another thread, whether this one returns or throws.
+struct ReleaseThread {
+  Env& env;
+  ~ReleaseThread() { env.release_thread(); }
+};
 
 class PyEnv {
  public:
   explicit PyEnv(const py::dict& config) : env_(std::make_unique<Env>(env_config(config))) {}
+  ~PyEnv() {
+    if (guard_.forked()) (void)env_.release();  // the parent's to free
+  }
 
   py::tuple reset(py::object self, std::optional<uint64_t> seed) {
+    const auto in_call = guard_.enter();
     std::optional<Env::ResetResult> r;
     {
+      Env& e = env();
       py::gil_scoped_release release;
-      r.emplace(env().reset(seed));
+      const ReleaseThread after{e};
+      r.emplace(e.reset(seed));
     }
     return py::make_tuple(observation_views(r->obs, self, true), info_dict(r->info));
   }
 
   py::tuple step(py::object self, const py::handle& action) {
+    const auto in_call = guard_.enter();
     const std::vector<float> values = action_values(action, env().action_space().element_count(), "step");
     std::optional<Env::StepResult> r;
     {
+      Env& e = env();
       py::gil_scoped_release release;
-      r.emplace(env().step(values));
+      const ReleaseThread after{e};
+      r.emplace(e.step(values));
     }
     return py::make_tuple(observation_views(r->obs, self, true), r->reward, r->terminated, r->truncated,
                           info_dict(r->info));
   }
 
   Env& env() {
-    if (env_->closed()) throw Error("env: closed");
+    if (!env_ || env_->closed()) throw Error("env: closed");
     return *env_;
   }
-  void close() { env_->close(); }
+  void close() {
+    if (guard_.forked()) {
+      (void)env_.release();
+      return;
+    }
+    const auto in_call = guard_.enter();
+    env_->close();
+  }
 
  private:
   std::unique_ptr<Env> env_;
+  CallGuard guard_{"chore.Env"};
 };
 
 std::vector<std::string> primitive_names(const std::vector<PrimitiveAction>& actions) {
@@ -85,8 +142,12 @@ class PyVectorEnv {
     envs_ = std::make_unique<VectorEnv>(c);
     action_size_ = envs_->single_action_space().element_count();
   }
+  ~PyVectorEnv() {
+    if (guard_.forked()) (void)envs_.release();  // its worker threads are the parent's
+  }
 
   py::tuple reset(py::object self, std::optional<uint64_t> seed) {
+    const auto in_call = guard_.enter();
     std::optional<Batch> b;
     {
       py::gil_scoped_release release;
@@ -96,6 +157,7 @@ class PyVectorEnv {
   }
 
   py::tuple step(py::object self, const py::handle& actions) {
+    const auto in_call = guard_.enter();
     const std::vector<float> values =
         action_values(actions, action_size_ * static_cast<size_t>(envs_->num_envs()), "step");
     std::optional<Batch> b;
@@ -107,6 +169,7 @@ class PyVectorEnv {
   }
 
   void send(const py::handle& actions, const py::handle& env_ids) {
+    const auto in_call = guard_.enter();
     const auto ids = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(env_ids);
     if (!ids || ids.ndim() != 1) throw Error("send: env_ids: expected a list of env ids");
     const std::vector<int> id_values(ids.data(), ids.data() + ids.size());
@@ -116,6 +179,7 @@ class PyVectorEnv {
   }
 
   py::tuple recv(py::object self) {
+    const auto in_call = guard_.enter();
     std::optional<Batch> b;
     {
       py::gil_scoped_release release;
@@ -124,7 +188,18 @@ class PyVectorEnv {
     return results(self, *b);
   }
 
-  VectorEnv& envs() { return *envs_; }
+  VectorEnv& envs() {
+    if (!envs_) throw Error("chore.VectorEnv: closed");
+    return *envs_;
+  }
+  void close() {
+    if (guard_.forked()) {
+      (void)envs_.release();
+      return;
+    }
+    const auto in_call = guard_.enter();
+    envs_->close();
+  }
 
  private:
   // (obs, rewards, terminated, truncated, info): views of the batch; info's
@@ -144,6 +219,7 @@ class PyVectorEnv {
 
   std::unique_ptr<VectorEnv> envs_;
   size_t action_size_ = 0;
+  CallGuard guard_{"chore.VectorEnv"};
 };
 
 }  // namespace
@@ -186,5 +262,5 @@ PYBIND11_MODULE(_chore, m) {
                              [](PyVectorEnv& v) { return describe(v.envs().single_action_space()); })
       .def_property_readonly("primitive_actions",
                              [](PyVectorEnv& v) { return primitive_names(v.envs().state(0).primitive_actions()); })
-      .def("close", [](PyVectorEnv& v) { v.envs().close(); });
+      .def("close", &PyVectorEnv::close);
 }

@@ -10,6 +10,7 @@
 
 #include "base/error.hpp"
 #include "base/json_file.hpp"
+#include "tasks/agent_roles.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/sampling.hpp"
@@ -125,6 +126,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   }
   a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
+  check_agent_roles(a->problem_, a->goal_);
 
   for (const Literal& l : a->problem_.init) {
     if (l.predicate == "future" && !l.negated && l.args.size() == 1) a->future_.insert(l.args[0]);
@@ -293,6 +295,7 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     // The start: (onfloor agent floor) in BEHAVIOR-100, (ontop agent floor) in
     // most BEHAVIOR-1K files, (ontop agent lawn) in some: the robot stands in
     // that room. Anything else about the agent must simply hold.
+    if (l.args.size() != 2) return holds(w, l);  // a state of the agent: holds() names why it cannot
     const Binding& second = binding(l.args.at(1));
     if ((l.predicate != "onfloor" && l.predicate != "ontop") || second.kind == Binding::Kind::agent ||
         second.kind == Binding::Kind::substance || second.kind == Binding::Kind::future || l.negated) {
@@ -319,6 +322,8 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
     }
     const Binding& second = binding(l.args.at(1));
     if (second.kind == Binding::Kind::floor) return sample_onfloor(w, a, second.index, rng);
+    // On, in or under the agent or a substance: nothing to place it by; holds() names why.
+    if (second.kind != Binding::Kind::object) return holds(w, l);
     // A cloth laid over b settles into overlaid or draped (the checks say which).
     if (l.predicate == "ontop" || l.predicate == "overlaid" || l.predicate == "draped")
       return sample_ontop(w, a, second.index, rng);

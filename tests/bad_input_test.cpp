@@ -141,6 +141,41 @@ TEST(BadInput, ATableOfTheWrongShapeIsAnErrorAndIsKept) {
   EXPECT_EQ(read_text(out / "baselines.json"), "[1, 2]\n");
 }
 
+// The agent in roles the samplers and checkers do not give it (issue 54: a
+// crash in object_aabb, an out-of-range index) is an error naming the
+// literal, at `activity check` and before the simulator gets it.
+TEST(BadInput, TheAgentPlaysOnlyTheRolesChoreGivesIt) {
+  const fs::path dir = test::scratch_dir("cli_agent_roles");
+  const std::string base = read_text(fs::path(CHORE_TEST_DATA) / "../../tasks/activities/collect_trash.bddl");
+  const std::string start = "(onfloor agent.n.01_1 floor.n.01_1)";
+  const struct {
+    std::string name, init, goal;
+  } cases[] = {
+      {"on_the_agent", "(ontop bottle.n.01_1 agent.n.01_1)", ""},
+      {"inside_the_agent", "(inside cup.n.01_1 agent.n.01_1)", ""},
+      {"agent_open", "(open agent.n.01_1)", ""},
+      {"agent_on_itself", "(ontop agent.n.01_1 agent.n.01_1)", ""},
+      {"goal_next_to", "", "(nextto agent.n.01_1 ashcan.n.01_1)"},
+  };
+  for (const auto& c : cases) {
+    std::string text = base;
+    text.replace(text.find(start), start.size(), start + " " + c.init);
+    if (!c.goal.empty()) text.replace(text.find("(and"), 4, "(and " + c.goal);
+    const fs::path file = dir / (c.name + ".bddl");
+    std::ofstream(file) << text;
+    const std::string literal = c.init.empty() ? c.goal : c.init;
+    const std::string section = c.init.empty() ? ": :goal: " : ": :init: ";
+    expect_error("activity check " + file.string(), file.string() + section + literal + ": 'agent.n.01_1' is the agent");
+    expect_error("activity sample " + file.string() + " --out " + (dir / "x.png").string(), "is the agent");
+  }
+  // What the corpora write stays good: the agent on the floor, in :init and in :goal.
+  std::string good = base;
+  good.replace(good.find("(and"), 4, "(and (onfloor agent.n.01_1 floor.n.01_1)");
+  std::ofstream(dir / "good.bddl") << good;
+  const Outcome r = run("activity check " + (dir / "good.bddl").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
 // chore never writes over or removes a file it did not make (issue 54): a new
 // run refuses a folder of other files and leaves them as they were; a folder
 // it marked as its own (a run stopped before its first checkpoint) is taken

@@ -53,6 +53,26 @@ expect 0 "store_decoration_0 (igibson): 5 objects" -- "$chore" activity check "$
 expect 2 "error_unbalanced.bddl:3:1: expected ')'" -- "$chore" activity check "$data/bddl/error_unbalanced.bddl"
 expect 2 "1 of 2 files failed" -- "$chore" activity check "$data/bddl/error_unbalanced.bddl" "$tasks/clean_table.bddl"
 expect 0 "3 activities; parsed and grounded 3 (100.0%), instantiated 3 (100.0%)" -- "$chore" activity coverage "$tasks" --threads 2
+# Each activity is covered in a process of its own: one whose process dies (killed here, as a crash
+# inside MuJoCo would end it) is reported with its signal, and the others are covered.
+cover_dir="$(mktemp -d)"
+cp "$tasks/clean_table.bddl" "$tasks/collect_trash.bddl" "$cover_dir/"
+"$chore" activity coverage "$cover_dir" --json > "$cover_dir/out.json" 2> "$cover_dir/err.txt" &
+coverage_pid=$!
+child=""
+for _ in $(seq 400); do child="$(pgrep -P "$coverage_pid" | head -1)"; [[ -n "$child" ]] && break; sleep 0.05; done
+[[ -n "$child" ]] && kill -9 "$child"
+wait "$coverage_pid"
+coverage_code=$?
+checks=$((checks + 1))
+if [[ $coverage_code -eq 0 ]] && grep -q '"stage": "crashed"' "$cover_dir/out.json" &&
+  grep -q 'the process died of signal 9' "$cover_dir/out.json" && grep -q '"instantiated": 1,' "$cover_dir/out.json"; then
+  echo "ok: activity coverage with a child killed"
+else
+  echo "FAIL: activity coverage with a child killed -> exit $coverage_code"; tail -5 "$cover_dir/err.txt"
+  grep -E '"stage"|"instantiated"|"error"' "$cover_dir/out.json"
+  failures=$((failures + 1))
+fi
 expect 2 "unknown activity 'nope'" -- "$chore" activity sample nope --out /tmp/chore_cli_nope.png
 out_png="$(mktemp -d)/sample.png"
 expect 0 "picture: $out_png" -- "$chore" activity sample store_decoration --seed 1 --out "$out_png"

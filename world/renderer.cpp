@@ -197,6 +197,12 @@ Renderer::~Renderer() {
   eglDestroyContext(display().display, s.context);
 }
 
+void Renderer::release_thread() {
+  if (state_ && eglGetCurrentContext() == state_->context) {
+    eglMakeCurrent(display().display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+}
+
 int Renderer::width() const {
   return state_->width;
 }

@@ -49,6 +49,9 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   void render(std::span<const CameraView> views);
+  // An EGL context is current on one thread at a time: after this, called on
+  // the thread that rendered last, the next frame may be drawn on another.
+  void release_thread();
 
   int width() const;
   int height() const;

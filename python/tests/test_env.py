@@ -267,3 +267,62 @@ def test_ctrl_c_interrupts_a_step_loop_cleanly():
     out, err = p.communicate(timeout=30)
     assert p.returncode == 3, err
     assert "interrupted" in out
+
+
+def run_script(script, timeout=180):
+    """A child interpreter: a crash inside MuJoCo or a hang takes it, not pytest."""
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=timeout)
+    return p.returncode, p.stdout, p.stderr
+
+
+def test_an_env_serves_any_thread_in_turn_and_one_at_a_time():
+    code, out, err = run_script(
+        "import chore, numpy as np, threading\n"
+        "env = chore.make('collect_trash', action_space='primitives', mode='symbolic',\n"
+        "                 observations=['rgb', 'is_grasping'])\n"
+        "env.reset(seed=0)\n"
+        # In turn from other threads: each renders its frame on its own thread (EGL).
+        "for _ in range(3):\n"
+        "    t = threading.Thread(target=lambda: env.step(np.array([0])))\n"
+        "    t.start(); t.join()\n"
+        "errors, steps = [], []\n"
+        "def loop():\n"
+        "    for _ in range(60):\n"
+        "        try:\n"
+        "            env.step(np.array([0])); steps.append(1)\n"
+        "        except chore.Error as e:\n"
+        "            errors.append(str(e))\n"
+        "threads = [threading.Thread(target=loop) for _ in range(3)]\n"
+        "[t.start() for t in threads]; [t.join() for t in threads]\n"
+        "assert all('in use by another thread' in e for e in errors), errors[:3]\n"
+        "print('ok', len(steps), len(errors), flush=True)\n")
+    assert code == 0, err
+    ok, steps, errors = out.split()
+    assert ok == "ok" and int(steps) + int(errors) == 180 and int(steps) > 0
+
+
+def test_envs_made_before_a_fork_raise_in_the_child_and_work_in_the_parent():
+    code, out, err = run_script(
+        "import chore, numpy as np, os, sys\n"
+        "envs = chore.make('collect_trash', num_envs=2, num_threads=2, observations=['proprio'])\n"
+        "env = chore.make('collect_trash', observations=['rgb'])\n"
+        "envs.reset(seed=0); env.reset(seed=0)\n"
+        "pid = os.fork()\n"
+        "if pid == 0:\n"
+        "    said = []\n"
+        "    for e, a in ((envs, np.zeros((2, 14), np.float32)), (env, np.zeros(14, np.float32))):\n"
+        "        try:\n"
+        "            e.step(a); said.append('stepped')\n"
+        "        except chore.Error as error:\n"
+        "            said.append('error' if 'before a fork' in str(error) else str(error))\n"
+        "    envs.close(); env.close()\n"
+        "    del envs, env\n"
+        "    print('child', *said, flush=True)\n"
+        "    sys.exit(0)\n"
+        "_, status = os.waitpid(pid, 0)\n"
+        "print('parent', os.waitstatus_to_exitcode(status), flush=True)\n"
+        "envs.step(np.zeros((2, 14), np.float32)); env.step(np.zeros(14, np.float32))\n"
+        "envs.close(); env.close()\n"
+        "print('parent stepped', flush=True)\n")
+    assert code == 0, err
+    assert out.splitlines() == ["child error error", "parent 0", "parent stepped"], (out, err)
