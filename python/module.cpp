@@ -53,6 +53,21 @@ class CallGuard {
     }
     return lock;
   }
+  // The guarded env's close(); in a forked child its memory is left to the process's end.
+  template <class Envs>
+  void close(std::unique_ptr<Envs>& envs) {
+    if (forked()) {
+      (void)envs.release();
+      return;
+    }
+    const auto in_call = enter();
+    envs->close();
+  }
+  // For the destructor: the parent's env is the parent's to free.
+  template <class Envs>
+  void leave_if_forked(std::unique_ptr<Envs>& envs) {
+    if (forked()) (void)envs.release();
+  }
 
  private:
   std::string what_;
@@ -71,9 +86,7 @@ struct ReleaseThread {
 class PyEnv {
  public:
   explicit PyEnv(const py::dict& config) : env_(std::make_unique<Env>(env_config(config))) {}
-  ~PyEnv() {
-    if (guard_.forked()) (void)env_.release();  // the parent's to free
-  }
+  ~PyEnv() { guard_.leave_if_forked(env_); }
 
   py::tuple reset(py::object self, std::optional<uint64_t> seed) {
     const auto in_call = guard_.enter();
@@ -105,14 +118,7 @@ class PyEnv {
     if (!env_ || env_->closed()) throw Error("env: closed");
     return *env_;
   }
-  void close() {
-    if (guard_.forked()) {
-      (void)env_.release();
-      return;
-    }
-    const auto in_call = guard_.enter();
-    env_->close();
-  }
+  void close() { guard_.close(env_); }
 
  private:
   std::unique_ptr<Env> env_;
@@ -142,9 +148,7 @@ class PyVectorEnv {
     envs_ = std::make_unique<VectorEnv>(c);
     action_size_ = envs_->single_action_space().element_count();
   }
-  ~PyVectorEnv() {
-    if (guard_.forked()) (void)envs_.release();  // its worker threads are the parent's
-  }
+  ~PyVectorEnv() { guard_.leave_if_forked(envs_); }
 
   py::tuple reset(py::object self, std::optional<uint64_t> seed) {
     const auto in_call = guard_.enter();
@@ -192,14 +196,7 @@ class PyVectorEnv {
     if (!envs_) throw Error("chore.VectorEnv: closed");
     return *envs_;
   }
-  void close() {
-    if (guard_.forked()) {
-      (void)envs_.release();
-      return;
-    }
-    const auto in_call = guard_.enter();
-    envs_->close();
-  }
+  void close() { guard_.close(envs_); }
 
  private:
   // (obs, rewards, terminated, truncated, info): views of the batch; info's
