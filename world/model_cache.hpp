@@ -4,7 +4,15 @@
 // from here in about an eighth of that (docs/activities.md). A file that is not what
 // its name says (cut short, altered, another MuJoCo) is compiled afresh and
 // replaced; a folder that cannot be written leaves models uncached. The
-// folder keeps the kModelCacheFiles most recently used files.
+// folder keeps the kModelCacheFiles most recently used of its own files
+// (HASH.mjb starting with its magic; other files are not the cache's).
+//
+// Trust: the checksum finds damage, not intent. A file altered on purpose with
+// its checksum recomputed reaches MuJoCo's loader, which checks the model's
+// sizes and references (mj_loadModel refuses what would index out of bounds)
+// but not what chore's scene expects of it; the folder is trusted as the
+// user's own files are (as ccache's or Python's __pycache__), so keep it where
+// only you write, or give `--cache ''`.
 #pragma once
 
 #include <functional>
