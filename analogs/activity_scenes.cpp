@@ -8,6 +8,7 @@
 
 #include "base/error.hpp"
 #include "base/json_file.hpp"
+#include "tasks/initial_states.hpp"
 #include "tasks/knowledge_base.hpp"
 #include "tasks/vocabulary.hpp"
 
@@ -43,6 +44,16 @@ std::string model_synset(const std::string& synset, const KnowledgeBase& models,
     level = std::move(next);
   }
   return "";
+}
+
+// The synset an instance is made as: its own, or, for an abstract synset
+// whose states :init sets, the first of its kinds that keeps them (a
+// saturated fiber.n.01 is made as cotton.n.01: fiber itself soaks nothing).
+std::string made_as(const Problem& problem, const ObjectDecl& d, const KnowledgeBase& dialect) {
+  if (!dialect.contains(d.type)) return d.type;
+  const std::vector<std::string> states = states_set_on(problem, d.name);
+  const std::string kind = states.empty() ? "" : kind_keeping(dialect, d.type, states);
+  return kind.empty() ? d.type : kind;
 }
 
 // The synset a needed object is modelled as.
@@ -107,14 +118,15 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
     if (d.type == "agent.n.01" || d.type == "floor.n.01" || future.contains(d.name)) continue;
     const bool substance = dialect.contains(d.type) && dialect.is_substance(d.type) && !placed.contains(d.name);
     if (substances.contains(d.name) || substance) continue;
-    const std::string model = model_synset(d.type, kb, dialect);
+    const std::string synset = made_as(problem, d, dialect);
+    const std::string model = model_synset(synset, kb, dialect);
     if (model.empty()) continue;
-    if (model != d.type) needs.modelled_as[d.type] = model;
+    if (model != synset) needs.modelled_as[synset] = model;
     const auto room = room_of.find(d.name);
     if (room != room_of.end()) {
-      needs.in_room[room->second].push_back(d.type);
+      needs.in_room[room->second].push_back(synset);
     } else {
-      needs.loose.push_back(d.type);
+      needs.loose.push_back(synset);
     }
   }
   return needs;
@@ -171,7 +183,8 @@ std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, con
   constexpr double kWalls = 0.1, kSpace = 2.5;
   const KnowledgeBase& kb = models.knowledge_base();
   std::map<std::string, std::string> synset_of;
-  for (const ObjectDecl& d : problem.objects) synset_of[d.name] = d.type;
+  const KnowledgeBase& dialect = *dialect_knowledge_base(problem.domain);
+  for (const ObjectDecl& d : problem.objects) synset_of[d.name] = made_as(problem, d, dialect);
   const auto object_synset = [&](const std::string& instance) -> std::string {
     const auto it = synset_of.find(instance);
     return it != synset_of.end() && kb.contains(it->second) && !kb.is_substance(it->second) &&

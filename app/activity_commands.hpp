@@ -9,12 +9,25 @@
 #include <vector>
 
 #include "env/env.hpp"
+#include "tasks/bddl.hpp"
+#include "tasks/goal.hpp"
+#include "tasks/vocabulary.hpp"
 
 namespace chore {
 
-// Parses and grounds each file, each against its dialect; prints objects, goal
-// options and literals to `out`, or the file's error (with file:line:col) to
-// `err`. Returns how many files failed.
+// What `activity check` checks of one file on its text: parsed and grounded
+// against its dialect, the agent's roles (tasks/agent_roles.hpp) and the
+// states :init sets (tasks/initial_states.hpp); chore::Error naming the file
+// otherwise.
+struct CheckedActivity {
+  Problem problem;
+  GroundGoal goal;
+};
+CheckedActivity check_activity(const std::string& file, const Vocabulary& vocabulary);
+
+// check_activity for each file; prints objects, goal options and literals to
+// `out`, or the file's error (with file:line:col) to `err`. Returns how many
+// files failed.
 int check_activities(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
 
 // The robot's head camera (`obs` of an env with "rgb" at head_size) beside a

@@ -57,11 +57,17 @@ std::string activity_name(const std::string& file) {
 
 struct Result {
   std::string name, file, stage = "instantiated", error;
-  double seconds = 0;        // parse, ground, instantiate
-  std::string out_of_reach;  // of an instantiated one: what lies out of the robot's reach ("": none)
-  bool ran = false;          // and it ran in a VectorEnv, from the same instance
-  cv::Mat picture;           // for the contact sheet
+  double seconds = 0;           // parse, ground, instantiate
+  std::string out_of_reach;     // of an instantiated one: what lies out of the robot's reach ("": none)
+  bool ran = false;             // and it ran in a VectorEnv, from the same instance
+  bool ran_primitives = false;  // and random primitives ran on it
+  cv::Mat picture;              // for the contact sheet
 };
+
+// Instantiated, whether or not a later stage ("run", "primitives") failed.
+bool was_instantiated(const Result& r) {
+  return r.stage == "instantiated" || r.stage == "run" || r.stage == "primitives";
+}
 
 constexpr int kSheetHead = 64, kSheetTop = 128, kSheetLabel = 12, kSheetColumns = 16;
 
@@ -116,18 +122,40 @@ void run_in_vector_env(const EnvConfig& config, const Env& env, uint64_t seed, i
   }
 }
 
+// `steps` seeded random actions of the primitive action space, executed
+// physically (motion planning, grasps, placements in MuJoCo) from the
+// instance at `seed`: failed primitives are outcomes, an exception is not.
+void run_primitives(EnvConfig config, uint64_t seed, int steps) {
+  config.action_space = "primitives";
+  config.primitive_mode = ExecutionMode::physical;
+  Env env(config);
+  env.reset(seed);
+  const int64_t n = env.action_space().n;
+  if (n <= 0) return;  // nothing in the activity for a primitive to act on
+  Rng rng(seed);
+  for (int step = 0; step < steps; ++step) {
+    const float action = static_cast<float>(uniform_index(rng, static_cast<int>(n)));
+    const auto result = env.step({&action, 1});
+    if (!std::isfinite(result.reward) || result.info.q < 0 || result.info.q > 1)
+      throw Error("primitive step " + std::to_string(step) + ": reward " + std::to_string(result.reward) + ", Q " +
+                  std::to_string(result.info.q));
+    if (result.terminated || result.truncated) env.reset(seed + step + 1);
+  }
+}
+
 // Parse and ground (as `activity check`), then reset an Env at the seed;
 // then whether the primitives' targets are within the robot's reach (not
-// timed: EnvConfig::reachable_instances resamples until they are).
-Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t seed, int steps, bool picture) {
+// timed: EnvConfig::reachable_instances resamples until they are); then the
+// options' low-level and primitive steps.
+Result run_one(const std::string& file, const Vocabulary& vocabulary, const CoverageOptions& options) {
   Result r;
   r.file = file;
   r.name = activity_name(file);
+  const bool picture = !options.sheet.empty();
   const auto start = std::chrono::steady_clock::now();
   try {
     r.stage = "parse";
-    const Problem p = load_bddl(file, {.vocabulary = &vocabulary});
-    ground_goal(p, synset_type_test(dialect_knowledge_base(p.domain)));
+    check_activity(file, vocabulary);
     r.stage = "instantiate";
     EnvConfig config;
     config.activity = file;
@@ -135,16 +163,23 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, uint64_t s
     config.width = config.height = kSheetHead;
     config.reachable_instances = false;
     Env env(config);
-    const auto reset = env.reset(seed);
+    const auto reset = env.reset(options.seed);
     r.stage = "instantiated";
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.out_of_reach = env.out_of_reach();
     if (picture) r.picture = instance_picture(env, reset.obs, kSheetHead, kSheetTop);
-    if (steps > 0) {
+    if (options.steps > 0) {
       r.stage = "run";
-      run_in_vector_env(config, env, seed, steps);
+      run_in_vector_env(config, env, options.seed, options.steps);
       r.stage = "instantiated";
       r.ran = true;
+    }
+    if (options.primitive_steps > 0) {
+      r.stage = "primitives";
+      config.observations = {"proprio"};
+      run_primitives(config, options.seed, options.primitive_steps);
+      r.stage = "instantiated";
+      r.ran_primitives = true;
     }
   } catch (const Error& e) {
     r.error = e.what();
@@ -159,7 +194,8 @@ void write_result(const fs::path& path, const Result& r) {
   const nlohmann::json j = {{"name", r.name},       {"file", r.file},
                             {"stage", r.stage},     {"error", r.error},
                             {"seconds", r.seconds}, {"out_of_reach", r.out_of_reach},
-                            {"ran", r.ran},         {"rows", r.picture.rows},
+                            {"ran", r.ran},         {"ran_primitives", r.ran_primitives},
+                            {"rows", r.picture.rows},
                             {"cols", r.picture.cols}};
   std::ofstream out(path, std::ios::binary);
   out << json_text(j) << "\n";
@@ -182,6 +218,7 @@ Result read_result(const fs::path& path) {
   r.seconds = j["seconds"];
   r.out_of_reach = j["out_of_reach"];
   r.ran = j["ran"];
+  r.ran_primitives = j["ran_primitives"];
   if (const int rows = j["rows"], cols = j["cols"]; rows > 0) {
     r.picture = cv::Mat(rows, cols, CV_8UC3);
     in.read(reinterpret_cast<char*>(r.picture.data), static_cast<std::streamsize>(r.picture.total() * 3));
@@ -208,8 +245,7 @@ std::vector<Result> run_each_in_a_child(const std::vector<std::string>& files, c
       if (pid == 0) {
         int status = 0;
         try {
-          write_result(result_file(next), run_one(files[next], vocabulary, options.seed, options.steps,
-                                                  !options.sheet.empty()));
+          write_result(result_file(next), run_one(files[next], vocabulary, options));
         } catch (...) {
           status = 1;
         }
@@ -274,20 +310,22 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   nlohmann::json activities = nlohmann::json::array();
   std::map<std::string, std::pair<int, std::string>> causes;  // "stage: cause" -> count, example
   std::map<std::string, std::pair<int, std::string>> reach_causes;
-  int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0, ran = 0;
+  int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0, ran = 0, ran_primitives = 0;
   std::vector<double> seconds;
   for (const Result& r : results) {
     parsed += r.stage != "parse" && r.stage != "crashed";
-    instantiated += r.stage == "instantiated" || r.stage == "run";
+    instantiated += was_instantiated(r);
     ran += r.ran;
-    if (r.stage == "instantiated" || r.stage == "run") {
+    ran_primitives += r.ran_primitives;
+    if (was_instantiated(r)) {
       seconds.push_back(r.seconds);
       within_20s += r.seconds <= 20;
       reachable += r.out_of_reach.empty();
     }
     nlohmann::json a = {{"name", r.name}, {"file", r.file}, {"stage", r.stage}, {"seconds", r.seconds}};
-    if (r.stage == "instantiated" || r.stage == "run") a["out_of_reach"] = r.out_of_reach;
+    if (was_instantiated(r)) a["out_of_reach"] = r.out_of_reach;
     if (options.steps > 0) a["ran"] = r.ran;
+    if (options.primitive_steps > 0) a["ran_primitives"] = r.ran_primitives;
     if (!r.out_of_reach.empty()) {
       auto& [count, example] = reach_causes[failure_cause(r.out_of_reach)];
       if (count++ == 0) example = r.name;
@@ -320,6 +358,8 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
           {"reachable", reachable},
           {"steps", options.steps},
           {"ran", ran},
+          {"primitive_steps", options.primitive_steps},
+          {"ran_primitives", ran_primitives},
           {"median_seconds", seconds.empty() ? 0.0 : seconds[seconds.size() / 2]},
           {"max_seconds", seconds.empty() ? 0.0 : seconds.back()},
           {"causes", grouped(causes)},
@@ -338,6 +378,8 @@ std::string format_coverage(const nlohmann::json& c) {
       << " with everything the primitives act on within the robot's reach";
   if (c["steps"].get<int>() > 0)
     out << "; " << c["ran"] << " ran " << c["steps"] << " random low-level steps in a VectorEnv from the same instance";
+  if (c["primitive_steps"].get<int>() > 0)
+    out << "; " << c["ran_primitives"] << " ran " << c["primitive_steps"] << " random physical primitives";
   out << "\n";
   const auto list = [&](const char* title, const nlohmann::json& causes) {
     if (!causes.empty()) out << title << ":\n";

@@ -4,7 +4,8 @@
 // scene: tasks/activities/scenes.json, else the analog of a BEHAVIOR-1K
 // scene); the report gives the share at each stage, the seconds each took,
 // how many have all the primitives act on within the robot's reach, how many
-// ran in a VectorEnv (CoverageOptions::steps), and the failures grouped by
+// ran in a VectorEnv (CoverageOptions::steps) and ran random primitives
+// (CoverageOptions::primitive_steps), and the failures grouped by
 // cause (the error with its names and numbers blanked), each with an example.
 #pragma once
 
@@ -23,6 +24,9 @@ struct CoverageOptions {
   // After instantiating, run each in a VectorEnv for this many random
   // low-level steps (0: not run), checking it starts as the Env did.
   int steps = 0;
+  // Then this many random actions of the primitive action space, executed
+  // physically, from the same seed (0: none).
+  int primitive_steps = 0;
   // A PNG of every instantiated activity's head camera and top-down view ("": none).
   std::string sheet;
 };

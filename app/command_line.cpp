@@ -158,6 +158,11 @@ CommandLineParser::Impl::Impl() {
                    "Then run each in a VectorEnv for this many random low-level steps (0: not run)")
       ->check(integer_in(0, 100000))
       ->capture_default_str();
+  coverage_cmd
+      ->add_option("--primitive-steps", c.coverage.primitive_steps,
+                   "Then this many random primitives of the primitive action space, executed physically (0: none)")
+      ->check(integer_in(0, 100000))
+      ->capture_default_str();
   coverage_cmd->add_option("--sheet", c.coverage.sheet,
                            "Contact sheet PNG: head camera and top-down view of every instantiated activity");
   coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");

@@ -21,6 +21,7 @@
 #include "app/train_command.hpp"
 #include "base/error.hpp"
 #include "base/json_file.hpp"
+#include "base/temp_file.hpp"
 #include "tasks/activity.hpp"
 #include "training/checkpoint.hpp"
 #include "training/trainer.hpp"
@@ -41,7 +42,7 @@ using Clock = std::chrono::steady_clock;
 
 // Written whole or not at all: a stop mid-write leaves the old file.
 void write_text(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
+  const fs::path tmp = temp_path_for(path);
   {
     std::ofstream out(tmp, std::ios::trunc);
     out << text;

@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "base/json_file.hpp"
 #include "tasks/agent_roles.hpp"
+#include "tasks/initial_states.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/sampling.hpp"
@@ -127,10 +128,25 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
   check_agent_roles(a->problem_, a->goal_);
+  check_initial_states(a->problem_, *a->kb_);
 
   for (const Literal& l : a->problem_.init) {
     if (l.predicate == "future" && !l.negated && l.args.size() == 1) a->future_.insert(l.args[0]);
   }
+  // The object bound to an instance keeps the states :init sets on it (of an
+  // abstract synset's kinds, the analog models one that does), and has joints
+  // if :init opens it: the samplers get only what they can set.
+  std::set<std::string> opened;
+  for (const Literal& l : a->problem_.init) {
+    if (l.predicate == "open" && !l.negated && l.args.size() == 1) opened.insert(l.args[0]);
+  }
+  const auto lacks = [&](const SceneObject& o, const std::string& instance) -> std::string {
+    const ObjectAbilities ab = synset_abilities(a->kb_of(o.synset), o.synset);
+    for (const std::string& predicate : states_set_on(a->problem_, instance)) {
+      if (std::string missing = missing_for_state(predicate, ab); !missing.empty()) return "keeps no " + missing;
+    }
+    return o.joints.empty() && opened.count(instance) ? "no joints to open" : "";
+  };
   std::vector<bool> taken(scene.objects().size(), false);
   for (const ObjectDecl& decl : a->problem_.objects) {
     Binding b;
@@ -173,6 +189,10 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
           }
         } else if (o.fixed) {
           seen += (seen.empty() ? "" : ", ") + o.name + " (fixed: cannot be placed)";
+          continue;
+        }
+        if (const std::string why = lacks(o, decl.name); !why.empty()) {
+          seen += (seen.empty() ? "" : ", ") + o.name + " (" + why + ")";
           continue;
         }
         b.index = static_cast<int>(i);
@@ -251,36 +271,8 @@ void Activity::configure(World& world) const {
     const int index = b.state_object();
     if (index < 0) continue;
     const std::string& s = scene.objects()[index].synset;
-    const KnowledgeBase& kb = kb_of(s);
-    ObjectAbilities ab;
-    const auto states = kb.extended_states(s);
-    auto keeps = [&](ExtendedState e) { return std::find(states.begin(), states.end(), e) != states.end(); };
-    ab.temperature = keeps(ExtendedState::temperature);
-    ab.cook_temperature = kb.parameter(s, "cookable", "cook_temperature").value_or(ab.cook_temperature);
-    ab.burn_temperature = kb.parameter(s, "burnable", "burn_temperature").value_or(ab.burn_temperature);
-    ab.soakable = keeps(ExtendedState::soaked_level);
-    ab.covered = keeps(ExtendedState::covered_level);
-    ab.toggleable = kb.has_property(s, "toggleable");
-    ab.sliceable = keeps(ExtendedState::sliced_state);
-    ab.breakable = keeps(ExtendedState::broken_state);
-    ab.cleaning_tool = kb.is_cleaning_tool(s);
-    ab.slicer = kb.is_slicer(s);
-    ab.holds_liquid = kb.has_property(s, "waterSource") || liquid_holders.count(index);
-    for (const auto& [property, source] :
-         {std::pair{"heatSource", &ab.heat_source}, std::pair{"coldSource", &ab.cold_source}}) {
-      if (!kb.has_property(s, property)) continue;
-      ThermalSource t;
-      if (std::string(property) == "coldSource") t.temperature = -18;
-      auto flag = [&, property = property](const char* name, bool fallback) {
-        return kb.parameter(s, property, name).value_or(fallback) != 0;
-      };
-      t.temperature = kb.parameter(s, property, "temperature").value_or(t.temperature);
-      t.rate = kb.parameter(s, property, "heating_rate").value_or(t.rate);
-      t.requires_toggled_on = flag("requires_toggled_on", false);
-      t.requires_closed = flag("requires_closed", false);
-      t.requires_inside = flag("requires_inside", false);
-      *source = t;
-    }
+    ObjectAbilities ab = synset_abilities(kb_of(s), s);
+    ab.holds_liquid = ab.holds_liquid || liquid_holders.count(index);
     world.states().configure(index, ab);
   }
   // Stains need a soaked cleaning tool, dust any (iGibson's rules).

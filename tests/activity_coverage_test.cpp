@@ -33,34 +33,47 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   std::filesystem::copy_file(default_tasks_dir() + "/activities/collect_trash.bddl", dir / "collect_trash.bddl");
   // An activity of either dialect without a scene gets the analog of an
   // inventory with its rooms; a room none has (a home office, a hammam) is
-  // added. Opening an apple fails alike in both files that ask it.
-  const std::string apple_opened =
+  // added. An apple inside an apple fails alike in both files that ask it, at
+  // instantiation; an opened apple on the text (no apple is openable).
+  const std::string apple_in_apple =
       "(define (problem r) (:domain igibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01 "
-      "apple.n.01_1 - apple.n.01) (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 home_office) "
-      "(onfloor apple.n.01_1 floor.n.01_1) (open apple.n.01_1)) (:goal (onfloor ?agent.n.01_1 ?floor.n.01_1)))";
-  test::write_file(dir / "a" / "problem0.bddl", apple_opened);
-  test::write_file(dir / "b" / "problem0.bddl", apple_opened);
+      "apple.n.01_1 apple.n.01_2 - apple.n.01) (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 "
+      "home_office) (onfloor apple.n.01_2 floor.n.01_1) (inside apple.n.01_1 apple.n.01_2)) (:goal (onfloor "
+      "?agent.n.01_1 ?floor.n.01_1)))";
+  test::write_file(dir / "a" / "problem0.bddl", apple_in_apple);
+  test::write_file(dir / "b" / "problem0.bddl", apple_in_apple);
   test::write_file(dir / "c" / "problem0.bddl",
                    "(define (problem garage_spa-0) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 "
                    "floor.n.01_1 floor.n.01_2 - floor.n.01) (:init (ontop agent.n.01_1 floor.n.01_1) (inroom "
                    "floor.n.01_1 garage) (inroom floor.n.01_2 hammam)) (:goal (ontop ?agent.n.01_1 ?floor.n.01_1)))");
+  test::write_file(dir / "d" / "problem0.bddl",
+                   "(define (problem r) (:domain igibson) (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - "
+                   "floor.n.01 apple.n.01_1 - apple.n.01) (:init (onfloor agent.n.01_1 floor.n.01_1) (inroom "
+                   "floor.n.01_1 kitchen) (onfloor apple.n.01_1 floor.n.01_1) (open apple.n.01_1)) (:goal (onfloor "
+                   "?agent.n.01_1 ?floor.n.01_1)))");
   test::write_file(dir / "bad.bddl", "(define (problem x)");
   test::write_file(dir / "domain_x.bddl", "(define (domain x) (:predicates (p ?a)))");
   std::ostringstream log;
   const std::string sheet = (dir / "sheet.png").string();
-  const nlohmann::json c = activity_coverage({.dir = dir.string(), .threads = 2, .steps = 3, .sheet = sheet}, log);
-  EXPECT_EQ(c["total"], 5);  // the domain file is not an activity
+  const nlohmann::json c = activity_coverage(
+      {.dir = dir.string(), .threads = 2, .steps = 3, .primitive_steps = 2, .sheet = sheet}, log);
+  EXPECT_EQ(c["total"], 6);  // the domain file is not an activity
   EXPECT_EQ(c["parsed"], 4);
   EXPECT_EQ(c["instantiated"], 2);
   EXPECT_EQ(c["ran"], 2) << "collect_trash and garage_spa ran in a VectorEnv from the same instance";
-  ASSERT_EQ(c["causes"].size(), 2u) << c["causes"].dump(1);
+  EXPECT_EQ(c["ran_primitives"], 2) << "and random physical primitives (garage_spa has nothing to act on)";
+  ASSERT_EQ(c["causes"].size(), 3u) << c["causes"].dump(1);
   EXPECT_EQ(c["causes"][0]["count"], 2);
-  EXPECT_EQ(c["causes"][0]["cause"], "instantiate: sampling: object '_' has no joints to open");
+  EXPECT_EQ(c["causes"][0]["cause"],
+            "instantiate: activity '_': cannot instantiate: (inside _ _) could not be sampled (N attempts)");
   EXPECT_EQ(c["causes"][0]["example"], "a");  // a folder's problem0.bddl is named by its folder
-  EXPECT_EQ(c["causes"][1]["cause"].get<std::string>().substr(0, 7), "parse: ");
-  EXPECT_NE(format_coverage(c).find("5 activities; parsed and grounded 4 (80.0%), instantiated 2 (40.0%)"),
+  EXPECT_EQ(c["causes"][1]["cause"], "parse: :init: (open _): no kind of _ is openable (the knowledge base's "
+                                     "properties, Table A.N)");
+  EXPECT_EQ(c["causes"][2]["cause"].get<std::string>().substr(0, 7), "parse: ");
+  EXPECT_NE(format_coverage(c).find("6 activities; parsed and grounded 4 (66.7%), instantiated 2 (33.3%)"),
             std::string::npos)
       << format_coverage(c);
+  EXPECT_NE(format_coverage(c).find("2 ran 2 random physical primitives"), std::string::npos) << format_coverage(c);
   // The contact sheet: a picture per instance, the head camera's and the top-down view, drawn.
   const cv::Mat picture = cv::imread(sheet);
   ASSERT_FALSE(picture.empty());

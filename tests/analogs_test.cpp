@@ -519,5 +519,42 @@ TEST(SceneAnalogs, AFloorKeepsDustAndSceneObjectsAreKnownByBehavior1kSynsets) {
   EXPECT_TRUE(dialect_knowledge_base(Domain::omnigibson)->is_a(window, "window.n.01"));
 }
 
+// States :init sets go to objects that keep them (issue 54): an abstract
+// synset (fiber.n.01, whose own properties are its kinds' intersection and
+// soak nothing) is made as the first of its kinds that soaks (cotton.n.01),
+// and a flammable object is set on fire past its knowledge base's ignition
+// temperature (OmniGibson's 250 C), so both goal literals hold at the start.
+TEST(SceneAnalogs, StatesTheInitSetsGoToObjectsThatKeepThem) {
+  const fs::path file = write_activity("analog_states", "soaked_fibre_on_fire", R"((define (problem fire-0)
+    (:domain omnigibson)
+    (:objects
+        newspaper.n.03_1 - newspaper.n.03
+        fiber.n.01_1 - fiber.n.01
+        water.n.06_1 - water.n.06
+        table.n.02_1 - table.n.02
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (ontop newspaper.n.03_1 table.n.02_1)
+        (on_fire newspaper.n.03_1)
+        (ontop fiber.n.01_1 table.n.02_1)
+        (saturated fiber.n.01_1 water.n.06_1)
+        (inroom table.n.02_1 kitchen)
+        (inroom floor.n.01_1 kitchen)
+        (ontop agent.n.01_1 floor.n.01_1))
+    (:goal (and (on_fire ?newspaper.n.03_1) (saturated ?fiber.n.01_1 ?water.n.06_1))))
+)");
+  Env env(unpictured(file));
+  const auto reset = env.reset(0);
+  EXPECT_EQ(reset.info.total, 2);
+  EXPECT_EQ(reset.info.satisfied, 2);
+  const World& world = env.world();
+  const Activity& activity = *env.activity();
+  EXPECT_EQ(world.scene().objects()[activity.object("fiber.n.01_1")].synset, "cotton.n.01");
+  const int paper = activity.object("newspaper.n.03_1");
+  EXPECT_DOUBLE_EQ(world.states().abilities(paper)->ignition_temperature, 250);
+  EXPECT_GE(world.states().state(paper).temperature, 250);
+}
+
 }  // namespace
 }  // namespace chore

@@ -176,6 +176,44 @@ TEST(BadInput, TheAgentPlaysOnlyTheRolesChoreGivesIt) {
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
+// A state :init sets on an object of which no kind keeps it is refused on
+// the problem's text, at `activity check` and before instantiation, naming
+// the literal and the state (issue 54): the sampler never receives it.
+TEST(BadInput, InitialStatesNoKindOfTheObjectKeepsAreRefusedOnTheText) {
+  const fs::path dir = test::scratch_dir("cli_initial_states");
+  const auto activity = [&](const std::string& name, const std::string& objects, const std::string& init) {
+    const fs::path file = dir / (name + ".bddl");
+    std::ofstream(file) << "(define (problem " << name << "-0) (:domain omnigibson)\n"
+                        << " (:objects " << objects << " floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01)\n"
+                        << " (:init " << init << " (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 kitchen))\n"
+                        << " (:goal (and (not (ontop ?agent.n.01_1 ?floor.n.01_1)))))\n";
+    return file.string();
+  };
+  const struct {
+    std::string name, objects, literal, missing;
+  } cases[] = {
+      {"soaked_foil", "aluminum_foil.n.01_1 - aluminum_foil.n.01 water.n.06_1 - water.n.06",
+       "(saturated aluminum_foil.n.01_1 water.n.06_1)", "SoakedLevel"},
+      {"apple_on_fire", "apple.n.01_1 - apple.n.01", "(on_fire apple.n.01_1)", "an ignition temperature"},
+      {"toggled_foil", "aluminum_foil.n.01_1 - aluminum_foil.n.01", "(toggled_on aluminum_foil.n.01_1)",
+       "ToggledState"},
+  };
+  for (const auto& c : cases) {
+    const std::string file = activity(c.name, c.objects, c.literal);
+    expect_error("activity check " + file, file + ": :init: " + c.literal + ": no kind of");
+    expect_error("activity check " + file, c.missing);
+    expect_error("activity sample " + file + " --out " + (dir / "x.png").string(), c.literal);
+  }
+  // Negations hold on what keeps no such state; an abstract synset passes when one of its kinds keeps it.
+  for (const std::string& init : {std::string("(not (saturated aluminum_foil.n.01_1 water.n.06_1))"),
+                                  std::string("(saturated fiber.n.01_1 water.n.06_1)")}) {
+    const std::string file = activity("good", "aluminum_foil.n.01_1 - aluminum_foil.n.01 fiber.n.01_1 - fiber.n.01 "
+                                              "water.n.06_1 - water.n.06", init);
+    const Outcome r = run("activity check " + file);
+    EXPECT_EQ(r.status, 0) << init << ": " << r.err;
+  }
+}
+
 // chore never writes over or removes a file it did not make (issue 54): a new
 // run refuses a folder of other files and leaves them as they were; a folder
 // it marked as its own (a run stopped before its first checkpoint) is taken
@@ -209,12 +247,12 @@ TEST(BadInput, TrainNeverWritesOverFilesItDidNotMake) {
   EXPECT_EQ(read_text(ours / "train.log"), "the first attempt\n");
 
   // A writer killed mid-write left its temporary file; the next start removes it, not a live one's.
-  std::ofstream(ours / "checkpoint.pt.tmp999999999") << "half";
-  std::ofstream(ours / ("checkpoint.pt.tmp" + std::to_string(::getpid()))) << "writing";
+  std::ofstream(ours / "checkpoint.pt.tmp.999999999.0") << "half";
+  std::ofstream(ours / ("checkpoint.pt.tmp." + std::to_string(::getpid()) + ".0")) << "writing";
   r = run("train --resume " + ours.string() + " --steps 90");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_FALSE(fs::exists(ours / "checkpoint.pt.tmp999999999"));
-  EXPECT_TRUE(fs::exists(ours / ("checkpoint.pt.tmp" + std::to_string(::getpid()))));
+  EXPECT_FALSE(fs::exists(ours / "checkpoint.pt.tmp.999999999.0"));
+  EXPECT_TRUE(fs::exists(ours / ("checkpoint.pt.tmp." + std::to_string(::getpid()) + ".0")));
 }
 
 // Buffers whose size a setting requests are checked against the machine's

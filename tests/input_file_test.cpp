@@ -1,16 +1,20 @@
 // Files a user names and the text chore quotes from them: special files are
 // refused before they are read, reads stop at their bound, and every output
-// is valid UTF-8 whatever bytes the input held (issue 54).
+// is valid UTF-8 whatever bytes the input held; files chore writes are
+// written whole, and only its own dead temporaries are removed (issue 54).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "base/error.hpp"
 #include "base/input_file.hpp"
 #include "base/json_file.hpp"
+#include "base/temp_file.hpp"
 #include "base/utf8.hpp"
 #include "test_util.hpp"
 
@@ -70,6 +74,38 @@ TEST(Utf8, ErrorsAndJsonTextAreValidUtf8) {
   EXPECT_EQ(json_text(value), R"({"file":"runs/\\xFFseed0","n":3,"ok":"café"})");
   const nlohmann::json valid = {{"k", {1, 2}}, {"s", "caf\xC3\xA9"}};
   EXPECT_EQ(json_text(valid, 2), valid.dump(2));
+}
+
+// A writer's temporary is FINAL.tmp.PID.N; only those of a PID that no
+// longer runs are dead, and only those whose FINAL the caller owns go.
+TEST(TempFile, OnlyDeadWritersTemporariesOfOwnFilesAreRemoved) {
+  const std::string pid = std::to_string(::getpid());
+  const fs::path temp = temp_path_for("runs/checkpoint.pt");
+  EXPECT_EQ(temp.string().rfind("runs/checkpoint.pt.tmp." + pid + ".", 0), 0u) << temp;
+  EXPECT_NE(temp_path_for("runs/checkpoint.pt"), temp) << "two writes of one process share no temporary";
+
+  EXPECT_EQ(dead_writers_final_name("checkpoint.pt.tmp.999999999.0"), "checkpoint.pt");
+  EXPECT_EQ(dead_writers_final_name("a.tmp.b.tmp.999999999.12"), "a.tmp.b");
+  EXPECT_EQ(dead_writers_final_name("checkpoint.pt.tmp." + pid + ".0"), "") << "a live writer's";
+  EXPECT_EQ(dead_writers_final_name("checkpoint.pt.tmp.1.0"), "") << "PID 1 runs (init)";
+  for (const char* other : {"checkpoint.pt", "checkpoint.pt.tmp.999999999", "checkpoint.pt.tmp.9999999999.0",
+                            "checkpoint.pt.tmp.12x.0", "checkpoint.pt.tmp..0", ".tmp.999999999.0",
+                            "checkpoint.pt.tmp.999999999.0.bak"}) {
+    EXPECT_EQ(dead_writers_final_name(other), "") << other;
+  }
+
+  const fs::path dir = test::scratch_dir("temp_file");
+  for (const std::string& name : std::vector<std::string>{"checkpoint.pt.tmp.999999999.0", "notes.txt.tmp.999999999.0",
+                                                         "checkpoint.pt.tmp." + pid + ".3", "checkpoint.pt"}) {
+    std::ofstream(dir / name) << "x";
+  }
+  fs::create_directory(dir / "checkpoint_dir.pt.tmp.999999999.0");
+  remove_dead_writers_temps(dir, [](const std::string& final_name) { return final_name.ends_with(".pt"); });
+  EXPECT_FALSE(fs::exists(dir / "checkpoint.pt.tmp.999999999.0"));
+  EXPECT_TRUE(fs::exists(dir / "notes.txt.tmp.999999999.0")) << "not the caller's";
+  EXPECT_TRUE(fs::exists(dir / ("checkpoint.pt.tmp." + pid + ".3"))) << "still being written";
+  EXPECT_TRUE(fs::exists(dir / "checkpoint.pt"));
+  EXPECT_TRUE(fs::is_directory(dir / "checkpoint_dir.pt.tmp.999999999.0")) << "only files go";
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "training/checkpoint.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/json_file.hpp"
+#include "base/temp_file.hpp"
 
 namespace chore {
 namespace {
@@ -151,7 +151,7 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
 
   // Write beside the target, flush to disk, then rename over it: the old file
   // stays whole until the new one is.
-  const std::string temp = path + ".tmp" + std::to_string(::getpid());
+  const std::string temp = temp_path_for(path).string();
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) throw Error("checkpoint " + temp + ": cannot create: " + std::strerror(errno));
   try {
@@ -175,17 +175,8 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
 }
 
 void remove_stale_checkpoint_temps(const std::string& dir) {
-  std::error_code ec;
-  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    const size_t tmp = name.rfind(".pt.tmp");
-    if (tmp == std::string::npos || !name.starts_with("checkpoint")) continue;
-    const std::string pid = name.substr(tmp + 7);
-    if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), ::isdigit)) continue;
-    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // still writing
-    std::error_code ignored;
-    std::filesystem::remove(it->path(), ignored);
-  }
+  remove_dead_writers_temps(
+      dir, [](const std::string& name) { return name.starts_with("checkpoint") && name.ends_with(".pt"); });
 }
 
 CheckpointFile read_checkpoint(const std::string& path) {

@@ -68,7 +68,8 @@ void write_checkpoint(const std::string& path, const CheckpointFile& checkpoint)
 // A regular file of at most kMaxCheckpointBytes; chore::Error otherwise.
 CheckpointFile read_checkpoint(const std::string& path);
 // Removes the temporary files write_checkpoint left in `dir` when its process
-// was killed mid-write (NAME.pt.tmpPID whose PID is no longer running).
+// was killed mid-write (base/temp_file.hpp: checkpoint*.pt.tmp.PID.N whose
+// PID is no longer running).
 void remove_stale_checkpoint_temps(const std::string& dir);
 // The same for a file's bytes; `path` names it in messages.
 CheckpointFile parse_checkpoint(const std::string& bytes, const std::string& path);

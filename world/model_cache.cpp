@@ -2,12 +2,9 @@
 
 #include <mujoco/mujoco.h>
 
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -17,6 +14,7 @@
 
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/temp_file.hpp"
 #include "world/mujoco_errors.hpp"
 
 namespace fs = std::filesystem;
@@ -75,29 +73,19 @@ mjModel* read_cached(const fs::path& path, const Header& want) {
   return model;
 }
 
+// The name of a file this cache writes: HASH.mjb.
+bool is_cache_name(const fs::path& name) {
+  const std::string stem = name.stem().string();
+  return name.extension() == ".mjb" && !stem.empty() && stem.size() <= 20 &&
+         std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 // A file this cache wrote: named HASH.mjb and starting with its magic.
 bool is_cache_file(const fs::path& path) {
-  const std::string stem = path.stem().string();
-  if (path.extension() != ".mjb" || stem.empty() || stem.size() > 20 ||
-      !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    return false;
-  }
+  if (!is_cache_name(path.filename())) return false;
   std::ifstream in(path, std::ios::binary);
   Header h;
   return in.read(reinterpret_cast<char*>(&h), sizeof h) && std::memcmp(h.magic, Header().magic, sizeof h.magic) == 0;
-}
-
-// HASH.mjb.tmp.PID.N of a process that is no longer running.
-bool is_stale_temp(const fs::path& path) {
-  const std::string name = path.filename().string();
-  const size_t tmp = name.find(".mjb.tmp.");
-  if (tmp == std::string::npos) return false;
-  const std::string rest = name.substr(tmp + 9);
-  const std::string pid = rest.substr(0, rest.find('.'));
-  if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    return false;
-  }
-  return ::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH;
 }
 
 // Writes beside, then renames: a reader never sees half a file. Failures
@@ -112,8 +100,7 @@ void write_cached(const fs::path& dir, const fs::path& path, Header h, const mjM
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return;
-  static std::atomic<int> writes = 0;  // a temporary name of this process's own
-  const fs::path temp = path.string() + ".tmp." + std::to_string(getpid()) + "." + std::to_string(writes++);
+  const fs::path temp = temp_path_for(path);
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
@@ -131,13 +118,9 @@ void write_cached(const fs::path& dir, const fs::path& path, Header h, const mjM
   // died mid-write go.
   std::vector<std::pair<fs::file_time_type, fs::path>> files;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (is_cache_file(it->path())) {
-      files.push_back({it->last_write_time(ec), it->path()});
-    } else if (is_stale_temp(it->path())) {
-      std::error_code ignored;
-      fs::remove(it->path(), ignored);
-    }
+    if (is_cache_file(it->path())) files.push_back({it->last_write_time(ec), it->path()});
   }
+  remove_dead_writers_temps(dir, [](const std::string& name) { return is_cache_name(name); });
   if (files.size() <= static_cast<size_t>(kModelCacheFiles)) return;
   std::sort(files.begin(), files.end());
   for (size_t i = 0; i + kModelCacheFiles < files.size(); ++i) fs::remove(files[i].second, ec);

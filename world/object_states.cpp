@@ -1,6 +1,23 @@
 #include "world/object_states.hpp"
 
+#include <cmath>
+
 namespace chore {
+
+std::string missing_for_state(const std::string& p, const ObjectAbilities& ab) {
+  if (p == "cooked" || p == "burnt" || p == "frozen" || p == "hot") return ab.temperature ? "" : "Temperature";
+  if (p == "on_fire") {
+    if (!ab.temperature) return "Temperature";
+    return std::isfinite(ab.ignition_temperature) ? "" : "an ignition temperature (not flammable)";
+  }
+  if (p == "soaked" || p == "saturated") return ab.soakable ? "" : "SoakedLevel";
+  if (p == "covered" || p == "dusty" || p == "stained") return ab.covered ? "" : "CoveredLevel";
+  if (p == "filled" || p == "contains") return ab.holds_liquid ? "" : "a liquid level";
+  if (p == "toggled_on") return ab.toggleable ? "" : "ToggledState";
+  if (p == "sliced") return ab.sliceable ? "" : "SlicedState";
+  if (p == "broken") return ab.breakable ? "" : "BrokenState";
+  return "";
+}
 
 void ObjectStates::configure(int object, const ObjectAbilities& abilities) {
   abilities_[object] = abilities;

@@ -62,6 +62,14 @@ struct ObjectState {
   bool sliced = false, broken = false;
 };
 
+// What sampling the state `predicate` on an object needs of it: "" when
+// `abilities` keep it, else what it lacks, as the samplers' errors name it
+// ("SoakedLevel", "Temperature", "an ignition temperature (not flammable)").
+// Predicates that set no state of the object (placements, inroom, open) need
+// nothing here. The samplers refuse what this names; the activity layer
+// checks it on the problem's text first.
+std::string missing_for_state(const std::string& predicate, const ObjectAbilities& abilities);
+
 class ObjectStates {
  public:
   // Thresholds of the predicates on these states.

@@ -226,51 +226,40 @@ void sample_open(World& w, int a, bool open, Rng& rng) {
 void sample_state(World& w, const std::string& predicate, int a, bool value, const std::string& liquid) {
   const std::string& name = w.scene().objects()[a].name;
   const ObjectAbilities* ab = w.states().abilities(a);
-  auto require = [&](bool has, const char* state) {
-    if (!ab || !has) {
-      throw Error("sampling: object '" + name + "' does not keep " + state + " (needed by '" + predicate + "')");
-    }
-  };
-  ObjectState* s = ab ? &w.states().state(a) : nullptr;
+  // A state the object does not keep reads false: its negation holds as it is.
+  const std::string missing = ab ? missing_for_state(predicate, *ab) : "any state";
+  if (!missing.empty() && !value) return;
+  if (!missing.empty()) {
+    throw Error("sampling: object '" + name + "' does not keep " + missing + " (needed by '" + predicate + "')");
+  }
+  ObjectState* s = &w.states().state(a);
   // Past a threshold by this much when true, back to room conditions when false.
   constexpr double kMargin = 10;
   if (predicate == "cooked" || predicate == "burnt") {
-    require(ab && ab->temperature, "Temperature");
     const double threshold = predicate == "cooked" ? ab->cook_temperature : ab->burn_temperature;
     s->max_temperature =
         value ? std::max(s->max_temperature, threshold + kMargin) : std::min(s->max_temperature, threshold - kMargin);
     s->temperature = std::min(s->temperature, s->max_temperature);
   } else if (predicate == "frozen" || predicate == "hot" || predicate == "on_fire") {
-    require(ab && ab->temperature, "Temperature");
     double target = kRoomTemperature;
     if (value && predicate == "frozen") target = ab->freeze_temperature - kMargin;
     if (value && predicate == "hot") target = ab->hot_temperature + kMargin;
-    if (value && predicate == "on_fire") {
-      if (!std::isfinite(ab->ignition_temperature)) {
-        throw Error("sampling: object '" + name + "' cannot be on fire (not flammable)");
-      }
-      target = ab->ignition_temperature + kMargin;
-    }
+    if (value && predicate == "on_fire") target = ab->ignition_temperature + kMargin;
     s->temperature = target;
     s->max_temperature = std::max(s->max_temperature, target);
   } else if (predicate == "soaked" || predicate == "saturated") {
-    require(ab && ab->soakable, "SoakedLevel");
     s->soaked[liquid] = value ? 1.0 : 0.0;
   } else if (predicate == "filled" || predicate == "contains") {
-    require(ab && ab->holds_liquid, "a liquid level");
     if (value || s->liquid == liquid) {
       s->liquid = liquid;
       // filled: four fifths up; contains: a little, below filled's level.
       s->liquid_level = !value ? 0.0 : predicate == "filled" ? 0.8 : ObjectStates::kFilledLevel / 2;
     }
   } else if (predicate == "toggled_on") {
-    require(ab && ab->toggleable, "ToggledState");
     s->toggled = value;
   } else if (predicate == "sliced") {
-    require(ab && ab->sliceable, "SlicedState");
     s->sliced = value;
   } else if (predicate == "broken") {
-    require(ab && ab->breakable, "BrokenState");
     s->broken = value;
   } else {
     throw Error("sampling: no state sampler for predicate '" + predicate + "'");
@@ -279,7 +268,8 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
 
 bool sample_covered(World& w, int a, const std::string& substance, bool value, Rng& rng, int particles) {
   const ObjectAbilities* ab = w.states().abilities(a);
-  if (!ab || !ab->covered) {
+  if (!ab || !missing_for_state("covered", *ab).empty()) {
+    if (!value) return true;  // nothing lies on what keeps no dirt
     throw Error("sampling: object '" + w.scene().objects()[a].name + "' does not keep CoveredLevel");
   }
   std::vector<Eigen::Vector3d>& dirt = w.states().state(a).dirt[substance];

@@ -39,11 +39,13 @@ void sample_open(World& world, int a, bool open, Rng& rng);
 // on_fire, soaked, saturated, filled, contains, toggled_on, sliced, broken. It writes the
 // state the checker reads, as OmniGibson's samplers do (cooked: the highest
 // temperature reached is past the cook temperature). chore::Error for an
-// unknown predicate or an object that does not keep that state.
+// unknown predicate, or for `value` true on an object that does not keep that
+// state (missing_for_state); false on such an object holds as it is.
 // soaked, saturated, filled and contains name their substance.
 void sample_state(World& world, const std::string& predicate, int a, bool value, const std::string& liquid = "water");
 // Dirt particles of `substance` on a's upward-facing surfaces (value true:
-// `particles` of them, found by rays from above that hit a first), or none.
+// `particles` of them, found by rays from above that hit a first), or none;
+// chore::Error for value true on what keeps no dirt.
 bool sample_covered(World& world, int a, const std::string& substance, bool value, Rng& rng, int particles = 20);
 
 }  // namespace chore
