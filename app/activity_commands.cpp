@@ -82,6 +82,8 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   config.observations = {"rgb"};
   config.reachable_instances = false;  // the instance as sampled: what is out of reach is said below
   Env env(config);
+  out << activity << " in " << env.world().scene().name() << " (" << env.world().scene().objects().size()
+      << " objects): instantiating seed " << seed << std::endl;
   const auto reset = env.reset(seed);
   const std::string out_of_reach = env.out_of_reach();
   write_png(png, instance_picture(env, reset.obs, kHead, kTop), "activity sample");
@@ -99,6 +101,11 @@ void sample_activity_seeds(const std::string& activity, const std::string& scene
   config.scene = scene;
   config.observations = {"proprio"};
   Env env(config);
+  // Said first: an activity of hundreds of objects takes seconds an instance,
+  // and a seed up to Env::kInstanceAttempts instances.
+  out << activity << " in " << env.world().scene().name() << " (" << env.world().scene().objects().size()
+      << " objects): instantiating seeds " << first << "-" << last << ", each resampled up to "
+      << Env::kInstanceAttempts << " times until all the primitives act on is within the robot's reach" << std::endl;
   const auto start = std::chrono::steady_clock::now();
   for (uint64_t seed = first; seed <= last; ++seed) env.impl().reset_state(seed);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -446,6 +446,16 @@ Activity::Evaluation Activity::evaluate(const World& w) const {
 
 void Activity::instantiate(World& w, Rng& rng) const {
   const Pose2 start = w.base_pose();
+  // The samplers' settling steps leave the states alone: what :init sets is
+  // what the instance starts with (a stove :init turns on heats nothing yet),
+  // and a scene of hundreds of objects does not run the state rules at every
+  // physics step of every placement.
+  struct StateUpdatesOff {
+    World& w;
+    const bool was = w.state_updates();
+    explicit StateUpdatesOff(World& world) : w(world) { w.set_state_updates(false); }
+    ~StateUpdatesOff() { w.set_state_updates(was); }
+  } off(w);
   std::string failure;
   for (int attempt = 0; attempt < kInstantiationAttempts; ++attempt) {
     if (attempt > 0) w.reset(start);

@@ -5,6 +5,7 @@
 #include <mujoco/mujoco.h>
 
 #include <chrono>
+#include <fstream>
 #include <string>
 
 #include "env/env.hpp"
@@ -197,6 +198,32 @@ void BM_EnvStep(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_EnvStep);
+
+// Instantiating an activity of N apples on one living room's floor (issue
+// 54's scale case): sampling places each with settling steps of the whole
+// scene, so its cost grows with N; the state rules run at none of them. One
+// reset, the instance as sampled (no resampling for reach).
+void BM_InstantiateApplesOnTheFloor(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::string objects, init;
+  for (int i = 1; i <= n; ++i) {
+    objects += " apple.n.01_" + std::to_string(i);
+    init += " (onfloor apple.n.01_" + std::to_string(i) + " floor.n.01_1)";
+  }
+  const std::string file = "/tmp/chore_bench_apples_" + std::to_string(n) + ".bddl";
+  std::ofstream(file) << "(define (problem apples-0) (:domain igibson) (:objects" << objects
+                      << " - apple.n.01 floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01) (:init" << init
+                      << " (inroom floor.n.01_1 living_room) (onfloor agent.n.01_1 floor.n.01_1)) (:goal (and "
+                         "(onfloor ?agent.n.01_1 ?floor.n.01_1))))\n";
+  EnvConfig config;
+  config.activity = file;
+  config.observations = {"proprio"};
+  config.reachable_instances = false;
+  Env env(config);
+  uint64_t seed = 0;
+  for (auto _ : state) env.reset(seed++);
+}
+BENCHMARK(BM_InstantiateApplesOnTheFloor)->Arg(50)->Arg(200)->Arg(500)->Unit(benchmark::kSecond)->Iterations(3);
 
 }  // namespace
 }  // namespace chore

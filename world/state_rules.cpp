@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <utility>
+#include <vector>
 
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
@@ -22,9 +23,14 @@ void soak(World& w, double dt, int moved, const Aabb* moved_box) {
   std::map<int, ObjectState>& state_of = w.states().all_states();
   const std::map<int, ObjectAbilities>& abilities_of = w.states().all_abilities();
   const auto box = [&](int object) { return object == moved ? *moved_box : object_aabb(w, object); };
+  // The containers holding a liquid first: most scenes have none or a few, and
+  // a scene of hundreds of objects would otherwise pair every two of them.
+  std::vector<int> holding;
   for (const auto& [container, ca] : abilities_of) {
+    if (ca.holds_liquid && state_of[container].liquid_level > 0) holding.push_back(container);
+  }
+  for (const int container : holding) {
     const double level = state_of[container].liquid_level;
-    if (!ca.holds_liquid || level <= 0) continue;
     const std::string& liquid = state_of[container].liquid;
     Aabb water = box(container);
     water.lo.head<2>().array() += 0.01;
@@ -130,22 +136,27 @@ void update_states_after_env_step(World& w, double dt) {
       if (s.toggle_steps == ObjectStates::kToggleSteps) s.toggled = !s.toggled;
     }
   }
-  // Heat: each source in force pulls temperatures towards its own.
+  // Heat: each source in force pulls temperatures towards its own. The
+  // sources first: a few in a scene of hundreds of objects.
+  std::vector<std::pair<int, const ThermalSource*>> sources;
+  for (const auto& [source, sa] : abilities_of) {
+    for (const std::optional<ThermalSource>* t : {&sa.heat_source, &sa.cold_source}) {
+      if (*t) sources.emplace_back(source, &**t);
+    }
+  }
   for (auto& [object, s] : state_of) {
     if (!abilities_of.at(object).temperature) continue;
     bool heated = false;
-    for (const auto& [source, sa] : abilities_of) {
-      for (const std::optional<ThermalSource>& t : {sa.heat_source, sa.cold_source}) {
-        if (!t || source == object) continue;
-        const ObjectState& ss = state_of.at(source);
-        if (t->requires_toggled_on && !ss.toggled) continue;
-        if (t->requires_closed && is_open(w, source)) continue;
-        const bool near = t->requires_inside ? inside(w, object, source)
-                                             : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
-        if (!near) continue;
-        s.temperature += (t->temperature - s.temperature) * std::min(1.0, t->rate * dt);
-        heated = true;
-      }
+    for (const auto& [source, t] : sources) {
+      if (source == object) continue;
+      const ObjectState& ss = state_of.at(source);
+      if (t->requires_toggled_on && !ss.toggled) continue;
+      if (t->requires_closed && is_open(w, source)) continue;
+      const bool near = t->requires_inside ? inside(w, object, source)
+                                           : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
+      if (!near) continue;
+      s.temperature += (t->temperature - s.temperature) * std::min(1.0, t->rate * dt);
+      heated = true;
     }
     if (!heated) s.temperature += (kRoomTemperature - s.temperature) * std::min(1.0, kCoolingRate * dt);
     s.max_temperature = std::max(s.max_temperature, s.temperature);
