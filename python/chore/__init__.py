@@ -6,9 +6,10 @@ environments, in Gymnasium's shape.
     obs, info = envs.reset(seed=0)
     obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
 
-Observations are NumPy arrays that view chore's own buffers (no copy): as
-EnvPool's, they hold until the next reset/step/recv of the same env, which
-writes over them. Pass copy=True to get arrays of your own instead.
+Observations are NumPy arrays of your own, as Gymnasium's contract has
+them. copy=False gives EnvPool's zero copy instead: arrays that view chore's
+own buffers, which hold until the next reset/step/recv of the same env
+writes over them.
 """
 
 import functools
@@ -17,6 +18,7 @@ import numpy as np
 
 from . import spaces
 from ._chore import Error, mujoco_version
+from .spaces import _gymnasium
 from .evaluation import evaluate, format_evaluation, load_policy
 from ._chore import Env as _Env
 from ._chore import VectorEnv as _VectorEnv
@@ -75,7 +77,13 @@ class _Closing:
         self.close()
 
 
-class Env(_Closing):
+# Gymnasium's base classes where it is installed (it is not a Debian 12
+# package): isinstance checks, its env checker and wrappers accept chore's envs.
+_EnvBase = _gymnasium.Env if _gymnasium else object
+_VectorEnvBase = _gymnasium.vector.VectorEnv if _gymnasium else object
+
+
+class Env(_Closing, _EnvBase):
     """One environment with Gymnasium's Env API: reset(seed=, options=) ->
     (obs, info), step(action) -> (obs, reward, terminated, truncated, info)."""
 
@@ -83,7 +91,7 @@ class Env(_Closing):
     render_mode = None
 
     def __init__(self, task=None, *, scene=None, action_space="low_level", mode="physical", observations=None,
-                 copy=False, **options):
+                 copy=True, **options):
         self._env = _Env(_config(task, scene, action_space, mode, observations, options))
         self._copy = copy
         self.observation_space = spaces.from_description(self._env.observation_space)
@@ -93,6 +101,8 @@ class Env(_Closing):
 
     def reset(self, *, seed=None, options=None):
         obs, info = self._env.reset(_seed(seed))
+        if _gymnasium:  # Gymnasium's np_random, seeded as its contract says (chore's own streams are in C++)
+            super().reset(seed=seed)
         if seed is not None:
             self.action_space.seed(int(seed))
         return (_copied(obs) if self._copy else obs), info
@@ -105,7 +115,7 @@ class Env(_Closing):
         self._env.close()
 
 
-class VectorEnv(_Closing):
+class VectorEnv(_Closing, _VectorEnvBase):
     """num_envs environments stepped by num_threads C++ workers with
     Gymnasium's VectorEnv API (env i is seeded seed + i), and EnvPool's
     send(actions, env_ids) / recv() when batch_size < num_envs. Autoreset as
@@ -115,7 +125,7 @@ class VectorEnv(_Closing):
 
     def __init__(self, task=None, *, scene=None, num_envs=1, num_threads=1, batch_size=None,
                  action_space="low_level", mode="physical", observations=None, autoreset_mode="next_step",
-                 seed=None, copy=False, **options):
+                 seed=None, copy=True, **options):
         autoreset_mode = getattr(autoreset_mode, "name", autoreset_mode)  # gymnasium.vector.AutoresetMode
         autoreset_mode = str(autoreset_mode).lower()
         config = _config(task, scene, action_space, mode, observations, options)

@@ -7,10 +7,12 @@ from collections import OrderedDict
 
 import numpy as np
 
-try:  # pragma: no cover - Gymnasium is not a Debian 12 package
+try:  # Gymnasium is not a Debian 12 package: scripts/setup's test venv has it
+    import gymnasium as _gymnasium
     import gymnasium.spaces as _gym_spaces
+    import gymnasium.vector  # noqa: F401 (chore's VectorEnv derives from its VectorEnv)
 except ImportError:
-    _gym_spaces = None
+    _gymnasium = _gym_spaces = None
 
 
 class _Space:

@@ -189,8 +189,8 @@ def test_bad_configs_raise_chore_error_with_chores_message():
         chore.make(ACTIVITY, num_envs=1, seed=-1)
 
 
-def test_observations_view_chores_buffers_and_steps_write_in_place():
-    with chore.make(ACTIVITY, observations=["rgb", "proprio"]) as env:
+def test_copy_false_views_chores_buffers_and_steps_write_in_place():
+    with chore.make(ACTIVITY, observations=["rgb", "proprio"], copy=False) as env:
         obs, _ = env.reset(seed=0)
         rgb = obs["rgb"]
         assert not rgb.flags.owndata and not rgb.flags.writeable
@@ -198,7 +198,7 @@ def test_observations_view_chores_buffers_and_steps_write_in_place():
         obs, _, _, _, _ = env.step(low_level_actions(0))
         assert obs["rgb"].__array_interface__["data"][0] == rgb.__array_interface__["data"][0]
         assert not np.array_equal(rgb, before), "the step wrote into the array we hold"
-    with chore.make(ACTIVITY, num_envs=2, observations=["proprio"]) as envs:
+    with chore.make(ACTIVITY, num_envs=2, observations=["proprio"], copy=False) as envs:
         envs.reset(seed=0)
         held = envs.step(low_level_actions(0, 2))[0]["proprio"]
         addresses = {held.__array_interface__["data"][0]}
@@ -208,7 +208,7 @@ def test_observations_view_chores_buffers_and_steps_write_in_place():
             if latest.__array_interface__["data"][0] == held.__array_interface__["data"][0]:
                 assert np.array_equal(held, latest), "a later step rewrote the buffer we hold"
         assert len(addresses) < 6, "results cycle through chore's own buffers"
-    with chore.make(ACTIVITY, observations=["proprio"], copy=True) as env:
+    with chore.make(ACTIVITY, observations=["proprio"]) as env:  # copy=True, the default
         obs, _ = env.reset(seed=0)
         kept = obs["proprio"]
         assert kept.flags.owndata
