@@ -303,15 +303,27 @@ const Space& VectorEnv::single_action_space() const {
 }
 
 Batch VectorEnv::reset(std::optional<uint64_t> seed) {
+  std::vector<std::optional<uint64_t>> seeds(impl_->num_envs);
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    if (seed) seeds[i] = *seed + i;
+  }
+  return reset(seeds);
+}
+
+Batch VectorEnv::reset(std::span<const std::optional<uint64_t>> seeds) {
   Impl& m = *impl_;
   m.check_open();
+  if (seeds.size() != static_cast<size_t>(m.num_envs)) {
+    throw Error("vector env: reset() with " + std::to_string(seeds.size()) + " seeds for " +
+                std::to_string(m.num_envs) + " envs");
+  }
   std::vector<int> ids(m.num_envs);
   {
     std::lock_guard<std::mutex> lock(m.mutex);
     if (m.pending > 0) throw Error("vector env: reset() while envs are in flight; recv() them first");
     for (int i = 0; i < m.num_envs; ++i) {
       ids[i] = i;
-      m.seeds[i] = seed ? std::optional<uint64_t>(*seed + i) : std::nullopt;
+      m.seeds[i] = seeds[i];
       m.needs_reset[i] = 0;
     }
     m.reset_block->done = 0;

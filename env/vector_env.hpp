@@ -56,6 +56,9 @@ class VectorEnv {
   // Resets every env (env i with seed + i; without a seed, each env's random
   // stream continues). No env may be in flight. Rows are in env order.
   Batch reset(std::optional<uint64_t> seed = std::nullopt);
+  // The same with a seed per env (Gymnasium's reset(seed=[...])): env i with
+  // seeds[i], or its stream continuing where seeds[i] is empty; one per env.
+  Batch reset(std::span<const std::optional<uint64_t>> seeds);
   // All envs, actions row-major (num_envs x action size); needs batch_size == num_envs.
   Batch step(std::span<const float> actions);
   // Starts the given envs stepping; actions row-major (ids.size() x action size).

@@ -150,12 +150,14 @@ class PyVectorEnv {
   }
   ~PyVectorEnv() { guard_.leave_if_forked(envs_); }
 
-  py::tuple reset(py::object self, std::optional<uint64_t> seed) {
+  // One seed per env (None: its stream continues); the package turns
+  // Gymnasium's seed=int (env i: seed + i) and seed=None into this.
+  py::tuple reset(py::object self, const std::vector<std::optional<uint64_t>>& seeds) {
     const auto in_call = guard_.enter();
     std::optional<Batch> b;
     {
       py::gil_scoped_release release;
-      b.emplace(envs_->reset(seed));
+      b.emplace(envs_->reset(seeds));
     }
     return py::make_tuple(observation_views(*b->obs, self, false), info_arrays(b->infos));
   }
@@ -246,8 +248,10 @@ PYBIND11_MODULE(_chore, m) {
            py::arg("num_threads"), py::arg("batch_size"), py::arg("autoreset_mode"))
       .def(
           "reset",
-          [](py::object self, std::optional<uint64_t> seed) { return self.cast<PyVectorEnv&>().reset(self, seed); },
-          py::arg("seed") = py::none())
+          [](py::object self, const std::vector<std::optional<uint64_t>>& seeds) {
+            return self.cast<PyVectorEnv&>().reset(self, seeds);
+          },
+          py::arg("seeds"))
       .def("step", [](py::object self, const py::handle& a) { return self.cast<PyVectorEnv&>().step(self, a); })
       .def("send", &PyVectorEnv::send, py::arg("actions"), py::arg("env_ids"))
       .def("recv", [](py::object self) { return self.cast<PyVectorEnv&>().recv(self); })

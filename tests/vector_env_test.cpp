@@ -81,6 +81,28 @@ TEST(VectorEnv, EnvIIsTheSingleEnvSeededWithSeedPlusI) {
   }
 }
 
+// Gymnasium's reset(seed=[...]): a seed per env, or none (its stream
+// continues). seeds {100, 101, 102} are reset(100) exactly; {7, -, 9} puts
+// env 1's stream where it was.
+TEST(VectorEnv, ASeedPerEnvResetsEachWithItsOwn) {
+  VectorEnv a(config(3, 2)), b(config(3, 2));
+  const std::vector<std::optional<uint64_t>> seeds = {100, 101, 102};
+  EXPECT_EQ(snapshot(a.reset(100)), snapshot(b.reset(seeds)));
+  Env env0(config(3, 2).env), env1(config(3, 2).env);
+  env0.reset(7);
+  env1.reset(101);
+  const uint64_t continued = env1.reset().info.episode_seed;  // env 1's stream, continued once
+  const std::vector<std::optional<uint64_t>> some = {7, std::nullopt, 9};
+  const Batch r = b.reset(some);
+  const Array& proprio = (*r.obs)["proprio"];
+  EXPECT_EQ(r.infos[0].episode_seed, 7u);
+  EXPECT_EQ(r.infos[2].episode_seed, 9u);
+  EXPECT_EQ(std::memcmp(proprio.item(0), env0.reset(7).obs["proprio"].item(0), proprio.item_bytes()), 0);
+  EXPECT_EQ(r.infos[1].episode_seed, continued) << "env 1's stream went on";
+  const std::vector<std::optional<uint64_t>> two = {1, 2};
+  EXPECT_THROW(b.reset(two), Error);
+}
+
 TEST(VectorEnv, AsyncRecvReturnsTheFirstBatchReadyWithEnvIds) {
   VectorEnvConfig c = config(4, 2);
   c.batch_size = 2;

@@ -143,11 +143,22 @@ class VectorEnv(_Closing, _VectorEnvBase):
         self.closed = False
 
     def reset(self, *, seed=None, options=None):
-        seed = _seed(seed) if seed is not None else self._seed
+        """seed: an int (env i gets seed + i), a list of one int or None per
+        env (Gymnasium's), or None (each env's stream continues; make's seed=
+        seeds the first reset)."""
+        if seed is None:
+            seed = self._seed
         self._seed = None  # make(seed=) seeds the first reset only
-        obs, info = self._envs.reset(seed)
-        if seed is not None:
-            self.action_space.seed(seed)
+        if isinstance(seed, (list, tuple)):
+            if len(seed) != self.num_envs:
+                raise Error(f"seed: {len(seed)} seeds for {self.num_envs} envs")
+            seeds = [None if s is None else _seed(s) for s in seed]
+        else:
+            first = _seed(seed)
+            seeds = [None if first is None else first + i for i in range(self.num_envs)]
+        obs, info = self._envs.reset(seeds)
+        if seeds[0] is not None:
+            self.action_space.seed(seeds[0])
         return self._obs(obs), _with_masks(info)
 
     def step(self, actions):

@@ -6,6 +6,7 @@ zero copy, returns views the next call writes over, which the checker
 refuses."""
 
 import gymnasium
+import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
 
@@ -36,3 +37,61 @@ def test_zero_copy_is_a_documented_departure():
     with pytest.raises(AssertionError, match="share an object"):
         check_env(env, skip_render_check=True)
     env.close()
+
+
+def test_the_vector_env_is_gymnasiums_in_spaces_seeds_and_autoreset():
+    from gymnasium.vector import AutoresetMode
+    from gymnasium.vector.utils import batch_space
+
+    with chore.make("collect_trash", num_envs=3, action_space="primitives", mode="symbolic",
+                    observations=["rgb", "is_grasping"], max_episode_steps=4) as envs:
+        assert isinstance(envs, gymnasium.vector.VectorEnv)
+        assert envs.observation_space == batch_space(envs.single_observation_space, 3)
+        assert envs.action_space == batch_space(envs.single_action_space, 3)
+        assert envs.metadata["autoreset_mode"] is AutoresetMode.NEXT_STEP
+        obs, info = envs.reset(seed=[11, None, 13])  # Gymnasium's seed per env
+        assert envs.observation_space.contains(obs)
+        assert info["episode_seed"][0] == 11 and info["episode_seed"][2] == 13
+        again, _ = envs.reset(seed=11)  # an int: env i gets 11 + i
+        assert (again["rgb"][0] == obs["rgb"][0]).all()
+        with pytest.raises(chore.Error, match="2 seeds for 3 envs"):
+            envs.reset(seed=[1, 2])
+        # NEXT_STEP: the step after the last one resets that env: reward 0, not terminated or truncated.
+        for _ in range(4):
+            obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
+        assert truncated.all()
+        obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
+        assert (rewards == 0).all() and not terminated.any() and not truncated.any()
+        assert (info["elapsed_step"] == 0).all()
+    with chore.make("collect_trash", num_envs=2, action_space="primitives", mode="symbolic",
+                    observations=["is_grasping"], max_episode_steps=2, autoreset_mode=AutoresetMode.SAME_STEP) as envs:
+        assert envs.metadata["autoreset_mode"] is AutoresetMode.SAME_STEP
+        envs.reset(seed=0)
+        envs.step(envs.action_space.sample())
+        obs, rewards, terminated, truncated, info = envs.step(envs.action_space.sample())
+        assert truncated.all() and info["_final_obs"].all() and info["_final_info"].all()
+        assert envs.single_observation_space.contains({k: v[0] for k, v in info["final_obs"].items()})
+        assert (info["elapsed_step"] == 0).all(), "the returned observation is the next episode's first"
+
+
+def test_gymnasiums_vector_wrappers_run_over_chore():
+    from gymnasium.wrappers import vector as wrappers
+
+    envs = chore.make("collect_trash", num_envs=2, action_space="primitives", mode="symbolic",
+                      observations=["rgb", "is_grasping"], max_episode_steps=5, seed=0)
+    stats = wrappers.RecordEpisodeStatistics(envs)
+    stats.reset(seed=0)
+    returns = np.zeros(2)
+    for t in range(5):
+        _, rewards, terminated, truncated, info = stats.step(stats.action_space.sample())
+        returns += rewards
+    assert truncated.all() and info["_episode"].all()
+    np.testing.assert_allclose(info["episode"]["r"], returns, rtol=1e-6)
+    assert list(info["episode"]["l"]) == [5, 5]
+    normalized = wrappers.NormalizeObservation(
+        wrappers.FlattenObservation(wrappers.FilterObservation(envs, ["is_grasping"])))
+    obs, _ = normalized.reset(seed=1)
+    assert obs.shape == (2, 1) and obs.dtype == np.float32
+    obs, *_ = normalized.step(normalized.action_space.sample())
+    assert np.isfinite(obs).all()
+    normalized.close()
