@@ -95,3 +95,25 @@ def test_gymnasiums_vector_wrappers_run_over_chore():
     obs, *_ = normalized.step(normalized.action_space.sample())
     assert np.isfinite(obs).all()
     normalized.close()
+
+
+def test_gymnasiums_wrappers_run_over_a_single_env():
+    from gymnasium import wrappers
+
+    options = dict(action_space="primitives", mode="symbolic", observations=["rgb", "is_grasping"],
+                   max_episode_steps=3)
+    actions = [0, 3, 6]
+    with chore.make("collect_trash", **options) as plain:
+        plain.reset(seed=4)
+        frames = [plain.step(a)[0]["rgb"] for a in actions]
+    assert not (frames[0] == frames[1]).all(), "the frames differ, so a stack of views would show"
+    env = wrappers.FrameStackObservation(wrappers.RecordEpisodeStatistics(chore.make("collect_trash", **options)),
+                                         stack_size=3)
+    env.reset(seed=4)
+    for a in actions:
+        obs, _, terminated, truncated, info = env.step(a)
+    assert truncated and info["episode"]["l"] == 3
+    # The stack holds each step's own frame: copies, not views a later step wrote over.
+    for k in range(3):
+        assert (obs["rgb"][k] == frames[k]).all(), k
+    env.close()
