@@ -10,21 +10,9 @@
 #include "env/env.hpp"
 #include "env/env_impl.hpp"
 #include "tasks/activity.hpp"
-#include "tasks/agent_roles.hpp"
-#include "tasks/initial_states.hpp"
 #include "world/renderer.hpp"
 
 namespace chore {
-
-CheckedActivity check_activity(const std::string& file, const Vocabulary& vocabulary) {
-  // Predicates and arities, room types and synsets checked where they are written.
-  Problem p = load_bddl(file, {.vocabulary = &vocabulary});
-  const auto kb = dialect_knowledge_base(p.domain);
-  GroundGoal goal = ground_goal(p, synset_type_test(kb));
-  check_agent_roles(p, goal);
-  check_initial_states(p, *kb);
-  return {std::move(p), std::move(goal)};
-}
 
 int check_activities(const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
   const Vocabulary vocabulary = load_vocabulary();

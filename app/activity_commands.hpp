@@ -9,21 +9,12 @@
 #include <vector>
 
 #include "env/env.hpp"
+#include "tasks/activity_check.hpp"
 #include "tasks/bddl.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/vocabulary.hpp"
 
 namespace chore {
-
-// What `activity check` checks of one file on its text: parsed and grounded
-// against its dialect, the agent's roles (tasks/agent_roles.hpp) and the
-// states :init sets (tasks/initial_states.hpp); chore::Error naming the file
-// otherwise.
-struct CheckedActivity {
-  Problem problem;
-  GroundGoal goal;
-};
-CheckedActivity check_activity(const std::string& file, const Vocabulary& vocabulary);
 
 // check_activity for each file; prints objects, goal options and literals to
 // `out`, or the file's error (with file:line:col) to `err`. Returns how many

@@ -21,6 +21,7 @@
 #include "env/primitive_actions.hpp"
 #include "env/vector_env.hpp"
 #include "python/convert.hpp"
+#include "python/goal_binding.hpp"
 
 namespace py = pybind11;
 
@@ -231,6 +232,7 @@ PYBIND11_MODULE(_chore, m) {
   // The MuJoCo the environments run on (the C library chore is built against,
   // whatever `import mujoco` in the same process gives).
   m.attr("mujoco_version") = mj_versionString();
+  python::bind_goal(m);
 
   py::class_<PyEnv>(m, "Env")
       .def(py::init<const py::dict&>(), py::arg("config"))

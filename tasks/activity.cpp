@@ -125,7 +125,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
     if (l.predicate == "inroom" && l.args.size() == 2) rooms[l.args[0]] = l.args[1];
     if (kKinematic.count(l.predicate) && !l.args.empty()) placed.insert(l.args[0]);
   }
-  a->goal_ = ground_goal(a->problem_, synset_type_test(a->kb_));
+  a->goal_ = ground_goal(a->problem_);
   for (const GroundLiteral& l : a->goal_.literals) check_predicate(l);
   check_agent_roles(a->problem_, a->goal_);
   check_initial_states(a->problem_, *a->kb_);

@@ -58,12 +58,55 @@ class Budget {
   std::optional<Op> op_;  // none: the goal's options
 };
 
+// bddl's truncated_product, tuple for tuple: index tuples in increasing
+// index sum, then lexicographic order, until `cap` tuples are counted. bddl
+// counts the tuples it skips because an index lies past its sequence's end,
+// so a product of many short sequences stops early: six sequences of sizes
+// 4, 1, 1, 1, 1, 1 give 2 tuples, not 4. The tuple of last elements comes
+// last, outside the order. At most `cap` tuples are looked at; `visit`'s
+// answer is not used. An empty sequence: nothing.
+void truncated_product(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit) {
+  if (std::find(sizes.begin(), sizes.end(), 0) != sizes.end()) return;
+  const size_t k = sizes.size();
+  size_t last_sum = 0;  // the index sum of the tuple of last elements
+  for (size_t s : sizes) last_sum += s - 1;
+  std::vector<size_t> index(k);
+  size_t counted = 0;
+  for (size_t sum = 0; sum < last_sum; ++sum) {
+    // The compositions of `sum` into k parts, from (0, ..., 0, sum) on.
+    std::fill(index.begin(), index.end(), 0);
+    index[k - 1] = sum;
+    for (;;) {
+      if (counted == cap) return;
+      ++counted;
+      budget.work(1 + k);
+      bool in_range = true;
+      for (size_t j = 0; j < k && in_range; ++j) in_range = index[j] < sizes[j];
+      if (in_range) visit(index);
+      // The next composition: the rightmost part after the first gives one to
+      // the part before it and the rest to the last part.
+      size_t p = k - 1;
+      while (p > 0 && index[p] == 0) --p;
+      if (p == 0) break;
+      const size_t rest = index[p] - 1;
+      index[p] = 0;
+      ++index[p - 1];
+      index[k - 1] += rest;
+    }
+  }
+  if (counted == cap) return;
+  for (size_t j = 0; j < k; ++j) index[j] = sizes[j] - 1;
+  budget.work(1 + k);
+  visit(index);
+}
+
 // Visits elements of the product of sequences of the given sizes, as index
 // tuples, in bddl's truncated_product order: increasing index sum, then
-// lexicographic. Stops once `visit` has accepted `cap` of them. No sequences:
-// one empty tuple; an empty sequence: nothing. Iterative: the number of
-// sequences is data-sized (a forall over every object).
-void truncated_product(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit) {
+// lexicographic. Stops once `visit` has accepted `cap` of them (chore's own
+// bounds, where bddl has none or finds nothing). No sequences: one empty
+// tuple; an empty sequence: nothing. Iterative: the number of sequences is
+// data-sized (a forall over every object).
+void first_accepted_in_product_order(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit) {
   if (std::find(sizes.begin(), sizes.end(), 0) != sizes.end()) return;
   const size_t k = sizes.size();
   std::vector<size_t> slack(k + 1, 0);  // slack[j]: the largest index sum of sequences j..k-1
@@ -96,11 +139,11 @@ void truncated_product(const std::vector<size_t>& sizes, size_t cap, Budget& bud
 
 // bddl's itertools.product (and, the goal's options): complete, in
 // lexicographic order, when it has at most `cap` elements; else the first
-// `cap` accepted in truncated_product's order.
+// `cap` accepted in truncated_product's order (chore's bound: bddl 1 has none).
 void bounded_product(const std::vector<size_t>& sizes, size_t cap, Budget& budget, const Visit& visit) {
   size_t count = 1;
   for (size_t s : sizes) count = s == 0 ? 0 : (count > cap / s ? cap + 1 : count * s);
-  if (count > cap) return truncated_product(sizes, cap, budget, visit);
+  if (count > cap) return first_accepted_in_product_order(sizes, cap, budget, visit);
   if (count == 0) return;
   std::vector<size_t> index(sizes.size(), 0);
   for (;;) {
@@ -175,36 +218,24 @@ Options product(Product order, const std::vector<Options>& sequences, size_t cap
   return out;
 }
 
-// Drops repeated literals within an option, then options with the same
-// literals as an earlier one.
-Options without_repeats(Options options) {
-  Options out;
-  std::set<GroundOption> seen;
-  for (GroundOption& option : options) {
-    // First occurrences, in order: sorted (id, position) pairs find them in
-    // n log n (an option of a forall over every object is long).
-    std::vector<std::pair<LiteralId, size_t>> sorted;
-    for (size_t i = 0; i < option.size(); ++i) sorted.push_back({option[i], i});
-    std::sort(sorted.begin(), sorted.end());
-    std::vector<size_t> first;
-    GroundOption key;
-    for (size_t i = 0; i < sorted.size(); ++i) {
-      if (i > 0 && sorted[i].first == sorted[i - 1].first) continue;
-      first.push_back(sorted[i].second);
-      key.push_back(sorted[i].first);
-    }
-    std::sort(first.begin(), first.end());
-    GroundOption unique;
-    for (size_t i : first) unique.push_back(option[i]);
-    if (seen.insert(std::move(key)).second) out.push_back(std::move(unique));
-  }
-  return out;
+// Which bddl release's option generation a file's dialect follows: the
+// products of and, of a negation's choices and of the goal's conditions are
+// complete (itertools.product) in bddl 1.0.1, iGibson 2.0's, which
+// BEHAVIOR-100's files were written for, and truncated to the first
+// kMaxGroundOptions in bddl 3.x, OmniGibson's (BEHAVIOR-1K).
+struct Rules {
+  Product product;
+  size_t cap;
+};
+Rules dialect_rules(Domain domain) {
+  if (domain == Domain::omnigibson) return {truncated_product, kMaxGroundOptions};
+  return {bounded_product, kMaxGoalOptions};
 }
 
 class Grounder {
  public:
-  Grounder(const Problem& problem, const TypeTest& is_a, GroundGoal& goal, Budget& budget)
-      : problem_(problem), is_a_(is_a), goal_(goal), budget_(budget) {}
+  Grounder(const Problem& problem, GroundGoal& goal, Budget& budget)
+      : problem_(problem), rules_(dialect_rules(problem.domain)), goal_(goal), budget_(budget) {}
 
   GroundCondition condition(const Formula& f) {
     budget_.at(f.line, f.column, f.op);
@@ -235,7 +266,7 @@ class Grounder {
   std::vector<std::string> instances(const Formula& quantifier, const Variable& v) const {
     std::vector<std::string> out;
     for (const ObjectDecl& o : problem_.objects)
-      if (o.type == v.type || (is_a_ && is_a_(o.type, v.type))) out.push_back(o.name);
+      if (o.type == v.type) out.push_back(o.name);
     if (out.empty())
       throw Error(where(problem_, quantifier.line, quantifier.column) + ": (" + v.name + " - " + v.type +
                   ") ranges over no object declared in :objects");
@@ -303,7 +334,7 @@ class Grounder {
       case Op::negation:
         return negated(children[0]);
       case Op::conjunction:
-        return without_repeats(product(bounded_product, children, kMaxGoalOptions, budget_));
+        return product(rules_.product, children, rules_.cap, budget_);
       case Op::disjunction:
       case Op::exists: {
         Options out;
@@ -311,10 +342,10 @@ class Grounder {
           for (const GroundOption& o : c) budget_.work(1 + o.size());
           out.insert(out.end(), c.begin(), c.end());
         }
-        return without_repeats(std::move(out));
+        return out;
       }
       case Op::forall:
-        return without_repeats(product(truncated_product, children, kMaxGroundOptions, budget_));
+        return product(truncated_product, children, kMaxGroundOptions, budget_);
       case Op::forn:
         return forn(children, g.count);
       case Op::forpairs:
@@ -338,7 +369,7 @@ class Grounder {
         c.push_back({intern(l)});
       }
     }
-    return without_repeats(product(bounded_product, choices, kMaxGoalOptions, budget_));
+    return product(rules_.product, choices, rules_.cap, budget_);
   }
 
   // Exactly N: the N-combinations of the operands within each truncated-product option.
@@ -359,46 +390,36 @@ class Grounder {
       });
       return true;
     });
-    return without_repeats(std::move(out));
+    return out;
   }
 
-  // bddl's ForPairs / ForNPairs: L pairs chosen by permuting the shorter side
-  // against L-permutations of the longer one (forpairs), or N-permutations of
-  // both sides (fornpairs); each choice's pairs combine by truncated product.
+  // bddl's ForPairs / ForNPairs: the first L instances of one side in order
+  // (the rows of fornpairs; of forpairs, the rows when they are fewer than
+  // the columns, else the columns), the k-th paired with the k-th of each
+  // L-permutation of the other side (the first kMaxGroundPermutations); each
+  // choice's pairs combine by truncated product. bddl permutes the first side
+  // too, but reads the other's permutations from a generator that its first
+  // permutation uses up.
   Options pairs(const GroundFormula& g, const std::vector<Options>& cells) {
     const size_t columns = g.columns, rows = columns == 0 ? 0 : g.children.size() / columns;
     const size_t l = g.op == Op::fornpairs ? g.count : std::min(rows, columns);
-    // outer permutes rows when outer_rows, else columns; inner the other side.
-    bool outer_rows = true;
-    std::vector<std::vector<size_t>> outer, inner;
-    if (g.op == Op::fornpairs) {
-      outer = truncated_permutations(rows, l);
-      inner = truncated_permutations(columns, l);
-    } else if (rows < columns) {
-      outer = truncated_permutations(rows, rows);
-      inner = truncated_permutations(columns, l);
-    } else {
-      outer_rows = false;
-      outer = truncated_permutations(columns, columns);
-      inner = truncated_permutations(rows, l);
-    }
+    const bool rows_in_order = g.op == Op::fornpairs || rows < columns;
+    if (l > (rows_in_order ? rows : columns)) return {};
     Options out;
-    for (const std::vector<size_t>& o : outer) {
-      for (const std::vector<size_t>& i : inner) {
-        std::vector<Options> chosen;
-        for (size_t k = 0; k < l; ++k) {
-          const size_t row = outer_rows ? o[k] : i[k], column = outer_rows ? i[k] : o[k];
-          chosen.push_back(cells[row * columns + column]);
-        }
-        const Options choice = product(truncated_product, chosen, kMaxGroundOptions, budget_);
-        out.insert(out.end(), choice.begin(), choice.end());
+    for (const std::vector<size_t>& p : truncated_permutations(rows_in_order ? columns : rows, l)) {
+      std::vector<Options> chosen;
+      for (size_t k = 0; k < l; ++k) {
+        const size_t row = rows_in_order ? k : p[k], column = rows_in_order ? p[k] : k;
+        chosen.push_back(cells[row * columns + column]);
       }
+      const Options choice = product(truncated_product, chosen, kMaxGroundOptions, budget_);
+      out.insert(out.end(), choice.begin(), choice.end());
     }
-    return without_repeats(std::move(out));
+    return out;
   }
 
   const Problem& problem_;
-  const TypeTest& is_a_;
+  const Rules rules_;
   GroundGoal& goal_;
   Budget& budget_;
   std::map<GroundLiteral, LiteralId> ids_;
@@ -468,10 +489,10 @@ double fraction(size_t satisfied, size_t total) {
 
 }  // namespace
 
-GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
+GroundGoal ground_goal(const Problem& problem) {
   GroundGoal goal;
   Budget budget(problem);
-  Grounder grounder(problem, is_a, goal, budget);
+  Grounder grounder(problem, goal, budget);
   const Formula nnf = to_nnf(problem.goal);
   if (nnf.op == Op::conjunction) {
     for (const Formula& c : nnf.children) goal.conditions.push_back(grounder.condition(c));
@@ -479,27 +500,35 @@ GroundGoal ground_goal(const Problem& problem, const TypeTest& is_a) {
     goal.conditions.push_back(grounder.condition(nnf));
   }
 
-  // The product of the conditions' options, skipping those with c and (not c).
+  // The product of the conditions' options without those holding c and
+  // (not c): bddl filters the product it made (the dialect's). Where bddl 3's
+  // tuples all contradict themselves (it asserts there: four BEHAVIOR-1K
+  // activities), chore takes the first kMaxGroundOptions consistent ones.
+  const Rules rules = dialect_rules(problem.domain);
   const std::vector<std::optional<LiteralId>> complement = grounder.complements();
   std::vector<size_t> sizes;
   for (const GroundCondition& c : goal.conditions) sizes.push_back(c.options.size());
   std::vector<bool> in_option(goal.literals.size(), false);
-  Options options;
   budget.at(problem.goal.line, problem.goal.column, std::nullopt);
-  bounded_product(sizes, kMaxGoalOptions, budget, [&](const std::vector<size_t>& index) {
-    GroundOption option;
-    for (size_t j = 0; j < index.size(); ++j) {
-      budget.work(goal.conditions[j].options[index[j]].size());
-      append(option, goal.conditions[j].options[index[j]]);
-    }
-    for (LiteralId id : option) in_option[id] = true;
-    const bool consistent = std::none_of(option.begin(), option.end(),
-                                         [&](LiteralId id) { return complement[id] && in_option[*complement[id]]; });
-    for (LiteralId id : option) in_option[id] = false;
-    if (consistent) options.push_back(std::move(option));
-    return consistent;
-  });
-  goal.options = without_repeats(std::move(options));
+  const auto consistent_options = [&](Product order, size_t cap) {
+    Options options;
+    order(sizes, cap, budget, [&](const std::vector<size_t>& index) {
+      GroundOption option;
+      for (size_t j = 0; j < index.size(); ++j) {
+        budget.work(goal.conditions[j].options[index[j]].size());
+        append(option, goal.conditions[j].options[index[j]]);
+      }
+      for (LiteralId id : option) in_option[id] = true;
+      const bool consistent = std::none_of(option.begin(), option.end(),
+                                           [&](LiteralId id) { return complement[id] && in_option[*complement[id]]; });
+      for (LiteralId id : option) in_option[id] = false;
+      if (consistent) options.push_back(std::move(option));
+      return consistent;
+    });
+    return options;
+  };
+  goal.options = consistent_options(rules.product, rules.cap);
+  if (goal.options.empty()) goal.options = consistent_options(first_accepted_in_product_order, kMaxGroundOptions);
   std::stable_sort(goal.options.begin(), goal.options.end(),
                    [](const GroundOption& a, const GroundOption& b) { return a.size() < b.size(); });
   return goal;

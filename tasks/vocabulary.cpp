@@ -23,13 +23,6 @@ std::shared_ptr<const KnowledgeBase> dialect_knowledge_base(Domain domain) {
   return kb;
 }
 
-TypeTest synset_type_test(std::shared_ptr<const KnowledgeBase> kb) {
-  return [kb = std::move(kb)](std::string_view instance, std::string_view type) {
-    const std::string i(instance), t(type);
-    return i == t || (kb->contains(i) && kb->contains(t) && kb->is_a(i, t));
-  };
-}
-
 Vocabulary load_vocabulary(std::shared_ptr<const KnowledgeBase> kb, const std::string& dir) {
   const auto read = [&](const std::string& name) {
     const std::string path = dir + "/" + name;

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "tasks/bddl.hpp"
-#include "tasks/goal.hpp"
 #include "tasks/knowledge_base.hpp"
 
 namespace chore {
@@ -16,10 +15,6 @@ namespace chore {
 // (tasks/kb/behavior-100) for igibson, BEHAVIOR-1K's (tasks/kb/behavior-1k)
 // for omnigibson. Each is loaded once per process; thread-safe.
 std::shared_ptr<const KnowledgeBase> dialect_knowledge_base(Domain domain);
-
-// Grounding's type test over a knowledge base: an instance of synset i has
-// type t when i is t or lies below it.
-TypeTest synset_type_test(std::shared_ptr<const KnowledgeBase> kb);
 
 // Reads <dir>/igibson.bddl, <dir>/omnigibson.bddl and <dir>/room_types.txt;
 // synsets are checked against `kb`, or, without one, against the knowledge

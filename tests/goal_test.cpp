@@ -18,9 +18,12 @@ namespace {
 
 using Texts = std::vector<std::vector<std::string>>;
 
-// A problem over `objects` ("a1 a2 - apple b - basket") with this goal.
-Problem problem(const std::string& objects, const std::string& goal) {
-  return parse_bddl("(define (problem g) (:domain omnigibson) (:objects " + objects + ") (:init) (:goal " + goal + "))",
+// A problem over `objects` ("a1 a2 - apple b - basket") with this goal, in
+// the omnigibson dialect (grounded as bddl 3 does) unless `domain` says igibson
+// (bddl 1). The expected options below are what bddl 3.6.0 and 1.0.1 give.
+Problem problem(const std::string& objects, const std::string& goal, const std::string& domain = "omnigibson") {
+  return parse_bddl("(define (problem g) (:domain " + domain + ") (:objects " + objects + ") (:init) (:goal " + goal +
+                        "))",
                     "goal_test");
 }
 
@@ -63,11 +66,12 @@ TEST(GoalConnectives, AndOrNotImplyFollowTheirTruthTables) {
 }
 
 // An inner variable shadows an outer one of the same name (BEHAVIOR binds the
-// innermost first): the outer forall repeats the inner one's conditions.
+// innermost first): the outer forall repeats the inner one's conditions, and
+// the option keeps the repeat, as bddl's does (its Q counts it twice).
 TEST(GoalConnectives, AnInnerVariableShadowsAnOuterOne) {
   const GroundGoal g =
       ground_goal(problem("a1 a2 - apple b - basket", "(forall (?x - apple) (forall (?x - basket) (p ?x)))"));
-  EXPECT_EQ(texts(g, g.options), (Texts{{"(p b)"}}));
+  EXPECT_EQ(texts(g, g.options), (Texts{{"(p b)", "(p b)"}}));
 }
 
 TEST(GoalConnectives, OptionsAreTheProductWithoutContradictions) {
@@ -78,15 +82,32 @@ TEST(GoalConnectives, OptionsAreTheProductWithoutContradictions) {
   EXPECT_EQ(texts(g, g.options), (Texts{{"(p x)", "(not (p z))"}, {"(q x)", "(not (p x))"}, {"(q x)", "(not (p z))"}}));
 }
 
-TEST(GoalConnectives, FullProductsKeepItertoolsOrder) {
-  // Under the cap a product is complete and lexicographic (BEHAVIOR's
-  // itertools.product), so the first of equally long options is BEHAVIOR's too.
-  const GroundGoal g = ground_goal(problem("a b - t", "(and (or (p a) (p b)) (or (q a) (q b)) (or (r a) (r b)))"));
-  const Texts t = texts(g, g.options);
-  ASSERT_EQ(t.size(), 8u);
-  EXPECT_EQ(t[0], (std::vector<std::string>{"(p a)", "(q a)", "(r a)"}));
-  EXPECT_EQ(t[3], (std::vector<std::string>{"(p a)", "(q b)", "(r b)"}));
-  EXPECT_EQ(t[4], (std::vector<std::string>{"(p b)", "(q a)", "(r a)"}));
+TEST(GoalConnectives, ProductsFollowTheDialectsBddl) {
+  // bddl 1 (igibson): complete and lexicographic (itertools.product).
+  const std::string goal = "(and (or (p a) (p b)) (or (q a) (q b)) (or (r a) (r b)))";
+  const GroundGoal one = ground_goal(problem("a b - t", goal, "igibson"));
+  const Texts t1 = texts(one, one.options);
+  ASSERT_EQ(t1.size(), 8u);
+  EXPECT_EQ(t1[0], (std::vector<std::string>{"(p a)", "(q a)", "(r a)"}));
+  EXPECT_EQ(t1[3], (std::vector<std::string>{"(p a)", "(q b)", "(r b)"}));
+  EXPECT_EQ(t1[4], (std::vector<std::string>{"(p b)", "(q a)", "(r a)"}));
+  // bddl 3 (omnigibson): truncated_product's order, by index sum.
+  const GroundGoal three = ground_goal(problem("a b - t", goal));
+  const Texts t3 = texts(three, three.options);
+  ASSERT_EQ(t3.size(), 8u);
+  EXPECT_EQ(t3[3], (std::vector<std::string>{"(p b)", "(q a)", "(r a)"}));
+  EXPECT_EQ(t3[4], (std::vector<std::string>{"(p a)", "(q b)", "(r b)"}));
+}
+
+TEST(GoalConnectives, Bddl3CountsTheTuplesItSkipsTowardItsCap) {
+  // Six conditions, one with four options: truncated_product counts the
+  // tuples with an index past a sequence's end, so bddl 3 reaches 2 options
+  // (cleaning_bedroom's goal has this shape); bddl 1 has all 4.
+  const std::string goal =
+      "(and (forall (?x - t) (exists (?y - u) (inside ?x ?y))) (p c) (p d) (p e) (p f) (p g))";
+  const std::string objects = "a b - t c d e f g - v k l - u";
+  EXPECT_EQ(ground_goal(problem(objects, goal)).options.size(), 2u);
+  EXPECT_EQ(ground_goal(problem(objects, goal, "igibson")).options.size(), 4u);
 }
 
 TEST(GoalConnectives, AContradictoryGoalHasNoOptionAndNoScore) {
@@ -215,14 +236,11 @@ TEST(GoalQuantifiers, ForPairsSucceedsWithoutAPerfectMatchingSoQCanStayBelowOne)
 }
 
 TEST(GoalQuantifiers, ForNPairsCountsNRowsAndNColumns) {
+  // Options: the first N rows in order against permutations of the columns
+  // (bddl's second permutation generator is used up by its first row choice).
   const GroundGoal one = ground_goal(
       problem("a1 a2 - apple b1 b2 b3 - basket", "(fornpairs (1) (?a - apple) (?b - basket) (inside ?a ?b))"));
-  EXPECT_EQ(texts(one, one.options), (Texts{{"(inside a1 b1)"},
-                                            {"(inside a1 b2)"},
-                                            {"(inside a1 b3)"},
-                                            {"(inside a2 b1)"},
-                                            {"(inside a2 b2)"},
-                                            {"(inside a2 b3)"}}));
+  EXPECT_EQ(texts(one, one.options), (Texts{{"(inside a1 b1)"}, {"(inside a1 b2)"}, {"(inside a1 b3)"}}));
   EXPECT_FALSE(score(one, world({})).success);
   EXPECT_TRUE(score(one, world({"(inside a2 b3)"})).success);
 
@@ -251,15 +269,17 @@ TEST(GoalCaps, ForallKeepsTheFirstTwentyOptionsInIndexSumOrder) {
   EXPECT_EQ(t[2][23], "(q o24)");
   EXPECT_EQ(t[2][24], "(p o25)");
   for (const auto& option : t) EXPECT_EQ(option.size(), 25u);
-  // exists is a union, never capped.
-  EXPECT_EQ(ground_goal(problem(objects + "- t", "(exists (?x - t) (p ?x))")).options.size(), 25u);
+  // exists is a union, never capped; the goal's product of its one condition
+  // is, in bddl 3.
+  EXPECT_EQ(ground_goal(problem(objects + "- t", "(exists (?x - t) (p ?x))", "igibson")).options.size(), 25u);
+  EXPECT_EQ(ground_goal(problem(objects + "- t", "(exists (?x - t) (p ?x))")).options.size(), kMaxGroundOptions);
 }
 
 TEST(GoalCaps, ForPairsPermutationsAreCappedAtTen) {
-  // 4 x 4: 10 row permutations x 10 column permutations reach 20 of the 24 matchings.
+  // 4 x 4: the columns in order against 10 of the 24 row permutations.
   const GroundGoal g = ground_goal(
       problem("a1 a2 a3 a4 - apple b1 b2 b3 b4 - basket", "(forpairs (?a - apple) (?b - basket) (inside ?a ?b))"));
-  EXPECT_EQ(g.options.size(), 20u);
+  EXPECT_EQ(g.options.size(), 10u);
   for (const GroundOption& o : g.options) EXPECT_EQ(o.size(), 4u);
 }
 
@@ -301,19 +321,20 @@ TEST(GoalScore, PotentialOfOptionZeroRisesAndFalls) {
   EXPECT_THROW(potential(g, 1, world({})), std::out_of_range);
 }
 
-TEST(GoalTypes, QuantifiersRangeOverTheTypeTest) {
-  const Problem p =
-      problem("apple1 - apple.n.01 pear1 - pear.n.01 table1 - table.n.02", "(forall (?f - fruit.n.01) (cooked ?f))");
+// bddl's object map: a quantifier ranges over the instances declared with its
+// synset, not over those of its descendants (sorting_books quantifies over
+// book.n.02 and hardback.n.01 separately).
+TEST(GoalTypes, QuantifiersRangeOverTheInstancesDeclaredWithTheirSynset) {
+  const Problem p = problem("fruit1 - fruit.n.01 apple1 - apple.n.01 table1 - table.n.02",
+                            "(forall (?f - fruit.n.01) (cooked ?f))");
+  const GroundGoal g = ground_goal(p);
+  EXPECT_EQ(texts(g, g.options), (Texts{{"(cooked fruit1)"}}));
   try {
-    ground_goal(p);
+    ground_goal(problem("apple1 - apple.n.01 pear1 - pear.n.01", "(forall (?f - fruit.n.01) (cooked ?f))"));
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "goal_test:1:126: (?f - fruit.n.01) ranges over no object declared in :objects");
+    EXPECT_STREQ(e.what(), "goal_test:1:106: (?f - fruit.n.01) ranges over no object declared in :objects");
   }
-  const GroundGoal g = ground_goal(p, [](std::string_view instance_type, std::string_view type) {
-    return type == "fruit.n.01" && (instance_type == "apple.n.01" || instance_type == "pear.n.01");
-  });
-  EXPECT_EQ(texts(g, g.options), (Texts{{"(cooked apple1)", "(cooked pear1)"}}));
 }
 
 // Behaviour-100 activity definitions, plus the seed listings that ground.
@@ -384,12 +405,12 @@ TEST(GoalCorpus, EveryActivityGroundsAndItsFirstOptionSucceeds) {
   }
 }
 
-TEST(GoalCorpus, AssemblingGiftBasketsProductIsCapped) {
+TEST(GoalCorpus, AssemblingGiftBasketsProductIsComplete) {
   const GroundGoal g =
       ground_goal(load_bddl(std::string(CHORE_TEST_DATA) + "/bddl/behavior-100/assembling_gift_baskets/problem0.bddl"));
   ASSERT_EQ(g.conditions.size(), 4u);
-  for (const GroundCondition& c : g.conditions) EXPECT_EQ(c.options.size(), 20u);
-  EXPECT_EQ(g.options.size(), kMaxGoalOptions);  // of 20^4
+  for (const GroundCondition& c : g.conditions) EXPECT_EQ(c.options.size(), 10u);
+  EXPECT_EQ(g.options.size(), 10000u);  // bddl 1's complete product
   EXPECT_EQ(g.options[0].size(), 16u);
   EXPECT_EQ(g.literals.size(), 64u);
 }

@@ -17,13 +17,13 @@ import functools
 import numpy as np
 
 from . import spaces
-from ._chore import Error, mujoco_version
+from ._chore import Error, Goal, mujoco_version
 from .spaces import _gymnasium
 from .evaluation import evaluate, format_evaluation, load_policy
 from ._chore import Env as _Env
 from ._chore import VectorEnv as _VectorEnv
 
-__all__ = ["Env", "VectorEnv", "Error", "mujoco_version", "make", "spaces", "evaluate", "format_evaluation", "load_policy"]
+__all__ = ["Env", "VectorEnv", "Error", "Goal", "mujoco_version", "make", "spaces", "evaluate", "format_evaluation", "load_policy"]
 
 _CONFIG_KEYS = ("width", "height", "observations", "max_episode_steps", "reward", "reachable_instances",
                 "policy_failure_rule", "policy_failure_repeats", "instances", "instance", "robot", "object_states",
