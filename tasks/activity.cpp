@@ -140,9 +140,11 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   for (const Literal& l : a->problem_.init) {
     if (l.predicate == "open" && !l.negated && l.args.size() == 1) opened.insert(l.args[0]);
   }
-  const auto lacks = [&](const SceneObject& o, const std::string& instance) -> std::string {
+  // `states`: what :init sets on the instance (states_set_on), found once per declaration.
+  const auto lacks = [&](const SceneObject& o, const std::string& instance,
+                         const std::vector<std::string>& states) -> std::string {
     const ObjectAbilities ab = synset_abilities(a->kb_of(o.synset), o.synset);
-    for (const std::string& predicate : states_set_on(a->problem_, instance)) {
+    for (const std::string& predicate : states) {
       if (std::string missing = missing_for_state(predicate, ab); !missing.empty()) return "keeps no " + missing;
     }
     return o.joints.empty() && opened.count(instance) ? "no joints to open" : "";
@@ -176,6 +178,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
       b.kind = Binding::Kind::substance;
     } else {
       a->kb_->is_a(decl.type, decl.type);  // an unknown synset is an error here
+      const std::vector<std::string> states = states_set_on(a->problem_, decl.name);
       std::string seen;
       for (size_t i = 0; i < scene.objects().size() && b.index < 0; ++i) {
         const SceneObject& o = scene.objects()[i];
@@ -191,7 +194,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
           seen += (seen.empty() ? "" : ", ") + o.name + " (fixed: cannot be placed)";
           continue;
         }
-        if (const std::string why = lacks(o, decl.name); !why.empty()) {
+        if (const std::string why = lacks(o, decl.name, states); !why.empty()) {
           seen += (seen.empty() ? "" : ", ") + o.name + " (" + why + ")";
           continue;
         }
