@@ -13,8 +13,17 @@ writes over them.
 """
 
 import functools
+import os
+import pathlib
 
 import numpy as np
+
+# An installed wheel carries the knowledge base, activities and assets
+# (pyproject.toml); a build tree's package reads them from the source tree.
+_DATA = pathlib.Path(__file__).resolve().parent / "data"
+if _DATA.is_dir():
+    os.environ.setdefault("CHORE_TASKS", str(_DATA / "tasks"))
+    os.environ.setdefault("CHORE_ASSETS", str(_DATA / "assets"))
 
 from . import spaces
 from ._chore import Error, Goal, mujoco_version
