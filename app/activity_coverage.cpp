@@ -1,8 +1,8 @@
 #include "app/activity_coverage.hpp"
 
-#include <algorithm>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <algorithm>
 
 #include <chrono>
 #include <cmath>
@@ -23,6 +23,8 @@
 #include "base/random.hpp"
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
+#include "planner/reachability.hpp"
+#include "tasks/activity_check.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/vocabulary.hpp"
 
@@ -62,6 +64,10 @@ struct Result {
   bool ran = false;             // and it ran in a VectorEnv, from the same instance
   bool ran_primitives = false;  // and random primitives ran on it
   cv::Mat picture;              // for the contact sheet
+  // Of a parsed one: its goal literals some primitives and rules could make
+  // hold (planner/reachability.hpp), those none can by predicate, and its
+  // future objects no rule makes or none can make here.
+  nlohmann::json goal_reach;
 };
 
 // Instantiated, whether or not a later stage ("run", "primitives") failed.
@@ -143,6 +149,21 @@ void run_primitives(EnvConfig config, uint64_t seed, int steps) {
   }
 }
 
+// What the primitives and the knowledge base's transition rules can make of
+// the goal, by the planner's relaxed reachability.
+nlohmann::json goal_reach_json(const CheckedActivity& checked) {
+  static const std::shared_ptr<const TransitionRules> rules = TransitionRules::load();
+  const auto kb = dialect_knowledge_base(checked.problem.domain);
+  const SymbolicProblem problem = symbolic_problem(checked.problem, *kb, *rules);
+  const GoalReach g = goal_reach(problem, reachability(problem), checked.goal, *kb, *rules);
+  return {{"literals", g.literals},
+          {"achievable", g.achievable},
+          {"future", g.future},
+          {"unachievable", g.unachievable},
+          {"future_without_rule", g.future_without_rule},
+          {"future_unreachable", g.future_unreachable}};
+}
+
 // Parse and ground (as `activity check`), then reset an Env at the seed;
 // then whether the primitives' targets are within the robot's reach (not
 // timed: EnvConfig::reachable_instances resamples until they are); then the
@@ -155,7 +176,12 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
   const auto start = std::chrono::steady_clock::now();
   try {
     r.stage = "parse";
-    check_activity(file, vocabulary);
+    const CheckedActivity checked = check_activity(file, vocabulary);
+    r.goal_reach = goal_reach_json(checked);
+    if (options.goals_only) {
+      r.stage = "grounded";
+      return r;
+    }
     r.stage = "instantiate";
     EnvConfig config;
     config.activity = file;
@@ -191,10 +217,15 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
 // A Result as the child that made it writes it for the parent: JSON, then
 // the picture's bytes.
 void write_result(const fs::path& path, const Result& r) {
-  const nlohmann::json j = {{"name", r.name},       {"file", r.file},
-                            {"stage", r.stage},     {"error", r.error},
-                            {"seconds", r.seconds}, {"out_of_reach", r.out_of_reach},
-                            {"ran", r.ran},         {"ran_primitives", r.ran_primitives},
+  const nlohmann::json j = {{"name", r.name},
+                            {"file", r.file},
+                            {"stage", r.stage},
+                            {"error", r.error},
+                            {"seconds", r.seconds},
+                            {"out_of_reach", r.out_of_reach},
+                            {"ran", r.ran},
+                            {"ran_primitives", r.ran_primitives},
+                            {"goal_reach", r.goal_reach},
                             {"rows", r.picture.rows},
                             {"cols", r.picture.cols}};
   std::ofstream out(path, std::ios::binary);
@@ -219,6 +250,7 @@ Result read_result(const fs::path& path) {
   r.out_of_reach = j["out_of_reach"];
   r.ran = j["ran"];
   r.ran_primitives = j["ran_primitives"];
+  r.goal_reach = j["goal_reach"];
   if (const int rows = j["rows"], cols = j["cols"]; rows > 0) {
     r.picture = cv::Mat(rows, cols, CV_8UC3);
     in.read(reinterpret_cast<char*>(r.picture.data), static_cast<std::streamsize>(r.picture.total() * 3));
@@ -301,6 +333,9 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   }
   std::sort(files.begin(), files.end());
   if (files.empty()) throw Error("activity coverage: no .bddl file under '" + options.dir + "'");
+  if (options.goals_only && (options.steps > 0 || options.primitive_steps > 0 || !options.sheet.empty())) {
+    throw Error("activity coverage: --goals-only builds no world: drop --steps, --primitive-steps and --sheet");
+  }
 
   const Vocabulary vocabulary = load_vocabulary();
   const std::vector<Result> results = run_each_in_a_child(files, vocabulary, options, log);
@@ -311,6 +346,13 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   std::map<std::string, std::pair<int, std::string>> causes;  // "stage: cause" -> count, example
   std::map<std::string, std::pair<int, std::string>> reach_causes;
   int parsed = 0, instantiated = 0, within_20s = 0, reachable = 0, ran = 0, ran_primitives = 0;
+  // Goal literals over the parsed activities, those some primitives and rules
+  // could make hold, and those none can by predicate; activities with future
+  // objects, and their future objects without a rule or out of the search's reach.
+  size_t literals = 0, achievable = 0, with_future = 0, future = 0;
+  std::map<std::string, int> unachievable;
+  std::map<std::string, std::string> unachievable_example;
+  std::vector<std::string> future_without_rule, future_unreachable;
   std::vector<double> seconds;
   for (const Result& r : results) {
     parsed += r.stage != "parse" && r.stage != "crashed";
@@ -323,6 +365,22 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
       reachable += r.out_of_reach.empty();
     }
     nlohmann::json a = {{"name", r.name}, {"file", r.file}, {"stage", r.stage}, {"seconds", r.seconds}};
+    if (!r.goal_reach.is_null()) {
+      const nlohmann::json& g = r.goal_reach;
+      a["goal_reach"] = g;
+      literals += g["literals"].get<size_t>();
+      achievable += g["achievable"].get<size_t>();
+      for (const auto& [predicate, list] : g["unachievable"].items()) {
+        unachievable[predicate] += static_cast<int>(list.size());
+        unachievable_example.emplace(predicate, r.name + ": " + list[0].get<std::string>());
+      }
+      with_future += g["future"].get<size_t>() > 0;
+      future += g["future"].get<size_t>();
+      for (const auto& name : g["future_without_rule"])
+        future_without_rule.push_back(r.name + ": " + name.get<std::string>());
+      for (const auto& name : g["future_unreachable"])
+        future_unreachable.push_back(r.name + ": " + name.get<std::string>());
+    }
     if (was_instantiated(r)) a["out_of_reach"] = r.out_of_reach;
     if (options.steps > 0) a["ran"] = r.ran;
     if (options.primitive_steps > 0) a["ran_primitives"] = r.ran_primitives;
@@ -340,6 +398,12 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
     activities.push_back(std::move(a));
   }
   std::sort(seconds.begin(), seconds.end());
+  nlohmann::json by_predicate = nlohmann::json::array();
+  for (const auto& [predicate, count] : unachievable) {
+    by_predicate.push_back({{"predicate", predicate}, {"count", count}, {"example", unachievable_example[predicate]}});
+  }
+  std::stable_sort(by_predicate.begin(), by_predicate.end(),
+                   [](const nlohmann::json& a, const nlohmann::json& b) { return a["count"] > b["count"]; });
   const auto grouped = [](const std::map<std::string, std::pair<int, std::string>>& causes) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& [cause, entry] : causes)
@@ -350,6 +414,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   };
   return {{"dir", options.dir},
           {"seed", options.seed},
+          {"goals_only", options.goals_only},
           {"activities", activities},
           {"total", files.size()},
           {"parsed", parsed},
@@ -362,6 +427,13 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
           {"ran_primitives", ran_primitives},
           {"median_seconds", seconds.empty() ? 0.0 : seconds[seconds.size() / 2]},
           {"max_seconds", seconds.empty() ? 0.0 : seconds.back()},
+          {"goal_literals", literals},
+          {"goal_literals_achievable", achievable},
+          {"unachievable_by_predicate", by_predicate},
+          {"activities_with_future", with_future},
+          {"future_objects", future},
+          {"future_without_rule", future_without_rule},
+          {"future_unreachable", future_unreachable},
           {"causes", grouped(causes)},
           {"out_of_reach_causes", grouped(reach_causes)}};
 }
@@ -370,17 +442,24 @@ std::string format_coverage(const nlohmann::json& c) {
   std::ostringstream out;
   const double total = c["total"].get<double>();
   out.precision(1);
-  out << std::fixed << "coverage of " << c["dir"].get<std::string>() << ": " << c["total"]
-      << " activities; parsed and grounded " << c["parsed"] << " (" << 100 * c["parsed"].get<double>() / total
-      << "%), instantiated " << c["instantiated"] << " (" << 100 * c["instantiated"].get<double>() / total
-      << "%) at seed " << c["seed"] << ", median " << c["median_seconds"].get<double>() << " s, slowest "
-      << c["max_seconds"].get<double>() << " s; " << c["instantiated_within_20s"] << " within 20 s; " << c["reachable"]
-      << " with everything the primitives act on within the robot's reach";
-  if (c["steps"].get<int>() > 0)
-    out << "; " << c["ran"] << " ran " << c["steps"] << " random low-level steps in a VectorEnv from the same instance";
-  if (c["primitive_steps"].get<int>() > 0)
-    out << "; " << c["ran_primitives"] << " ran " << c["primitive_steps"] << " random physical primitives";
-  out << "\n";
+  if (c["goals_only"].get<bool>()) {
+    out << std::fixed << "coverage of " << c["dir"].get<std::string>() << ": " << c["total"]
+        << " activities; parsed and grounded " << c["parsed"] << " (" << 100 * c["parsed"].get<double>() / total
+        << "%)\n";
+  } else {
+    out << std::fixed << "coverage of " << c["dir"].get<std::string>() << ": " << c["total"]
+        << " activities; parsed and grounded " << c["parsed"] << " (" << 100 * c["parsed"].get<double>() / total
+        << "%), instantiated " << c["instantiated"] << " (" << 100 * c["instantiated"].get<double>() / total
+        << "%) at seed " << c["seed"] << ", median " << c["median_seconds"].get<double>() << " s, slowest "
+        << c["max_seconds"].get<double>() << " s; " << c["instantiated_within_20s"] << " within 20 s; "
+        << c["reachable"] << " with everything the primitives act on within the robot's reach";
+    if (c["steps"].get<int>() > 0)
+      out << "; " << c["ran"] << " ran " << c["steps"]
+          << " random low-level steps in a VectorEnv from the same instance";
+    if (c["primitive_steps"].get<int>() > 0)
+      out << "; " << c["ran_primitives"] << " ran " << c["primitive_steps"] << " random physical primitives";
+    out << "\n";
+  }
   const auto list = [&](const char* title, const nlohmann::json& causes) {
     if (!causes.empty()) out << title << ":\n";
     for (const auto& cause : causes) {
@@ -388,6 +467,19 @@ std::string format_coverage(const nlohmann::json& c) {
           << cause["example"].get<std::string>() << ")\n";
     }
   };
+  if (c["goal_literals"].get<double>() > 0) {
+    out << "goal literals some primitives and transition rules could make hold (relaxed reachability): "
+        << c["goal_literals_achievable"] << " of " << c["goal_literals"] << " ("
+        << 100 * c["goal_literals_achievable"].get<double>() / c["goal_literals"].get<double>() << "%); "
+        << c["activities_with_future"] << " activities with " << c["future_objects"] << " future objects, "
+        << c["future_without_rule"].size() << " of them made by no rule, " << c["future_unreachable"].size()
+        << " out of reach of the search\n";
+  }
+  if (!c["unachievable_by_predicate"].empty()) out << "goal literals no primitive or rule makes hold, by predicate:\n";
+  for (const auto& p : c["unachievable_by_predicate"]) {
+    out << "  " << p["count"] << "  " << p["predicate"].get<std::string>() << "  (e.g. "
+        << p["example"].get<std::string>() << ")\n";
+  }
   list("failures by cause", c["causes"]);
   list("instantiated, out of reach", c["out_of_reach_causes"]);
   return out.str();

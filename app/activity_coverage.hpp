@@ -7,6 +7,10 @@
 // ran in a VectorEnv (CoverageOptions::steps) and ran random primitives
 // (CoverageOptions::primitive_steps), and the failures grouped by
 // cause (the error with its names and numbers blanked), each with an example.
+// For every parsed activity it also judges which ground goal literals some
+// sequence of primitives and transition rules could make hold (the planner's
+// relaxed reachability, planner/reachability.hpp), totals them and groups
+// those none can by predicate, and names future objects no rule makes.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -27,6 +31,8 @@ struct CoverageOptions {
   // Then this many random actions of the primitive action space, executed
   // physically, from the same seed (0: none).
   int primitive_steps = 0;
+  // Stop after the goal's reach: no world is built (the other options must be off).
+  bool goals_only = false;
   // A PNG of every instantiated activity's head camera and top-down view ("": none).
   std::string sheet;
 };

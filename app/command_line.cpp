@@ -163,6 +163,9 @@ CommandLineParser::Impl::Impl() {
                    "Then this many random primitives of the primitive action space, executed physically (0: none)")
       ->check(integer_in(0, 100000))
       ->capture_default_str();
+  coverage_cmd->add_flag("--goals-only", c.coverage.goals_only,
+                         "Only parse, ground and judge which goal literals the primitives and transition rules could "
+                         "make hold (no world, no instantiation)");
   coverage_cmd->add_option("--sheet", c.coverage.sheet,
                            "Contact sheet PNG: head camera and top-down view of every instantiated activity");
   coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");
@@ -285,7 +288,9 @@ CommandLineParser::Impl::Impl() {
       ->add_option("--episode-steps", c.train.episode_steps,
                    "Steps per episode (default: 60 primitives, 500 low-level)")
       ->check(integer_in(1, 1000000));
-  train_cmd->add_option("--history", c.train.history, "rl-prim-hist: observations the policy sees; rl-prim-action-hist: past primitives (default 4)")
+  train_cmd
+      ->add_option("--history", c.train.history,
+                   "rl-prim-hist: observations the policy sees; rl-prim-action-hist: past primitives (default 4)")
       ->check(integer_in(1, 64));
   train_cmd
       ->add_option("--checkpoint-every", c.train.checkpoint_every,
@@ -326,8 +331,9 @@ CommandLineParser::Impl::Impl() {
   reproduce_cmd->add_flag("!--no-greedy-eval", c.reproduce.greedy_eval,
                           "Evaluate at seed 0 by sampling only (tables run before issue 53)");
   reproduce_cmd->add_flag("--report-only", c.reproduce.report_only, "Train and evaluate nothing: report the runs done");
-  reproduce_cmd->add_option("--compare-with", c.reproduce.compare_with,
-                            "Another table's OUT: per cell, P(a run here scores above a run there)")
+  reproduce_cmd
+      ->add_option("--compare-with", c.reproduce.compare_with,
+                   "Another table's OUT: per cell, P(a run here scores above a run there)")
       ->check(CLI::ExistingDirectory);
   reproduce_cmd->add_option("--compare-method", values.compare_methods,
                             "METHOD=OTHER: compare this table's METHOD with OTHER of --compare-with's table");

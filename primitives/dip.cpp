@@ -52,13 +52,30 @@ bool act(Executor& e) {
   return true;
 }
 
+// Symbolically: what the hand holds, if it absorbs (a particle remover),
+// becomes saturated with the liquid the object contains.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const int agent = agent_index(objects);
+  if (agent < 0 || a.held < 0 || a.substance < 0 || objects[a.target].kind != SymbolicObject::Kind::object ||
+      !objects[a.held].has("particleRemover") || !objects[a.substance].has("liquid")) {
+    return {};
+  }
+  SymbolicStep s;
+  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}),
+             literal("contains", {a.target, a.substance})};
+  s.adds = {literal("saturated", {a.held, a.substance})};
+  return {s};
+}
+
 }  // namespace
 
 const PrimitiveDef& dip_primitive() {
   static const PrimitiveDef def{.applies = applies,
                                 .unmet_precondition = unmet_precondition,
                                 .act = act,
+                                .model = model,
                                 .line_end = line_end,
+                                .about_substance = true,
                                 .with_tool = true};
   return def;
 }

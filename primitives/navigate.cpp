@@ -79,6 +79,19 @@ bool act(Executor& e) {
           " out of the arm's reach, " + std::to_string(path_failures) + " without a path)");
 }
 
+// Symbolically: the object comes within reach, and what was goes out of it.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const SymbolicObject::Kind kind = objects[a.target].kind;
+  if (kind != SymbolicObject::Kind::object && kind != SymbolicObject::Kind::floor) return {};
+  SymbolicStep s;
+  s.needs_not = {literal(kWithinReach, {a.target})};
+  for (int o = 0; o < static_cast<int>(objects.size()); ++o) {
+    if (o != a.target) s.deletes.push_back(literal(kWithinReach, {o}));
+  }
+  s.adds = {literal(kWithinReach, {a.target})};
+  return {s};
+}
+
 }  // namespace
 
 bool within_reach(const World& world, int object) {
@@ -88,8 +101,12 @@ bool within_reach(const World& world, int object) {
 }
 
 const PrimitiveDef& navigate_primitive() {
-  static const PrimitiveDef def{
-      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .touches = false, .drives = true};
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = unmet_precondition,
+                                .act = act,
+                                .model = model,
+                                .touches = false,
+                                .drives = true};
   return def;
 }
 

@@ -72,11 +72,26 @@ bool act(Executor& e) {
   return true;
 }
 
+// Symbolically: into the empty hand, from wherever it was.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const int agent = agent_index(objects);
+  if (agent < 0 || !objects[a.target].movable()) return {};
+  SymbolicStep s;
+  s.needs = {literal(kHandEmpty, {}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
+  s.deletes = {literal(kHandEmpty, {})};
+  end_placements(objects, a.target, s);
+  s.adds = {literal("grasped", {agent, a.target})};
+  return {s};
+}
+
 }  // namespace
 
 const PrimitiveDef& pick_primitive() {
-  static const PrimitiveDef def{
-      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .approaches = approaches};
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = unmet_precondition,
+                                .act = act,
+                                .model = model,
+                                .approaches = approaches};
   return def;
 }
 

@@ -67,11 +67,33 @@ bool act(Executor& e) {
   return true;
 }
 
+// Symbolically: what the hand holds ends on the object (or the floor), or,
+// for a container, in it: the paper's place (appendix F.4 c) is OmniGibson's
+// PLACE_ON_TOP and PLACE_INSIDE at once, releasing over the top or over an
+// open drawer's exposed part (top_centre). An openable container must be open.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const int agent = agent_index(objects);
+  const SymbolicObject& target = objects[a.target];
+  if (agent < 0 || a.held < 0 || a.held == a.target ||
+      (target.kind != SymbolicObject::Kind::object && target.kind != SymbolicObject::Kind::floor)) {
+    return {};
+  }
+  SymbolicStep on;
+  on.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
+  on.deletes = {literal("grasped", {agent, a.held})};
+  on.adds = {literal(kHandEmpty, {}), literal("ontop", {a.held, a.target})};
+  if (!target.has("fillable")) return {on};
+  SymbolicStep in = on;
+  in.adds.back() = literal("inside", {a.held, a.target});
+  if (target.has("openable")) in.needs.push_back(literal("open", {a.target}));
+  return {on, in};
+}
+
 }  // namespace
 
 const PrimitiveDef& place_primitive() {
   static const PrimitiveDef def{
-      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .touches = false};
+      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .model = model, .touches = false};
   return def;
 }
 

@@ -489,6 +489,25 @@ bool primitive_applies(const World& w, PrimitiveType type, int object) {
   return primitive_def(type).applies(w, object);
 }
 
+std::vector<SymbolicStep> primitive_model(PrimitiveType type, const std::vector<SymbolicObject>& objects,
+                                          const SymbolicArgs& args) {
+  for (const int i : {args.target, args.held, args.substance}) {
+    if (i < -1 || i >= static_cast<int>(objects.size())) {
+      throw Error("primitives: symbolic object " + std::to_string(i) + " out of range (" +
+                  std::to_string(objects.size()) + " objects)");
+    }
+  }
+  if (args.target < 0) throw Error("primitives: a symbolic step needs a target");
+  std::vector<SymbolicStep> steps = primitive_def(type).model(objects, args);
+  const std::string name = std::string(to_string(type)) + "(" + objects[args.target].name + ")";
+  for (SymbolicStep& s : steps) s.name = name;
+  return steps;
+}
+
+bool primitive_about_substance(PrimitiveType type) {
+  return primitive_def(type).about_substance;
+}
+
 bool primitive_touches(PrimitiveType type) {
   return primitive_def(type).touches;
 }

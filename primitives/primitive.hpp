@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "primitives/primitive_types.hpp"
+#include "primitives/symbolic_model.hpp"
 #include "world/world.hpp"
 
 namespace chore {
@@ -90,6 +91,13 @@ std::string unmet_precondition(const World& world, PrimitiveType type, int objec
 // for liquid containers, wipe for objects dirt can lie on; navigate and place
 // for any (which objects are placement targets is the activity's to say).
 bool primitive_applies(const World& world, PrimitiveType type, int object);
+
+// The symbolic model of `type` (primitives/symbolic_model.hpp), as the task
+// planner uses it: the steps it can be with `args` on these objects (none
+// where it cannot act on them), and whether it takes a substance.
+std::vector<SymbolicStep> primitive_model(PrimitiveType type, const std::vector<SymbolicObject>& objects,
+                                          const SymbolicArgs& args);
+bool primitive_about_substance(PrimitiveType type);
 
 // Whether the hand acts on the object itself (pick, push, dip, wipe), not
 // from beside it (navigate) or above it (place).

@@ -18,6 +18,7 @@
 #include "primitives/ik.hpp"
 #include "primitives/motion.hpp"
 #include "primitives/primitive.hpp"
+#include "primitives/symbolic_model.hpp"
 
 namespace chore {
 
@@ -165,6 +166,10 @@ struct PrimitiveDef {
   std::string (*unmet_precondition)(const World& w, int object);
   // Acts, after the precondition held; false after e.fail().
   bool (*act)(Executor& e);
+  // Its symbolic model (symbolic_model.hpp): the steps it can be with `args`
+  // on these objects (alternatives, e.g. one per solvent a stain needs), none
+  // where it cannot act on them.
+  std::vector<SymbolicStep> (*model)(const std::vector<SymbolicObject>& objects, const SymbolicArgs& args);
   // Where the hand acts: null for the default, from above onto top_centre().
   std::vector<Approach> (*approaches)(const World& w, int object, const Pose2& base) = nullptr;
   // Where the hand's centre ends the line along approach `a` from a base at
@@ -174,11 +179,12 @@ struct PrimitiveDef {
   // Why out_of_reach() fails: null for the default, no base pose reaching
   // one of approaches().
   std::string (*out_of_reach)(ReachSearch& search) = nullptr;
-  bool touches = true;       // the hand follows the approach into contact with the object
-  bool with_tool = false;    // acts with a tool in hand (reach checks count one hanging below it)
-  bool opens = false;        // opens an articulated object: the base stands in front of it, room to pull
-  bool drives = false;       // moves the base: checks its own precondition, no tuck after failing
-  double yaw_spread = M_PI;  // rad: base poses face the target within +-half this (side-on: pi)
+  bool about_substance = false;  // the model takes a substance (dip: the liquid; wipe: the dirt)
+  bool touches = true;           // the hand follows the approach into contact with the object
+  bool with_tool = false;        // acts with a tool in hand (reach checks count one hanging below it)
+  bool opens = false;            // opens an articulated object: the base stands in front of it, room to pull
+  bool drives = false;           // moves the base: checks its own precondition, no tuck after failing
+  double yaw_spread = M_PI;      // rad: base poses face the target within +-half this (side-on: pi)
 };
 
 // The registry: the PrimitiveDef of each type, name_primitive() for each

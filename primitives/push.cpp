@@ -59,12 +59,24 @@ bool act(Executor& e) {
   return true;
 }
 
+// Symbolically: an openable object opens.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const SymbolicObject& o = objects[a.target];
+  if (o.kind != SymbolicObject::Kind::object || !o.has("openable")) return {};
+  SymbolicStep s;
+  s.needs = {literal(kHandEmpty, {}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
+  s.needs_not = {literal("open", {a.target})};
+  s.adds = {literal("open", {a.target})};
+  return {s};
+}
+
 }  // namespace
 
 const PrimitiveDef& push_primitive() {
   static const PrimitiveDef def{.applies = applies,
                                 .unmet_precondition = unmet_precondition,
                                 .act = act,
+                                .model = model,
                                 .approaches = approaches,
                                 .opens = true};
   return def;

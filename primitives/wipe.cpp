@@ -109,15 +109,41 @@ bool act(Executor& e) {
   return true;
 }
 
+// Symbolically: the substance leaves the object, if what the hand holds
+// removes it (the knowledge base's particleRemover conditions), saturated
+// with one of the solvents the substance needs where it needs one.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const int agent = agent_index(objects);
+  if (agent < 0 || a.held < 0 || a.substance < 0) return {};
+  const auto removes = objects[a.held].removes.find(objects[a.substance].synset);
+  if (removes == objects[a.held].removes.end()) return {};
+  SymbolicStep base;
+  base.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}),
+                literal("covered", {a.target, a.substance})};
+  base.deletes = {literal("covered", {a.target, a.substance})};
+  if (removes->second.empty()) return {base};
+  std::vector<SymbolicStep> out;
+  for (const std::string& solvent : removes->second) {
+    for (int o = 0; o < static_cast<int>(objects.size()); ++o) {
+      if (objects[o].synset != solvent) continue;
+      out.push_back(base);
+      out.back().needs.push_back(literal("saturated", {a.held, o}));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 const PrimitiveDef& wipe_primitive() {
   static const PrimitiveDef def{.applies = applies,
                                 .unmet_precondition = unmet_precondition,
                                 .act = act,
+                                .model = model,
                                 .approaches = approaches,
                                 .line_end = line_end,
                                 .out_of_reach = out_of_reach,
+                                .about_substance = true,
                                 .with_tool = true,
                                 .yaw_spread = kYawSpread};
   return def;

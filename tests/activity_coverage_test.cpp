@@ -55,8 +55,8 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   test::write_file(dir / "domain_x.bddl", "(define (domain x) (:predicates (p ?a)))");
   std::ostringstream log;
   const std::string sheet = (dir / "sheet.png").string();
-  const nlohmann::json c = activity_coverage(
-      {.dir = dir.string(), .threads = 2, .steps = 3, .primitive_steps = 2, .sheet = sheet}, log);
+  const nlohmann::json c =
+      activity_coverage({.dir = dir.string(), .threads = 2, .steps = 3, .primitive_steps = 2, .sheet = sheet}, log);
   EXPECT_EQ(c["total"], 6);  // the domain file is not an activity
   EXPECT_EQ(c["parsed"], 4);
   EXPECT_EQ(c["instantiated"], 2);
@@ -67,8 +67,9 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   EXPECT_EQ(c["causes"][0]["cause"],
             "instantiate: activity '_': cannot instantiate: (inside _ _) could not be sampled (N attempts)");
   EXPECT_EQ(c["causes"][0]["example"], "a");  // a folder's problem0.bddl is named by its folder
-  EXPECT_EQ(c["causes"][1]["cause"], "parse: :init: (open _): no kind of _ is openable (the knowledge base's "
-                                     "properties, Table A.N)");
+  EXPECT_EQ(c["causes"][1]["cause"],
+            "parse: :init: (open _): no kind of _ is openable (the knowledge base's "
+            "properties, Table A.N)");
   EXPECT_EQ(c["causes"][2]["cause"].get<std::string>().substr(0, 7), "parse: ");
   EXPECT_NE(format_coverage(c).find("6 activities; parsed and grounded 4 (66.7%), instantiated 2 (33.3%)"),
             std::string::npos)
@@ -83,6 +84,49 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
   cv::meanStdDev(picture, mean, spread);
   EXPECT_GT(mean[0] + mean[1] + mean[2], 3 * 30) << "not black";
   EXPECT_GT(spread[0] + spread[1] + spread[2], 3 * 10) << "not one colour";
+}
+
+// --goals-only: no world; per activity, the goal literals the primitives and
+// transition rules could make hold, those none can by predicate, and future
+// objects no rule makes.
+TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
+  const auto dir = test::scratch_dir("coverage_goals");
+  const std::string head = "(define (problem r) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 ";
+  // A steak on a pan on a lit stove gets cooked; nothing puts it inside the fridge.
+  test::write_file(dir / "steak" / "problem0.bddl",
+                   head +
+                       "steak.n.01_1 - steak.n.01 frying_pan.n.01_1 - frying_pan.n.01 stove.n.01_1 - stove.n.01 "
+                       "electric_refrigerator.n.01_1 - electric_refrigerator.n.01 floor.n.01_1 - floor.n.01) "
+                       "(:init (ontop agent.n.01_1 floor.n.01_1) (ontop steak.n.01_1 frying_pan.n.01_1) (ontop "
+                       "frying_pan.n.01_1 stove.n.01_1) (toggled_on stove.n.01_1) (inroom stove.n.01_1 kitchen) "
+                       "(inroom electric_refrigerator.n.01_1 kitchen) (inroom floor.n.01_1 kitchen)) (:goal (and "
+                       "(cooked steak.n.01_1) (inside steak.n.01_1 electric_refrigerator.n.01_1))))");
+  // An apple no rule makes.
+  test::write_file(dir / "apple" / "problem0.bddl",
+                   head +
+                       "apple.n.01_1 - apple.n.01 floor.n.01_1 - floor.n.01) (:init (ontop agent.n.01_1 "
+                       "floor.n.01_1) (future apple.n.01_1) (inroom floor.n.01_1 kitchen)) (:goal (real "
+                       "apple.n.01_1)))");
+  std::ostringstream log;
+  const nlohmann::json c = activity_coverage({.dir = dir.string(), .goals_only = true}, log);
+  EXPECT_EQ(c["parsed"], 2);
+  EXPECT_EQ(c["instantiated"], 0);
+  EXPECT_EQ(c["goal_literals"], 3);
+  EXPECT_EQ(c["goal_literals_achievable"], 1);
+  ASSERT_EQ(c["unachievable_by_predicate"].size(), 2u) << c["unachievable_by_predicate"].dump(1);
+  EXPECT_EQ(c["unachievable_by_predicate"][0]["predicate"], "inside");
+  EXPECT_EQ(c["unachievable_by_predicate"][0]["example"], "steak: (inside steak.n.01_1 electric_refrigerator.n.01_1)");
+  EXPECT_EQ(c["unachievable_by_predicate"][1]["predicate"], "real");
+  EXPECT_EQ(c["activities_with_future"], 1);
+  EXPECT_EQ(c["future_without_rule"], nlohmann::json::array({"apple: apple.n.01_1"}));
+  EXPECT_NE(format_coverage(c).find("make hold (relaxed reachability): 1 of 3 (33.3%); 1 activities with 1 future "
+                                    "objects, 1 of them made by no rule"),
+            std::string::npos)
+      << format_coverage(c);
+  EXPECT_NE(test::error_of([&] {
+              activity_coverage({.dir = dir.string(), .steps = 3, .goals_only = true}, log);
+            }).find("--goals-only builds no world"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,159 @@
+// The planner's symbolic problem and its relaxed reachability, on hand-built
+// activities with known answers.
+#include <gtest/gtest.h>
+
+#include "planner/reachability.hpp"
+#include "tasks/goal.hpp"
+#include "tasks/vocabulary.hpp"
+
+namespace chore {
+namespace {
+
+struct Case {
+  Problem problem;
+  SymbolicProblem symbolic;
+  Reachability reach;
+  GoalReach goal;
+};
+
+const TransitionRules& rules() {
+  static const auto r = TransitionRules::load();
+  return *r;
+}
+
+Case solve(const std::string& objects, const std::string& init, const std::string& goal,
+           const std::string& domain = "omnigibson") {
+  Case c;
+  c.problem = parse_bddl("(define (problem p) (:domain " + domain + ") (:objects " + objects + ") (:init " + init +
+                             ") (:goal " + goal + "))",
+                         "test.bddl");
+  const auto kb = dialect_knowledge_base(c.problem.domain);
+  c.symbolic = symbolic_problem(c.problem, *kb, rules());
+  c.reach = reachability(c.symbolic);
+  c.goal = goal_reach(c.symbolic, c.reach, ground_goal(c.problem), *kb, rules());
+  return c;
+}
+
+bool achievable(const Case& c, const std::string& predicate, std::vector<std::string> args, bool negated = false) {
+  return c.reach.achievable(c.symbolic, Literal{predicate, std::move(args), negated});
+}
+
+constexpr const char* kKitchen =
+    "apple.n.01_1 - apple.n.01 countertop.n.01_1 - countertop.n.01 agent.n.01_1 - agent.n.01 "
+    "floor.n.01_1 - floor.n.01";
+constexpr const char* kKitchenInit =
+    "(ontop apple.n.01_1 countertop.n.01_1) (inroom countertop.n.01_1 kitchen) (inroom floor.n.01_1 kitchen) "
+    "(ontop agent.n.01_1 floor.n.01_1)";
+
+// Placing: navigate, pick, place puts the apple on the floor; nothing the
+// six primitives do puts it inside anything or opens a fixed countertop.
+TEST(Planner, PlacementsThePrimitivesMake) {
+  const Case c = solve(kKitchen, kKitchenInit, "(and (ontop apple.n.01_1 floor.n.01_1))");
+  EXPECT_TRUE(achievable(c, "ontop", {"apple.n.01_1", "floor.n.01_1"}));
+  EXPECT_EQ(c.reach.achiever.at({"ontop", {0, 3}}), "place(floor.n.01_1)");
+  EXPECT_TRUE(achievable(c, "grasped", {"agent.n.01_1", "apple.n.01_1"}));
+  EXPECT_FALSE(achievable(c, "ontop", {"countertop.n.01_1", "floor.n.01_1"}));  // fixed: never picked
+  EXPECT_FALSE(achievable(c, "inside", {"apple.n.01_1", "countertop.n.01_1"}));
+  // Negated goals: the apple can leave the countertop (pick deletes it).
+  EXPECT_TRUE(achievable(c, "ontop", {"apple.n.01_1", "countertop.n.01_1"}, true));
+  EXPECT_EQ(c.goal.literals, 1u);
+  EXPECT_EQ(c.goal.achievable, 1u);
+}
+
+// Cooking: a steak on a pan on a stove that is on becomes cooked (the pan is
+// heated by the stove, the steak by the pan); with the stove off, nothing in
+// the primitives turns it on, so it is not.
+TEST(Planner, HeatThroughWhatObjectsLieOn) {
+  const std::string objects =
+      "steak.n.01_1 - steak.n.01 frying_pan.n.01_1 - frying_pan.n.01 stove.n.01_1 - stove.n.01 "
+      "agent.n.01_1 - agent.n.01";
+  const std::string on =
+      "(ontop steak.n.01_1 frying_pan.n.01_1) (ontop frying_pan.n.01_1 stove.n.01_1) "
+      "(inroom stove.n.01_1 kitchen)";
+  const Case lit = solve(objects, on + " (toggled_on stove.n.01_1)", "(and (cooked steak.n.01_1))");
+  EXPECT_TRUE(achievable(lit, "cooked", {"steak.n.01_1"}));
+  EXPECT_TRUE(achievable(lit, "hot", {"steak.n.01_1"}));
+  EXPECT_EQ(lit.reach.achiever.at({"cooked", {0}}), "heat(steak.n.01_1)");
+  const Case off = solve(objects, on, "(and (cooked steak.n.01_1))");
+  EXPECT_FALSE(achievable(off, "cooked", {"steak.n.01_1"}));
+  EXPECT_EQ(off.goal.unachievable.at("cooked"), std::vector<std::string>{"(cooked steak.n.01_1)"});
+}
+
+// Cleaning: a rag removes dust as it is; a stain on the same table needs the
+// rag saturated with water (the knowledge base's particleRemover conditions),
+// which dip gives where a bucket holds water.
+TEST(Planner, CleaningFollowsTheRemoversConditions) {
+  const std::string objects =
+      "table.n.02_1 - table.n.02 rag.n.01_1 - rag.n.01 dust.n.01_1 - dust.n.01 mud.n.03_1 - mud.n.03 "
+      "agent.n.01_1 - agent.n.01";
+  const std::string init =
+      "(covered table.n.02_1 dust.n.01_1) (covered table.n.02_1 mud.n.03_1) "
+      "(ontop rag.n.01_1 table.n.02_1) (inroom table.n.02_1 kitchen)";
+  const std::string goal = "(and (not (covered table.n.02_1 dust.n.01_1)) (not (covered table.n.02_1 mud.n.03_1)))";
+  const Case dry = solve(objects, init, goal);
+  EXPECT_TRUE(achievable(dry, "covered", {"table.n.02_1", "dust.n.01_1"}, true));
+  EXPECT_FALSE(achievable(dry, "covered", {"table.n.02_1", "mud.n.03_1"}, true));
+  EXPECT_EQ(dry.goal.achievable, 1u);
+  EXPECT_EQ(dry.goal.unachievable.at("not covered").size(), 1u);
+
+  const Case wet = solve(objects + " bucket.n.01_1 - bucket.n.01 water.n.06_1 - water.n.06",
+                         init + " (filled bucket.n.01_1 water.n.06_1) (ontop bucket.n.01_1 table.n.02_1)", goal);
+  EXPECT_TRUE(achievable(wet, "saturated", {"rag.n.01_1", "water.n.06_1"}));
+  EXPECT_TRUE(achievable(wet, "covered", {"table.n.02_1", "mud.n.03_1"}, true));
+  EXPECT_EQ(wet.goal.achievable, 2u);
+}
+
+// Transition rules: an apple with a knife has a rule that makes its halves
+// (slicing.json), but no primitive makes the knife touch it yet; a blender
+// that is on turns what is inside it into the recipe's output; a sink that
+// is on gives water (its particleSource conditions).
+TEST(Planner, TransitionRulesAndSources) {
+  const Case apple = solve(
+      "apple.n.01_1 - apple.n.01 carving_knife.n.01_1 - carving_knife.n.01 half__apple.n.01_1 half__apple.n.01_2 - "
+      "half__apple.n.01 agent.n.01_1 - agent.n.01",
+      "(future half__apple.n.01_1) (future half__apple.n.01_2)", "(and (real half__apple.n.01_1))");
+  EXPECT_TRUE(apple.goal.future_without_rule.empty());
+  EXPECT_EQ(apple.goal.future_unreachable, (std::vector<std::string>{"half__apple.n.01_1", "half__apple.n.01_2"}));
+
+  const std::string smoothie_objects =
+      "strawberry.n.01_1 - strawberry.n.01 ice_cube.n.01_1 - ice_cube.n.01 lemon_juice.n.01_1 - lemon_juice.n.01 "
+      "blender.n.01_1 - blender.n.01 smoothie.n.02_1 - smoothie.n.02 agent.n.01_1 - agent.n.01";
+  const std::string in_blender =
+      "(inside strawberry.n.01_1 blender.n.01_1) (inside ice_cube.n.01_1 blender.n.01_1) "
+      "(filled blender.n.01_1 lemon_juice.n.01_1) (future smoothie.n.02_1) "
+      "(inroom blender.n.01_1 kitchen)";
+  const Case on = solve(smoothie_objects, in_blender + " (toggled_on blender.n.01_1)",
+                        "(and (real smoothie.n.02_1) (contains blender.n.01_1 smoothie.n.02_1))");
+  EXPECT_EQ(on.goal.achievable, 2u);
+  EXPECT_EQ(on.reach.achiever.at({"real", {4}}), "single_toggleable_machine:smoothie_0");
+  const Case off = solve(smoothie_objects, in_blender, "(and (real smoothie.n.02_1))");
+  EXPECT_EQ(off.goal.achievable, 0u);
+
+  const Case sink =
+      solve("sink.n.01_1 - sink.n.01 water.n.06_1 - water.n.06 agent.n.01_1 - agent.n.01",
+            "(inroom sink.n.01_1 kitchen) (toggled_on sink.n.01_1)", "(and (contains sink.n.01_1 water.n.06_1))");
+  EXPECT_EQ(sink.goal.achievable, 1u);
+  EXPECT_EQ(sink.reach.achiever.at({"contains", {0, 1}}), "particleSource(sink.n.01_1)");
+}
+
+// Future objects no rule makes are named.
+TEST(Planner, FutureObjectsWithoutARule) {
+  const Case c = solve("apple.n.01_1 - apple.n.01 agent.n.01_1 - agent.n.01", "(future apple.n.01_1)",
+                       "(and (real apple.n.01_1))");
+  EXPECT_EQ(c.goal.future_without_rule, std::vector<std::string>{"apple.n.01_1"});
+}
+
+// BEHAVIOR-100's dialect, read in BEHAVIOR-1K's terms: a dusty table is
+// cleaned by a cleaning tool, a stained one by a soaked tool.
+TEST(Planner, BehaviorHundredInOneKsTerms) {
+  const std::string objects = "table.n.02_1 - table.n.02 rag.n.01_1 - rag.n.01 agent.n.01_1 - agent.n.01";
+  const std::string init =
+      "(dusty table.n.02_1) (stained table.n.02_1) (ontop rag.n.01_1 table.n.02_1) "
+      "(inroom table.n.02_1 kitchen)";
+  const Case c = solve(objects, init, "(and (not (dusty table.n.02_1)) (not (stained table.n.02_1)))", "igibson");
+  EXPECT_TRUE(achievable(c, "dusty", {"table.n.02_1"}, true));
+  EXPECT_FALSE(achievable(c, "stained", {"table.n.02_1"}, true));  // no water to soak the rag in
+}
+
+}  // namespace
+}  // namespace chore
