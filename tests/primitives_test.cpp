@@ -117,10 +117,11 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
     defs.insert(&primitive_def(type));
     EXPECT_EQ(parse_primitive_type(to_string(type)), type);
   }
-  EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe"}));
-  EXPECT_EQ(defs.size(), 6u);
+  EXPECT_EQ(names,
+            (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off"}));
+  EXPECT_EQ(defs.size(), 8u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
-            "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe)");
+            "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off)");
   for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
     EXPECT_TRUE(primitive_touches(t)) << to_string(t);
   EXPECT_FALSE(primitive_touches(PrimitiveType::navigate));
@@ -353,6 +354,35 @@ TEST(Primitives, DipSoaksTheRagAndWipingWithItCleansTheTable) {
   EXPECT_TRUE(dipped);
   EXPECT_TRUE(cleaned);
   EXPECT_LE(stains(), before / 2);  // stained (iGibson): clean at half the stains gone
+}
+
+// toggle_on and toggle_off on BEHAVIOR-1K's turning_on_radio in its scene's
+// analog: offered on the radio (toggleable in the knowledge base), refused
+// while it is already in the state asked for; a press turns it on, which is
+// the activity's goal, and the next turns it off. Physically the world's rule
+// toggles it (the hand held at the toggle point); symbolically the press does.
+TEST(Primitives, TogglePressesTheRadioOnAndOff) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    Env env(primitive_config(test::data_path("bddl/behavior-1k/turning_on_radio.bddl"), mode));
+    env.reset(0);
+    const std::vector<std::string> names = action_names(env);
+    EXPECT_NE(std::find(names.begin(), names.end(), "toggle_on(radio_receiver.n.01_1)"), names.end());
+    World& w = env.impl().world();
+    const int radio = env.activity()->object("radio_receiver.n.01_1");
+    EXPECT_FALSE(toggled_on(w, radio));
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::toggle_off, radio),
+              "'" + w.scene().objects()[radio].name + "' is already off");
+    EXPECT_EQ(act(env, "navigate(radio_receiver.n.01_1)").info.primitive_status, 0);
+    const Env::Impl::Outcome on = act(env, "toggle_on(radio_receiver.n.01_1)");
+    EXPECT_EQ(on.info.primitive_status, 0);
+    EXPECT_TRUE(toggled_on(w, radio));
+    EXPECT_TRUE(on.info.success);
+    EXPECT_TRUE(on.terminated);
+    const PrimitiveResult off = execute_primitive(w, PrimitiveType::toggle_off, radio, 7, {.mode = mode});
+    EXPECT_TRUE(off.ok()) << off.reason;
+    EXPECT_FALSE(toggled_on(w, radio));
+  }
 }
 
 // Along a symbolic motion the state rules read the load's contacts from the

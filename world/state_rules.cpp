@@ -120,6 +120,11 @@ void update_states_at_motion_waypoint(World& w, double dt, int moved, const Aabb
   }
 }
 
+Eigen::Vector3d toggle_point(const World& w, int object) {
+  const Aabb box = object_aabb(w, object);
+  return {box.center().x(), box.center().y(), box.hi.z()};
+}
+
 void update_states_after_env_step(World& w, double dt) {
   std::map<int, ObjectState>& state_of = w.states().all_states();
   const std::map<int, ObjectAbilities>& abilities_of = w.states().all_abilities();
@@ -129,8 +134,7 @@ void update_states_after_env_step(World& w, double dt) {
     const double* hand = w.data()->site_xpos + 3 * r->gripper_site;
     for (auto& [object, s] : state_of) {
       if (!abilities_of.at(object).toggleable) continue;
-      const Aabb box = object_aabb(w, object);
-      const Eigen::Vector3d point(box.center().x(), box.center().y(), box.hi.z());
+      const Eigen::Vector3d point = toggle_point(w, object);
       const bool near = (point - Eigen::Vector3d(hand[0], hand[1], hand[2])).norm() < ObjectStates::kToggleDistance;
       s.toggle_steps = near ? s.toggle_steps + 1 : 0;
       if (s.toggle_steps == ObjectStates::kToggleSteps) s.toggled = !s.toggled;

@@ -23,6 +23,10 @@ void update_states_after_physics_step(World& world, double dt);
 // forces or positions they act the same again.
 void update_states_at_motion_waypoint(World& world, double dt, int moved, const Aabb& moved_box,
                                       const std::vector<mjContact_>& moved_contacts);
+// Where the hand presses to toggle an object: the top centre of its box. The
+// rule toggles it after ObjectStates::kToggleSteps consecutive env steps with
+// the hand within ObjectStates::kToggleDistance of it.
+Eigen::Vector3d toggle_point(const World& world, int object);
 // Heat transfer and toggling, after each env step of `dt` seconds.
 void update_states_after_env_step(World& world, double dt);
 

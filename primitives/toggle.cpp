@@ -1,0 +1,90 @@
+// toggle_on(object), toggle_off(object): OmniGibson's TOGGLE_ON and
+// TOGGLE_OFF, one press each. The hand comes down onto the object's toggle
+// point (world/state_rules.hpp) and holds there for the env steps the world's
+// toggling rule counts, then lifts: physically the rule toggles it; in
+// symbolic mode the motion is planned and checked the same way and the state
+// set at the press. Both share this file: one press, two target states.
+#include "primitives/primitive_def.hpp"
+#include "world/predicates.hpp"
+#include "world/state_rules.hpp"
+
+namespace chore {
+namespace {
+
+// The env steps (1/30 s) the rule counts at the toggle point, and one more.
+constexpr double kPressSeconds = (ObjectStates::kToggleSteps + 1) / 30.0;
+
+bool applies(const World& w, int object) {
+  const ObjectAbilities* ab = w.states().abilities(object);
+  return ab && ab->toggleable;
+}
+
+std::string unmet(const World& w, int object, bool on) {
+  if (w.grasped_object() >= 0) return "the hand is not empty";
+  const std::string name = "'" + w.scene().objects().at(object).name + "'";
+  if (!applies(w, object)) return name + " cannot be toggled";
+  if (toggled_on(w, object) == on) return name + " is already " + (on ? "on" : "off");
+  return "";
+}
+
+std::vector<Approach> approaches(const World& w, int object, const Pose2&) {
+  return {{toggle_point(w, object), kDown, std::nullopt}};
+}
+
+bool press(Executor& e, bool on) {
+  World& w = e.world();
+  Motion& m = e.motion();
+  const int object = e.object();
+  if (!e.go_to_pre_pose()) return false;
+  // Down onto the toggle point until the fingers touch, no deeper than the
+  // rule's reach below it (a sink's basin lies lower).
+  if (!m.line(kDown * (kClearance + ObjectStates::kToggleDistance / 2), true, kApproachSpeed)) return false;
+  if (m.physical()) {
+    m.wait(kPressSeconds);
+  } else {
+    w.states().state(object).toggled = on;
+  }
+  m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
+  if (!e.tuck_where_possible()) return false;
+  if (toggled_on(w, object) != on) {
+    return e.fail(PrimitiveStatus::motion_planning_failure,
+                  "the hand did not stay at the toggle point of '" + e.name() + "'");
+  }
+  return true;
+}
+
+// Symbolically: the object is on (off), pressed with an empty hand.
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a, bool on) {
+  const SymbolicObject& o = objects[a.target];
+  if (o.kind != SymbolicObject::Kind::object || !o.has("toggleable")) return {};
+  SymbolicStep s;
+  s.needs = {literal(kHandEmpty, {}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
+  (on ? s.needs_not : s.needs).push_back(literal("toggled_on", {a.target}));
+  (on ? s.adds : s.deletes).push_back(literal("toggled_on", {a.target}));
+  return {s};
+}
+
+}  // namespace
+
+const PrimitiveDef& toggle_on_primitive() {
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = [](const World& w, int object) { return unmet(w, object, true); },
+                                .act = [](Executor& e) { return press(e, true); },
+                                .model = [](const std::vector<SymbolicObject>& objects,
+                                            const SymbolicArgs& a) { return model(objects, a, true); },
+                                .approaches = approaches};
+  return def;
+}
+
+const PrimitiveDef& toggle_off_primitive() {
+  static const PrimitiveDef def{
+      .applies = applies,
+      .unmet_precondition = [](const World& w, int object) { return unmet(w, object, false); },
+      .act = [](Executor& e) { return press(e, false); },
+      .model = [](const std::vector<SymbolicObject>& objects,
+                  const SymbolicArgs& a) { return model(objects, a, false); },
+      .approaches = approaches};
+  return def;
+}
+
+}  // namespace chore
