@@ -92,7 +92,7 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
 TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
   const auto dir = test::scratch_dir("coverage_goals");
   const std::string head = "(define (problem r) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 ";
-  // A steak on a pan on a lit stove gets cooked; nothing puts it inside the fridge.
+  // A steak on a pan on a lit stove gets cooked; nothing puts it next to the fridge.
   test::write_file(dir / "steak" / "problem0.bddl",
                    head +
                        "steak.n.01_1 - steak.n.01 frying_pan.n.01_1 - frying_pan.n.01 stove.n.01_1 - stove.n.01 "
@@ -100,7 +100,7 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
                        "(:init (ontop agent.n.01_1 floor.n.01_1) (ontop steak.n.01_1 frying_pan.n.01_1) (ontop "
                        "frying_pan.n.01_1 stove.n.01_1) (toggled_on stove.n.01_1) (inroom stove.n.01_1 kitchen) "
                        "(inroom electric_refrigerator.n.01_1 kitchen) (inroom floor.n.01_1 kitchen)) (:goal (and "
-                       "(cooked steak.n.01_1) (inside steak.n.01_1 electric_refrigerator.n.01_1))))");
+                       "(cooked steak.n.01_1) (nextto steak.n.01_1 electric_refrigerator.n.01_1))))");
   // An apple no rule makes.
   test::write_file(dir / "apple" / "problem0.bddl",
                    head +

@@ -61,8 +61,8 @@ TEST(Planner, PlacementsThePrimitivesMake) {
 }
 
 // Cooking: a steak on a pan on a stove that is on becomes cooked (the pan is
-// heated by the stove, the steak by the pan); with the stove off, nothing in
-// the primitives turns it on, so it is not.
+// heated by the stove, the steak by the pan); with the stove off, toggle_on
+// turns it on first; with no heat source at all, nothing cooks it.
 TEST(Planner, HeatThroughWhatObjectsLieOn) {
   const std::string objects =
       "steak.n.01_1 - steak.n.01 frying_pan.n.01_1 - frying_pan.n.01 stove.n.01_1 - stove.n.01 "
@@ -75,8 +75,12 @@ TEST(Planner, HeatThroughWhatObjectsLieOn) {
   EXPECT_TRUE(achievable(lit, "hot", {"steak.n.01_1"}));
   EXPECT_EQ(lit.reach.achiever.at({"cooked", {0}}), "heat(steak.n.01_1)");
   const Case off = solve(objects, on, "(and (cooked steak.n.01_1))");
-  EXPECT_FALSE(achievable(off, "cooked", {"steak.n.01_1"}));
-  EXPECT_EQ(off.goal.unachievable.at("cooked"), std::vector<std::string>{"(cooked steak.n.01_1)"});
+  EXPECT_TRUE(achievable(off, "cooked", {"steak.n.01_1"}));
+  EXPECT_EQ(off.reach.achiever.at({"toggled_on", {2}}), "toggle_on(stove.n.01_1)");
+  const Case cold = solve("steak.n.01_1 - steak.n.01 frying_pan.n.01_1 - frying_pan.n.01 agent.n.01_1 - agent.n.01",
+                          "(ontop steak.n.01_1 frying_pan.n.01_1)", "(and (cooked steak.n.01_1))");
+  EXPECT_FALSE(achievable(cold, "cooked", {"steak.n.01_1"}));
+  EXPECT_EQ(cold.goal.unachievable.at("cooked"), std::vector<std::string>{"(cooked steak.n.01_1)"});
 }
 
 // Cleaning: a rag removes dust as it is; a stain on the same table needs the
@@ -126,8 +130,15 @@ TEST(Planner, TransitionRulesAndSources) {
                         "(and (real smoothie.n.02_1) (contains blender.n.01_1 smoothie.n.02_1))");
   EXPECT_EQ(on.goal.achievable, 2u);
   EXPECT_EQ(on.reach.achiever.at({"real", {4}}), "single_toggleable_machine:smoothie_0");
+  // Off, toggle_on turns the blender on first; without the lemon juice the recipe cannot run.
   const Case off = solve(smoothie_objects, in_blender, "(and (real smoothie.n.02_1))");
-  EXPECT_EQ(off.goal.achievable, 0u);
+  EXPECT_EQ(off.goal.achievable, 1u);
+  EXPECT_EQ(off.reach.achiever.at({"toggled_on", {3}}), "toggle_on(blender.n.01_1)");
+  const Case dry = solve(smoothie_objects,
+                         "(inside strawberry.n.01_1 blender.n.01_1) (inside ice_cube.n.01_1 blender.n.01_1) "
+                         "(future smoothie.n.02_1) (inroom blender.n.01_1 kitchen) (toggled_on blender.n.01_1)",
+                         "(and (real smoothie.n.02_1))");
+  EXPECT_EQ(dry.goal.achievable, 0u);
 
   const Case sink =
       solve("sink.n.01_1 - sink.n.01 water.n.06_1 - water.n.06 agent.n.01_1 - agent.n.01",
