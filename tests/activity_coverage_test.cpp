@@ -114,8 +114,8 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
   EXPECT_EQ(c["goal_literals"], 3);
   EXPECT_EQ(c["goal_literals_achievable"], 1);
   ASSERT_EQ(c["unachievable_by_predicate"].size(), 2u) << c["unachievable_by_predicate"].dump(1);
-  EXPECT_EQ(c["unachievable_by_predicate"][0]["predicate"], "inside");
-  EXPECT_EQ(c["unachievable_by_predicate"][0]["example"], "steak: (inside steak.n.01_1 electric_refrigerator.n.01_1)");
+  EXPECT_EQ(c["unachievable_by_predicate"][0]["predicate"], "nextto");
+  EXPECT_EQ(c["unachievable_by_predicate"][0]["example"], "steak: (nextto steak.n.01_1 electric_refrigerator.n.01_1)");
   EXPECT_EQ(c["unachievable_by_predicate"][1]["predicate"], "real");
   EXPECT_EQ(c["activities_with_future"], 1);
   EXPECT_EQ(c["future_without_rule"], nlohmann::json::array({"apple: apple.n.01_1"}));
