@@ -53,8 +53,25 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   std::set<std::string> goal_supports;
   std::vector<const Variable*> scope;
   arguments_of(problem.goal, {"ontop", "inside"}, 1, goal_supports, scope);
+  // Pouring serves goals that put a substance in or on something.
+  std::set<std::string> receivers;
+  arguments_of(problem.goal, {"contains", "filled", "covered"}, 0, receivers, scope);
   std::set<std::string> openable = arguments_of(problem, {"open"}, 0);
   openable.insert(goal_supports.begin(), goal_supports.end());
+  // Dipping goes into what :init fills (a bucket of water) or under a source
+  // (a sink): every container may hold a liquid, but an empty mug is no place
+  // to dip into.
+  std::set<std::string> filled_at_start;
+  for (const Literal& l : problem.init) {
+    if (!l.negated && !l.args.empty() &&
+        (l.predicate == "filled" || l.predicate == "contains" || l.predicate == "insource"))
+      filled_at_start.insert(l.args[0]);
+  }
+
+  const auto gives_liquid = [&](int object) {
+    const ObjectAbilities* ab = world.states().abilities(object);
+    return ab && !ab->source.empty();
+  };
 
   std::vector<PrimitiveAction> actions;
   for (const ObjectDecl& decl : problem.objects) {
@@ -69,6 +86,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::place) applies = !goal_supports.empty() && named(supports);
       if (type == PrimitiveType::push) applies = applies && named(openable);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
+      if (type == PrimitiveType::pour) applies = applies && named(receivers);
+      if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(b.index));
       if (applies) actions.push_back({type, b.index, decl.name});
     }
   }

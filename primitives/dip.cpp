@@ -1,9 +1,11 @@
-// dip(object): lowers what the hand holds (a rag) into the liquid the object
-// holds until it soaks, and lifts it out.
+// dip(object): lowers what the hand holds into the liquid the object holds
+// (a bucket's, a sink's running water) until it soaks (a rag) or fills (a
+// container: OmniGibson's fill from a source), and lifts it out.
 #include <algorithm>
 
 #include "primitives/primitive_def.hpp"
 #include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
 
 namespace chore {
 namespace {
@@ -16,14 +18,28 @@ bool applies(const World& w, int object) {
 }
 
 std::string unmet_precondition(const World& w, int object) {
-  if (w.carried_object() < 0) return "the hand holds nothing";
-  return applies(w, object) ? "" : "'" + w.scene().objects().at(object).name + "' holds no liquid";
+  const int held = w.carried_object();
+  if (held < 0) return "the hand holds nothing";
+  const ObjectAbilities* ab = w.states().abilities(object);
+  // A source (a sink) counts as it runs, whether or not it is on yet.
+  if (!ab || !ab->holds_liquid || (w.states().state(object).liquid_level <= 0 && ab->source.empty())) {
+    return "'" + w.scene().objects().at(object).name + "' holds no liquid";
+  }
+  const ObjectAbilities* hab = w.states().abilities(held);
+  if (!hab || !(hab->soakable || hab->holds_liquid)) {
+    return "'" + w.scene().objects().at(held).name + "' neither soaks nor holds a liquid";
+  }
+  return "";
 }
 
 // Where the held object's bottom is kSoakDepth under the liquid's surface.
 Eigen::Vector3d line_end(const World& w, int object, const Approach& a, const Pose2&, double load) {
   const Aabb box = object_aabb(w, object);
-  const double surface = box.lo.z() + w.states().state(object).liquid_level * (box.hi.z() - box.lo.z());
+  // A source (a sink) is aimed at as it runs, whether or not it is on yet.
+  const ObjectAbilities* ab = w.states().abilities(object);
+  double level = w.states().state(object).liquid_level;
+  if (ab && !ab->source.empty()) level = std::max(level, ObjectStates::kSourceLevel);
+  const double surface = box.lo.z() + level * (box.hi.z() - box.lo.z());
   return {a.point.x(), a.point.y(), surface - kSoakDepth + load};
 }
 
@@ -42,6 +58,9 @@ bool act(Executor& e) {
   const int held = w.grasped_object();
   if (held < 0) return e.fail(PrimitiveStatus::grasp_failure, "dropped what it held");
   const ObjectAbilities* ab = w.states().abilities(held);
+  if (ab && ab->holds_liquid && !ab->soakable && !contains(w, held, w.states().state(e.object()).liquid)) {
+    return e.fail(PrimitiveStatus::motion_planning_failure, "the held container did not reach the liquid");
+  }
   if (ab && ab->soakable) {
     const auto& soaked = w.states().state(held).soaked;
     const std::string& liquid = w.states().state(e.object()).liquid;
@@ -52,18 +71,25 @@ bool act(Executor& e) {
   return true;
 }
 
-// Symbolically: what the hand holds, if it absorbs (a particle remover),
-// becomes saturated with the liquid the object contains.
+// Symbolically: what the hand holds becomes saturated with the liquid the
+// object contains, if it absorbs (a particle remover), or holds it, filled,
+// if it is a container.
 std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
   const int agent = agent_index(objects);
   if (agent < 0 || a.held < 0 || a.substance < 0 || objects[a.target].kind != SymbolicObject::Kind::object ||
-      !objects[a.held].has("particleRemover") || !objects[a.substance].has("liquid")) {
+      !objects[a.substance].has("liquid")) {
     return {};
   }
+  const SymbolicObject& held = objects[a.held];
+  if (!held.has("particleRemover") && !held.has("fillable")) return {};
   SymbolicStep s;
   s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}),
              literal("contains", {a.target, a.substance})};
-  s.adds = {literal("saturated", {a.held, a.substance})};
+  if (held.has("particleRemover")) s.adds.push_back(literal("saturated", {a.held, a.substance}));
+  if (held.has("fillable")) {
+    s.adds.push_back(literal("contains", {a.held, a.substance}));
+    s.adds.push_back(literal("filled", {a.held, a.substance}));
+  }
   return {s};
 }
 

@@ -409,7 +409,12 @@ void Motion::wait(double seconds) {
     step_physics(static_cast<int>(std::ceil(seconds / kControlDt)));
     return;
   }
-  if (world_.state_updates()) update_states_after_physics_step(world_, seconds);
+  // Symbolically the time passes in one go: the rules of a physics step and
+  // of an env step (a source toggled on fills itself, heat flows).
+  if (world_.state_updates()) {
+    update_states_after_physics_step(world_, seconds);
+    update_states_after_env_step(world_, seconds);
+  }
 }
 
 bool Motion::tuck() {

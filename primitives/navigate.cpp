@@ -9,13 +9,19 @@ namespace {
 
 // Navigation aims at what will be done there: an articulated object's handle
 // (to push it) while the hand is empty; while holding, dirt lying on it to
-// wipe, a liquid to dip into, or a place to put the load.
+// wipe, a liquid to dip into, a container or surface to pour what the held
+// container holds into or onto, or a place to put the load.
 PrimitiveType purpose_of_navigation(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
-  if (w.grasped_object() < 0 && articulation(w, object) && !is_open(w, object)) return PrimitiveType::push;
-  if (w.grasped_object() >= 0 && ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
-  if (w.grasped_object() >= 0 && primitive_applies(w, PrimitiveType::dip, object)) return PrimitiveType::dip;
-  return w.grasped_object() >= 0 ? PrimitiveType::place : PrimitiveType::pick;
+  if (w.grasped_object() < 0) {
+    return articulation(w, object) && !is_open(w, object) ? PrimitiveType::push : PrimitiveType::pick;
+  }
+  if (ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
+  for (const PrimitiveType with_load : {PrimitiveType::dip, PrimitiveType::pour}) {
+    const PrimitiveDef& def = primitive_def(with_load);
+    if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) return with_load;
+  }
+  return PrimitiveType::place;
 }
 
 bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object) {
@@ -62,7 +68,10 @@ bool act(Executor& e) {
                     e.options().base_pose_samples, tally, [&](const Pose2& p) {
                       // Reachable with the arm; now the base must get there.
                       result.planning_seconds += since(planning);
-                      arrived = m.base_to(p, footprint);
+                      // Where the base stops (physically, millimetres off p)
+                      // the arm must still reach: at the edge of its reach it
+                      // may not, and the next candidate is tried.
+                      arrived = m.base_to(p, footprint) && reachable_here(w, m.ik(), checker, object);
                       planning = Clock::now();
                       if (arrived || result.diverged || ++path_failures == 3) return true;
                       result.status = PrimitiveStatus::success;  // try the next candidate
@@ -70,13 +79,16 @@ bool act(Executor& e) {
                       return false;
                     });
   result.planning_seconds += since(planning);
-  if (arrived || result.diverged || path_failures == 3) return arrived;
-  return e.fail(
-      PrimitiveStatus::motion_planning_failure,
-      "no collision-free base pose within reach of '" + e.name() + "' in its room (" + std::to_string(tally.blocked) +
-          " samples in collision, then of " + std::to_string(tally.elsewhere + tally.unreachable + path_failures) +
-          " free ones: " + std::to_string(tally.elsewhere) + " in another room, " + std::to_string(tally.unreachable) +
-          " out of the arm's reach, " + std::to_string(path_failures) + " without a path)");
+  // A failed base path says why itself; out of reach where the base stopped
+  // falls to the tally below.
+  if (arrived || result.diverged || (path_failures == 3 && !result.ok())) return arrived;
+  return e.fail(PrimitiveStatus::motion_planning_failure,
+                "no collision-free base pose within reach of '" + e.name() + "' in its room (" +
+                    std::to_string(tally.blocked) + " samples in collision, then of " +
+                    std::to_string(tally.elsewhere + tally.unreachable + path_failures) +
+                    " free ones: " + std::to_string(tally.elsewhere) + " in another room, " +
+                    std::to_string(tally.unreachable) + " out of the arm's reach, " + std::to_string(path_failures) +
+                    " without a path or out of reach where the base stopped)");
 }
 
 // Symbolically: the object comes within reach, and what was goes out of it.

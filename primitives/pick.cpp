@@ -26,7 +26,7 @@ std::string unmet_precondition(const World& w, int object) {
 // From above, or for slim upright objects (a bottle on a high counter, out
 // of reach from above) from the side, the fingers closing horizontally.
 std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
-  std::vector<Approach> out = {{top_centre(w, object), kDown, std::nullopt}};
+  std::vector<Approach> out = {{top_centre(w, object, base), kDown, std::nullopt}};
   const Aabb box = object_aabb(w, object);
   const Eigen::Vector3d size = box.hi - box.lo;
   Eigen::Vector3d towards(box.center().x() - base.x, box.center().y() - base.y, 0);

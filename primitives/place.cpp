@@ -20,6 +20,8 @@ std::string unmet_precondition(const World& w, int object) {
   return w.grasped_object() == object ? "cannot place an object on itself" : "";
 }
 
+constexpr double kRestingDepth = 0.0005;  // m
+
 // Symbolic release: the object drops straight down onto what is below it.
 void settle_kinematically(Executor& e, int held) {
   const Clock::time_point t = Clock::now();
@@ -44,7 +46,9 @@ void settle_kinematically(Executor& e, int held) {
   }
   if (drop < 1e9) {
     const int adr = m->jnt_qposadr[m->body_jntadr[o.body]];
-    w.data()->qpos[adr + 2] -= std::max(0.0, drop - 0.001);
+    // Half a millimetre into the support, as MuJoCo's soft contacts rest:
+    // a gap, however small, is no contact, and ontop needs one.
+    w.data()->qpos[adr + 2] -= std::max(0.0, drop + kRestingDepth);
     mj_forward(m, w.data());
   }
   e.result().execution_seconds += since(t);

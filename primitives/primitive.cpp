@@ -101,7 +101,26 @@ double open_fraction(const Articulation& a) {
 // Where a place or dip aims: over an open drawer's exposed part, else over
 // the object's box, at the spot farthest from the free objects already there
 // (the second pumpkin goes beside the first), on top.
-Eigen::Vector3d top_centre(const World& w, int object) {
+namespace {
+// The carried load's box were the base at `base`, the arm as it is: its
+// geoms turned about the base with it.
+Aabb carried_aabb_at(const World& w, const Pose2& base) {
+  const Pose2 now = w.base_pose();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(base.yaw - now.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d from(now.x, now.y, 0), to(base.x, base.y, 0);
+  const mjData* d = w.data();
+  Aabb box;
+  for (int g : w.scene().objects()[w.carried_object()].geoms) {
+    const Eigen::Vector3d pos = turn * (Eigen::Map<const Eigen::Vector3d>(d->geom_xpos + 3 * g) - from) + to;
+    using RowMajor = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;  // MuJoCo's xmat
+    const RowMajor mat = turn * Eigen::Map<const RowMajor>(d->geom_xmat + 9 * g);
+    box.grow(geom_aabb(w.model(), g, pos.data(), mat.data()));
+  }
+  return box;
+}
+}  // namespace
+
+Eigen::Vector3d top_centre(const World& w, int object, const std::optional<Pose2>& base) {
   Eigen::Vector3d centre, along, across;  // the region: centre +- along +- across
   double top = 0;
   if (const auto a = articulation(w, object); a && open_fraction(*a) > 0.3) {
@@ -126,17 +145,15 @@ Eigen::Vector3d top_centre(const World& w, int object) {
   }
   // Keep the carried object's half width inside the region.
   double margin = 0.03;
-  if (const int held = w.carried_object(); held >= 0) {
-    const Aabb h = object_aabb(w, held);
-    margin += std::max(h.hi.x() - h.lo.x(), h.hi.y() - h.lo.y()) / 2;
-  }
+  const int held = w.carried_object();
+  const Aabb load = held < 0 ? Aabb{} : base ? carried_aabb_at(w, *base) : object_aabb(w, held);
+  if (held >= 0) margin += std::max(load.hi.x() - load.lo.x(), load.hi.y() - load.lo.y()) / 2;
   const double fa = std::max(0.0, 1 - margin / std::max(along.norm(), 1e-9));
   const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));
   const auto& objects = w.scene().objects();
-  if (w.carried_object() < 0) return {centre.x(), centre.y(), top};  // nothing to set down
+  if (held < 0) return {centre.x(), centre.y(), top};  // nothing to set down
   // A spot is flat when rays down through the load's footprint all land on
   // the target at one height: not half on a bin's rim or off a table's edge.
-  const Aabb load = object_aabb(w, w.carried_object());
   const double half_x = (load.hi.x() - load.lo.x()) / 2, half_y = (load.hi.y() - load.lo.y()) / 2;
   const auto flat = [&](const Eigen::Vector3d& p) {
     double lowest = 1e9, highest = -1e9;
@@ -157,7 +174,7 @@ Eigen::Vector3d top_centre(const World& w, int object) {
       if (!flat(p)) continue;
       double clearance = 1e9;
       for (size_t o = 0; o < objects.size(); ++o) {
-        if (objects[o].fixed || static_cast<int>(o) == w.carried_object() || static_cast<int>(o) == object) continue;
+        if (objects[o].fixed || static_cast<int>(o) == held || static_cast<int>(o) == object) continue;
         const Eigen::Vector3d c = object_aabb(w, static_cast<int>(o)).center();
         if (c.z() < top - 0.4 || c.z() > top + 0.4) continue;
         clearance = std::min(clearance, (c - p).head<2>().norm());
@@ -187,7 +204,7 @@ std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object) {
 std::vector<Approach> approaches(const World& w, PrimitiveType type, int object, const Pose2& base) {
   const PrimitiveDef& def = primitive_def(type);
   if (def.approaches) return def.approaches(w, object, base);
-  return {{top_centre(w, object), kDown, std::nullopt}};
+  return {{top_centre(w, object, base), kDown, std::nullopt}};
 }
 
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -199,10 +216,10 @@ double load_below_hand(const World& w) {
 }
 
 namespace {
-// The hand's pre-pose: kClearance before the approach point, fingertips (or
+// The hand's pre-pose: `clearance` before the approach point, fingertips (or
 // a load hanging `load` below the hand) first.
-IkTarget pre_pose(const Approach& a, double load) {
-  const double standoff = kClearance + (a.direction.z() < -0.5 ? std::max(kFingerReach, load) : kFingerReach);
+IkTarget pre_pose(const Approach& a, double load, double clearance) {
+  const double standoff = clearance + (a.direction.z() < -0.5 ? std::max(kFingerReach, load) : kFingerReach);
   return {a.point - a.direction * standoff, a.direction, a.closing};
 }
 }  // namespace
@@ -227,7 +244,7 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
     options.base = base;
     options.start = kUntuckedConfiguration;
     options.iterations = 100;
-    const IkTarget pre = pre_pose(a, load);
+    const IkTarget pre = pre_pose(a, load, primitive_def(type).clearance);
     const IkResult r = ik.solve(pre, options);
     if (!r.success || checker.collides(r.joints.data(), &base)) continue;
     bool clear = true;

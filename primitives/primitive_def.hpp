@@ -55,8 +55,10 @@ struct Approach {
 };
 
 // Where a place or dip aims (an open drawer's exposed part, else the
-// object's top, at the spot farthest from what lies there already).
-Eigen::Vector3d top_centre(const World& w, int object);
+// object's top, at the spot farthest from what lies there already), with
+// the robot standing at `base` (default: where it stands): the carried
+// load's footprint turns with the base.
+Eigen::Vector3d top_centre(const World& w, int object, const std::optional<Pose2>& base = std::nullopt);
 // Where the dirt on an object lies (world frame).
 std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object);
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -185,6 +187,7 @@ struct PrimitiveDef {
   bool opens = false;            // opens an articulated object: the base stands in front of it, room to pull
   bool drives = false;           // moves the base: checks its own precondition, no tuck after failing
   double yaw_spread = M_PI;      // rad: base poses face the target within +-half this (side-on: pi)
+  double clearance = kClearance;  // m the pre-pose keeps above the approach point (fingertips or load first)
 };
 
 // The registry: the PrimitiveDef of each type, name_primitive() for each

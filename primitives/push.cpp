@@ -23,9 +23,9 @@ std::string unmet_precondition(const World& w, int object) {
   return open_fraction(*a) > 0.9 ? name + " is already open" : "";
 }
 
-std::vector<Approach> approaches(const World& w, int object, const Pose2&) {
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
   if (const auto a = articulation(w, object)) return {{a->handle, -a->axis, kUp}};
-  return {{top_centre(w, object), kDown, std::nullopt}};
+  return {{top_centre(w, object, base), kDown, std::nullopt}};
 }
 
 bool act(Executor& e) {

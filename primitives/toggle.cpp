@@ -39,11 +39,8 @@ bool press(Executor& e, bool on) {
   // Down onto the toggle point until the fingers touch, no deeper than the
   // rule's reach below it (a sink's basin lies lower).
   if (!m.line(kDown * (kClearance + ObjectStates::kToggleDistance / 2), true, kApproachSpeed)) return false;
-  if (m.physical()) {
-    m.wait(kPressSeconds);
-  } else {
-    w.states().state(object).toggled = on;
-  }
+  if (!m.physical()) w.states().state(object).toggled = on;
+  m.wait(kPressSeconds);
   m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
   if (!e.tuck_where_possible()) return false;
   if (toggled_on(w, object) != on) {

@@ -39,11 +39,6 @@ const std::set<std::string> kOther = {"inroom",   "open",     "saturated", "cove
 // Second arguments that name a substance rather than an object.
 const std::set<std::string> kSubstanceArgument = {"covered", "filled", "contains", "saturated", "insource"};
 
-// "stain.n.01" -> "stain": the name dirt and liquids are kept under.
-std::string lemma(const std::string& synset) {
-  return synset.substr(0, synset.find('.'));
-}
-
 bool room_matches(const Room& room, const std::string& bddl_room) {
   return room.type == bddl_room || room.name == bddl_room;
 }
@@ -332,7 +327,7 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   } else if (l.predicate == "dusty" || l.predicate == "stained") {
     return sample_covered(w, a, l.predicate == "dusty" ? "dust" : "stain", value, rng);
   } else if (l.predicate == "covered") {
-    return sample_covered(w, a, lemma(type_of(l.args.at(1))), value, rng);
+    return sample_covered(w, a, synset_lemma(type_of(l.args.at(1))), value, rng);
   } else if (kUnaryStates.count(l.predicate) || l.predicate == "saturated" || l.predicate == "filled" ||
              l.predicate == "contains") {
     sample_state(w, l.predicate, a, value, liquid_of(l));
@@ -354,7 +349,7 @@ int Activity::agent_room(const World& w, const Binding& where) const {
 // The liquid a soaked/saturated/filled literal names: its second argument's
 // synset lemma (B1K: water.n.06_1 -> "water"), or water (BEHAVIOR-100's unary soaked).
 std::string Activity::liquid_of(const Literal& l) const {
-  return l.args.size() >= 2 ? lemma(type_of(l.args[1])) : "water";
+  return l.args.size() >= 2 ? synset_lemma(type_of(l.args[1])) : "water";
 }
 
 std::string Activity::type_of(const std::string& instance) const {
@@ -410,7 +405,7 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     // (attached a b): b may be the agent (held in the gripper).
     value = attached(w, object_arg(0), arg(1).kind == Binding::Kind::agent ? -1 : object_arg(1));
   } else if (p == "covered") {
-    value = covered(w, object_arg(0), lemma(type_of(l.args.at(1))));
+    value = covered(w, object_arg(0), synset_lemma(type_of(l.args.at(1))));
   } else if (p == "soaked" || p == "saturated" || p == "filled" || p == "contains") {
     const int a = object_arg(0);
     const std::string liquid = liquid_of(l);

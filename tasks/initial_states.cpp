@@ -4,6 +4,8 @@
 #include <map>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "base/error.hpp"
 
 namespace chore {
@@ -50,7 +52,22 @@ ObjectAbilities synset_abilities(const KnowledgeBase& kb, const std::string& s) 
   ab.breakable = keeps(ExtendedState::broken_state);
   ab.cleaning_tool = kb.is_cleaning_tool(s);
   ab.slicer = kb.is_slicer(s);
-  ab.holds_liquid = kb.has_property(s, "waterSource");
+  // Containers (BEHAVIOR-1K's fillable) and BEHAVIOR-100's water sources
+  // keep a liquid level.
+  ab.holds_liquid = kb.has_property(s, "waterSource") || kb.has_property(s, "fillable");
+  // A source toggled on gives its substance: BEHAVIOR-1K's particleSource
+  // conditions (a sink: water while toggled_on), BEHAVIOR-100's waterSource.
+  // So do appliers (a shaker, a sprayer), which give theirs as they are held.
+  if (ab.toggleable) {
+    for (const char* property : {"particleSource", "particleApplier"}) {
+      const auto conditions = kb.text_parameter(s, property, "conditions");
+      if (!conditions) continue;
+      const nlohmann::json systems = nlohmann::json::parse(*conditions, nullptr, false);
+      if (systems.is_object() && !systems.empty()) ab.source = synset_lemma(systems.begin().key());
+    }
+    if (ab.source.empty() && kb.has_property(s, "waterSource")) ab.source = "water";
+    if (!ab.source.empty()) ab.holds_liquid = true;
+  }
   for (const auto& [property, source] :
        {std::pair{"heatSource", &ab.heat_source}, std::pair{"coldSource", &ab.cold_source}}) {
     if (!kb.has_property(s, property)) continue;

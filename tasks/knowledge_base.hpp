@@ -30,6 +30,11 @@ namespace chore {
 // source tree's tasks/.
 std::string default_tasks_dir();
 
+// A synset's lemma, the name the world knows a substance by (water.n.06 -> water).
+inline std::string synset_lemma(const std::string& synset) {
+  return synset.substr(0, synset.find('.'));
+}
+
 // Extended object states the simulation keeps for an object (Tables A.5, A.7).
 enum class ExtendedState {
   temperature,

@@ -30,11 +30,11 @@ namespace chore {
 //   mixing_stick        a mixing tool touches the inputs in a container
 //   washer_particleremover, washer_nonparticleremover
 //                       the washed item inside a washer toggled on
-#define CHORE_TRANSITION_FAMILIES(X)                                                                                  \
-  X(slicing)                                                                                                          \
-  X(dicing)                                                                                                           \
-  X(melting) X(heat_cook) X(substance_cooking) X(substance_watercooking) X(single_toggleable_machine) X(mixing_stick) \
-      X(washer_particleremover) X(washer_nonparticleremover)
+// clang-format off
+#define CHORE_TRANSITION_FAMILIES(X) \
+  X(slicing) X(dicing) X(melting) X(heat_cook) X(substance_cooking) X(substance_watercooking) \
+  X(single_toggleable_machine) X(mixing_stick) X(washer_particleremover) X(washer_nonparticleremover)
+// clang-format on
 
 #define CHORE_TRANSITION_FAMILY_ENUM(name) name,
 enum class TransitionFamily { CHORE_TRANSITION_FAMILIES(CHORE_TRANSITION_FAMILY_ENUM) };

@@ -147,6 +147,44 @@ TEST(Planner, TransitionRulesAndSources) {
   EXPECT_EQ(sink.reach.achiever.at({"contains", {0, 1}}), "particleSource(sink.n.01_1)");
 }
 
+// Filling and pouring: water from the sink fills a mug or bowl dipped under
+// it, and a bathtub only by pouring from one; a shaker (a particleApplier, toggled on as it is held) covers the
+// salad. Without the sink, no water reaches the bowl.
+TEST(Planner, PouringFromAContainerOrAnApplier) {
+  const std::string objects =
+      "sink.n.01_1 - sink.n.01 mug.n.04_1 - mug.n.04 bowl.n.01_1 - bowl.n.01 water.n.06_1 - water.n.06 "
+      "countertop.n.01_1 - countertop.n.01 agent.n.01_1 - agent.n.01";
+  const std::string init =
+      "(ontop mug.n.04_1 countertop.n.01_1) (ontop bowl.n.01_1 countertop.n.01_1) (inroom sink.n.01_1 kitchen) "
+      "(inroom countertop.n.01_1 kitchen)";
+  const Case water = solve(objects, init, "(and (contains bowl.n.01_1 water.n.06_1))");
+  EXPECT_EQ(water.goal.achievable, 1u);
+  // The bowl itself can be dipped under the tap too: the first achiever found.
+  EXPECT_EQ(water.reach.achiever.at({"contains", {2, 3}}), "dip(sink.n.01_1)");
+  EXPECT_EQ(water.reach.achiever.at({"contains", {1, 3}}), "dip(sink.n.01_1)");
+  EXPECT_EQ(water.reach.achiever.at({"toggled_on", {0}}), "toggle_on(sink.n.01_1)");
+  // Into what stays where it stands, only pouring from the mug fills it.
+  const Case tub = solve(objects + " bathtub.n.01_1 - bathtub.n.01", init + " (inroom bathtub.n.01_1 kitchen)",
+                         "(and (contains bathtub.n.01_1 water.n.06_1))");
+  EXPECT_EQ(tub.goal.achievable, 1u);
+  EXPECT_EQ(tub.reach.achiever.at({"contains", {6, 3}}), "pour(bathtub.n.01_1)");
+  const Case dry = solve(
+      "mug.n.04_1 - mug.n.04 bowl.n.01_1 - bowl.n.01 water.n.06_1 - water.n.06 countertop.n.01_1 - countertop.n.01 "
+      "agent.n.01_1 - agent.n.01",
+      "(ontop mug.n.04_1 countertop.n.01_1) (ontop bowl.n.01_1 countertop.n.01_1) (inroom countertop.n.01_1 kitchen)",
+      "(and (contains bowl.n.01_1 water.n.06_1))");
+  EXPECT_EQ(dry.goal.achievable, 0u);
+
+  const Case salad = solve(
+      "salad.n.01_1 - salad.n.01 cinnamon__shaker.n.01_1 - cinnamon__shaker.n.01 cinnamon.n.03_1 - cinnamon.n.03 "
+      "countertop.n.01_1 - countertop.n.01 agent.n.01_1 - agent.n.01",
+      "(ontop salad.n.01_1 countertop.n.01_1) (ontop cinnamon__shaker.n.01_1 countertop.n.01_1) "
+      "(inroom countertop.n.01_1 kitchen)",
+      "(and (covered salad.n.01_1 cinnamon.n.03_1))");
+  EXPECT_EQ(salad.goal.achievable, 1u);
+  EXPECT_EQ(salad.reach.achiever.at({"covered", {0, 2}}), "pour(salad.n.01_1)");
+}
+
 // Future objects no rule makes are named.
 TEST(Planner, FutureObjectsWithoutARule) {
   const Case c = solve("apple.n.01_1 - apple.n.01 agent.n.01_1 - agent.n.01", "(future apple.n.01_1)",

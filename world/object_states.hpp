@@ -42,6 +42,9 @@ struct ObjectAbilities {
   double slice_force = 10;   // N (seed: F_sliced)
   std::optional<ThermalSource> heat_source, cold_source;
   bool holds_liquid = false;  // a container or source of water (sink, bucket)
+  // A particle source (a sink's tap): the substance it gives while toggled
+  // on, which it then holds (filled); "" for none.
+  std::string source;
 };
 
 // A kind of dirt: stains need a soaked cleaning tool, dust any cleaning tool.
@@ -80,6 +83,8 @@ class ObjectStates {
   // filled from a fifth of the inner height up (OmniGibson's VOLUME_FILL_PROPORTION);
   // contains from any amount.
   static constexpr double kFilledLevel = 0.2;
+  // How full a particle source keeps itself while on (and a container dipped in fills).
+  static constexpr double kSourceLevel = 0.8;
   static constexpr double kToggleDistance = 0.1;  // m from the toggle point
   static constexpr int kToggleSteps = 5;
   static constexpr double kCleaningRadius = 0.06;  // m around a tool's contact

@@ -14,7 +14,7 @@
 namespace chore {
 namespace {
 
-constexpr double kSoakSeconds = 0.5;   // in water this long: saturated
+constexpr double kSoakSeconds = 0.5;   // in water this long: saturated (a container dipped in: filled)
 constexpr double kCoolingRate = 0.01;  // towards room temperature, per second
 
 // A soakable object overlapping the water of a container (`moved` has
@@ -37,10 +37,16 @@ void soak(World& w, double dt, int moved, const Aabb* moved_box) {
     water.hi.head<2>().array() -= 0.01;
     water.hi.z() = water.lo.z() + level * (water.hi.z() - water.lo.z());
     for (const auto& [object, oa] : abilities_of) {
-      if (object == container || !oa.soakable) continue;
-      if (box(object).overlaps(water)) {
-        double& soaked = state_of[object].soaked[liquid];
-        soaked = std::min(1.0, soaked + dt / kSoakSeconds);
+      if (object == container || !(oa.soakable || oa.holds_liquid)) continue;
+      if (!box(object).overlaps(water)) continue;
+      ObjectState& s = state_of[object];
+      if (oa.soakable) s.soaked[liquid] = std::min(1.0, s.soaked[liquid] + dt / kSoakSeconds);
+      // The container the robot dips in fills with the liquid (not over
+      // another one); containers merely standing in a basin do not.
+      if (oa.holds_liquid && object == w.carried_object() && (s.liquid_level <= 0 || s.liquid == liquid)) {
+        s.liquid = liquid;
+        s.liquid_level =
+            std::min(ObjectStates::kSourceLevel, s.liquid_level + ObjectStates::kSourceLevel * dt / kSoakSeconds);
       }
     }
   }
@@ -139,6 +145,14 @@ void update_states_after_env_step(World& w, double dt) {
       s.toggle_steps = near ? s.toggle_steps + 1 : 0;
       if (s.toggle_steps == ObjectStates::kToggleSteps) s.toggled = !s.toggled;
     }
+  }
+  // Particle sources toggled on give their substance: they hold it, filled.
+  for (auto& [object, s] : state_of) {
+    const ObjectAbilities& ab = abilities_of.at(object);
+    if (ab.source.empty() || !ab.holds_liquid || !s.toggled) continue;
+    if (s.liquid_level > 0 && s.liquid != ab.source) continue;  // holds something else: it mixes no recipe here
+    s.liquid = ab.source;
+    s.liquid_level = std::max(s.liquid_level, ObjectStates::kSourceLevel);
   }
   // Heat: each source in force pulls temperatures towards its own. The
   // sources first: a few in a scene of hundreds of objects.

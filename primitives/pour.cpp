@@ -1,0 +1,107 @@
+// pour(object): the substance the held container holds, into the object (a
+// container: it then contains it) or onto it (covered), OmniGibson's pouring
+// and particle application. The held container is carried over the object's
+// top as place carries a load; there what it holds runs out. Substances are
+// states (world/object_states.hpp), not simulated particles: physically the
+// motion is tracked in physics and the substance moves at the pour pose.
+#include "primitives/primitive_def.hpp"
+#include "world/object_geometry.hpp"
+#include "world/predicates.hpp"
+#include "world/sampling.hpp"
+
+namespace chore {
+namespace {
+
+constexpr double kFullLevel = 0.8;  // a container poured into fills up to this (sampling's filled)
+// m between the held container's bottom and the target's top as it pours: a
+// pour needs no room to descend, and a mug held high over a bowl on a
+// counter is beyond the arm.
+constexpr double kPourClearance = 0.03;
+
+bool applies(const World& w, int object) {
+  const ObjectAbilities* ab = w.states().abilities(object);
+  return ab && (ab->holds_liquid || ab->covered);
+}
+
+std::string unmet_precondition(const World& w, int object) {
+  const int held = w.carried_object();
+  if (held < 0) return "the hand holds nothing";
+  if (held == object) return "cannot pour into what the hand holds";
+  const ObjectAbilities* from = w.states().abilities(held);
+  const std::string name = "'" + w.scene().objects()[held].name + "'";
+  if (!from || !from->holds_liquid || w.states().state(held).liquid_level <= 0) return name + " holds nothing to pour";
+  const ObjectAbilities* to = w.states().abilities(object);
+  const std::string target = "'" + w.scene().objects()[object].name + "'";
+  if (!to || !(to->holds_liquid || to->covered)) return target + " takes no substance";
+  const ObjectState& into = w.states().state(object);
+  // One substance per container: mixing is a transition rule's (not yet).
+  if (to->holds_liquid && into.liquid_level > 0 && into.liquid != w.states().state(held).liquid) {
+    return target + " holds another substance";
+  }
+  return "";
+}
+
+bool act(Executor& e) {
+  World& w = e.world();
+  Motion& m = e.motion();
+  const int held = w.grasped_object(), target = e.object();
+  if (!e.go_to_pre_pose_with_load()) return false;
+  m.wait(0.3);
+  ObjectState& from = w.states().state(held);
+  const std::string substance = from.liquid;
+  if (w.states().abilities(target)->holds_liquid) {
+    ObjectState& to = w.states().state(target);
+    to.liquid = substance;
+    to.liquid_level = std::min(kFullLevel, to.liquid_level + from.liquid_level);
+  } else {
+    Rng rng(m.next_seed());
+    sample_covered(w, target, substance, true, rng);
+  }
+  from.liquid_level = 0;
+  m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
+  if (!e.tuck_where_possible()) return false;
+  if (!contains(w, target, substance) && !covered(w, target, substance)) {
+    return e.fail(PrimitiveStatus::place_failure, "nothing of '" + substance + "' reached '" + e.name() + "'");
+  }
+  return true;
+}
+
+// Symbolically: what the held container contains goes into the object, a
+// container (contains, filled), or onto it (covered).
+std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  const int agent = agent_index(objects);
+  const SymbolicObject& target = objects[a.target];
+  const SymbolicObject& held = a.held < 0 ? target : objects[a.held];
+  // A container, or a bottle, shaker or sprayer that gives its substance
+  // (particleSource, particleApplier: what it gives, it contains).
+  const bool gives = held.has("fillable") || held.has("particleSource") || held.has("particleApplier");
+  if (agent < 0 || a.held < 0 || a.substance < 0 || a.held == a.target || target.kind != SymbolicObject::Kind::object ||
+      !gives) {
+    return {};
+  }
+  SymbolicStep s;
+  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}),
+             literal("contains", {a.held, a.substance})};
+  s.deletes = {literal("contains", {a.held, a.substance}), literal("filled", {a.held, a.substance})};
+  if (target.has("fillable")) {
+    s.adds = {literal("contains", {a.target, a.substance}), literal("filled", {a.target, a.substance})};
+  } else {
+    s.adds = {literal("covered", {a.target, a.substance})};
+  }
+  return {s};
+}
+
+}  // namespace
+
+const PrimitiveDef& pour_primitive() {
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = unmet_precondition,
+                                .act = act,
+                                .model = model,
+                                .about_substance = true,
+                                .touches = false,
+                                .clearance = kPourClearance};
+  return def;
+}
+
+}  // namespace chore
