@@ -53,6 +53,10 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   std::set<std::string> goal_supports;
   std::vector<const Variable*> scope;
   arguments_of(problem.goal, {"ontop", "inside"}, 1, goal_supports, scope);
+  // Setting down beside serves goals that put things next to each other.
+  std::set<std::string> neighbours;
+  arguments_of(problem.goal, {"nextto"}, 0, neighbours, scope);
+  arguments_of(problem.goal, {"nextto"}, 1, neighbours, scope);
   // Pouring serves goals that put a substance in or on something.
   std::set<std::string> receivers;
   arguments_of(problem.goal, {"contains", "filled", "covered"}, 0, receivers, scope);
@@ -73,6 +77,14 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
     return ab && !ab->source.empty();
   };
 
+  // Cutting, where the activity has something to cut with.
+  bool slicer = false;
+  for (const ObjectDecl& decl : problem.objects) {
+    const Binding& b = activity.binding(decl.name);
+    const ObjectAbilities* ab = b.kind == Binding::Kind::object ? world.states().abilities(b.index) : nullptr;
+    slicer = slicer || (ab && ab->slicer);
+  }
+
   std::vector<PrimitiveAction> actions;
   for (const ObjectDecl& decl : problem.objects) {
     const Binding& b = activity.binding(decl.name);
@@ -87,6 +99,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::push) applies = applies && named(openable);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
       if (type == PrimitiveType::pour) applies = applies && named(receivers);
+      if (type == PrimitiveType::place_next_to) applies = named(neighbours);
+      if (type == PrimitiveType::cut) applies = applies && slicer;
       if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(b.index));
       if (applies) actions.push_back({type, b.index, decl.name});
     }

@@ -86,7 +86,7 @@ GoalReach goal_reach(const SymbolicProblem& problem, const Reachability& reach, 
       out.unachievable[(l.negated ? "not " : "") + l.predicate].push_back(text(l));
     }
   }
-  for (int i = 0; i < static_cast<int>(problem.objects.size()); ++i) {
+  for (int i = 0; i < problem.declared; ++i) {
     if (!problem.init.count({"future", {i}})) continue;
     ++out.future;
     const SymbolicObject& o = problem.objects[i];

@@ -2,7 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <functional>
+#include <optional>
 
 namespace chore {
 namespace {
@@ -13,23 +15,44 @@ constexpr const char* kStain = "stain.n.01";
 constexpr const char* kDust = "dust.n.01";
 constexpr const char* kWater = "water.n.06";
 
-// particleRemover's conditions (a JSON text parameter): each substance with
-// the solvents of its [["saturated", solvent], ...] list, read as
-// alternatives (oil lists eleven: any one of them cleans it).
+// One substance's condition list of particleRemover ([["saturated",
+// solvent], ...], read as alternatives: oil lists eleven, any one of them
+// cleans it), or nothing where it is null (rust: the remover cannot).
+std::optional<std::vector<std::string>> solvents_of(const nlohmann::json& conditions) {
+  if (!conditions.is_array()) return std::nullopt;
+  std::vector<std::string> solvents;
+  for (const nlohmann::json& c : conditions) {
+    if (c.is_array() && c.size() == 2 && c[0] == "saturated" && c[1].is_string()) {
+      solvents.push_back(c[1].get<std::string>());
+    }
+  }
+  return solvents;
+}
+
+// particleRemover's conditions (a JSON text parameter): each substance it
+// names and removes, with its solvents.
 std::map<std::string, std::vector<std::string>> remover_conditions(const std::string& text) {
   std::map<std::string, std::vector<std::string>> out;
   const nlohmann::json conditions = nlohmann::json::parse(text, nullptr, false);
   if (!conditions.is_object()) return out;
   for (const auto& item : conditions.items()) {
-    std::vector<std::string>& solvents = out[item.key()];
-    if (!item.value().is_array()) continue;
-    for (const nlohmann::json& c : item.value()) {
-      if (c.is_array() && c.size() == 2 && c[0] == "saturated" && c[1].is_string()) {
-        solvents.push_back(c[1].get<std::string>());
-      }
-    }
+    if (auto solvents = solvents_of(item.value())) out[item.key()] = std::move(*solvents);
   }
   return out;
+}
+
+// What a remover does with a substance its conditions do not name:
+// OmniGibson's default_visual_conditions, default_fluid_conditions or
+// default_non_fluid_conditions by the substance's kind (a list: removed, with
+// those solvents; null: not removed).
+std::optional<std::vector<std::string>> remover_default(const KnowledgeBase& kb, const std::string& remover,
+                                                        const SymbolicObject& substance) {
+  const char* which = substance.has("liquid")            ? "default_fluid_conditions"
+                      : substance.has("visualSubstance") ? "default_visual_conditions"
+                                                         : "default_non_fluid_conditions";
+  const auto text = kb.text_parameter(remover, "particleRemover", which);
+  if (!text) return std::nullopt;
+  return solvents_of(nlohmann::json::parse(*text, nullptr, false));
 }
 
 SymbolicObject describe(const std::string& name, const std::string& synset, const KnowledgeBase& kb, Domain domain) {
@@ -223,14 +246,14 @@ class WorldSteps {
     };
     switch (r.family) {
       case TransitionFamily::slicing:
-      case TransitionFamily::dicing:
-        // A slicer touching the input.
-        for (const int slicer : with("slicer")) {
-          SymbolicStep step = s;
-          step.needs = {literal("real", {bound[0]}), literal("touching", {slicer, bound[0]})};
-          if (states(step)) add(step);
-        }
+      case TransitionFamily::dicing: {
+        // The input cut by a slicer (the cut primitive; the world's slicing
+        // rule reads a slicer pressed in with the seed's F_sliced, not a touch).
+        SymbolicStep step = s;
+        step.needs = {literal("real", {bound[0]}), literal("sliced", {bound[0]})};
+        if (states(step)) add(step);
         break;
+      }
       case TransitionFamily::melting: {
         SymbolicStep step = s;
         step.needs = {literal("real", {bound[0]}), literal(kHeated, {bound[0]})};
@@ -350,15 +373,69 @@ std::optional<SymbolicLiteral> symbolic_literal(const SymbolicProblem& p, const 
   return SymbolicLiteral{l.predicate, args};
 }
 
+// What the knowledge base's rules make on the way to an activity's future
+// objects without the activity declaring it: chop_an_onion declares the
+// onion and its diced pieces, and the halves slicing makes of the onion
+// (dicing's input) come in between, as OmniGibson creates them. Each such
+// synset, a rule's input that the activity has nothing of and some rule
+// makes, up to kIntermediateDepth rules back from a future object, is one
+// more object, future at :init.
+constexpr int kIntermediateDepth = 3;
+
+std::vector<std::string> intermediates(const SymbolicProblem& p, const KnowledgeBase& kb,
+                                       const TransitionRules& rules) {
+  const auto have = [&](const std::string& synset, const std::vector<std::string>& made) {
+    for (const SymbolicObject& o : p.objects) {
+      if (o.synset == synset || (kb.contains(o.synset) && kb.contains(synset) && kb.is_a(o.synset, synset)))
+        return true;
+    }
+    return std::find(made.begin(), made.end(), synset) != made.end();
+  };
+  std::vector<std::string> wanted, made;
+  for (int i = 0; i < static_cast<int>(p.objects.size()); ++i) {
+    if (p.init.count({"future", {i}})) wanted.push_back(p.objects[i].synset);
+  }
+  for (int depth = 0; depth < kIntermediateDepth && !wanted.empty(); ++depth) {
+    std::vector<std::string> next;
+    for (const std::string& synset : wanted) {
+      for (const TransitionRule* r : rules.producing(synset)) {
+        for (const SynsetCount& in : r->inputs) {
+          if (have(in.synset, made) || rules.producing(in.synset).empty()) continue;
+          made.push_back(in.synset);
+          next.push_back(in.synset);
+        }
+      }
+    }
+    wanted = std::move(next);
+  }
+  return made;
+}
+
 SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb, const TransitionRules& rules) {
   SymbolicProblem p;
   for (const ObjectDecl& d : problem.objects) p.objects.push_back(describe(d.name, d.type, kb, problem.domain));
+  p.declared = static_cast<int>(p.objects.size());
   if (problem.domain == Domain::igibson) {
     for (const char* substance : {kStain, kDust, kWater}) {
       if (p.index(substance) < 0) p.objects.push_back(describe(substance, substance, kb, problem.domain));
     }
   }
   if (agent_index(p.objects) < 0) p.objects.push_back(describe("agent.n.01", "agent.n.01", kb, problem.domain));
+  // The substances of the activity a remover's conditions do not name, by
+  // its defaults (sand is visual: a towel takes it off as it is).
+  if (problem.domain == Domain::omnigibson) {
+    for (SymbolicObject& remover : p.objects) {
+      const auto text = kb.text_parameter(remover.synset, "particleRemover", "conditions");
+      if (!text) continue;
+      const nlohmann::json named = nlohmann::json::parse(*text, nullptr, false);
+      for (const SymbolicObject& substance : p.objects) {
+        // Named with null: not removed.
+        if (substance.kind != Kind::substance || (named.is_object() && named.contains(substance.synset))) continue;
+        if (auto solvents = remover_default(kb, remover.synset, substance))
+          remover.removes[substance.synset] = std::move(*solvents);
+      }
+    }
+  }
 
   bool holding = false;
   for (const Literal& l : problem.init) {
@@ -375,6 +452,12 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
     if (s->predicate == "grasped") holding = true;
   }
   if (!holding) p.init.insert(literal(kHandEmpty, {}));
+  if (problem.domain == Domain::omnigibson) {
+    for (const std::string& synset : intermediates(p, kb, rules)) {
+      p.objects.push_back(describe(synset + "_made", synset, kb, problem.domain));
+      p.init.insert({"future", {static_cast<int>(p.objects.size()) - 1}});
+    }
+  }
   for (int i = 0; i < static_cast<int>(p.objects.size()); ++i) {
     if (p.init.count({"future", {i}})) continue;
     if (p.objects[i].kind != Kind::substance) {

@@ -33,10 +33,13 @@ inline constexpr const char* kHeated = "heated";
 inline constexpr const char* kChilled = "chilled";
 
 struct SymbolicProblem {
-  // The :objects in order; then, for BEHAVIOR-100's dialect, the substances
-  // its predicates imply (stain.n.01, dust.n.01, water.n.06) where not
-  // declared; then an agent where none is declared.
+  // The :objects in order (the first `declared`); then, for BEHAVIOR-100's
+  // dialect, the substances its predicates imply (stain.n.01, dust.n.01,
+  // water.n.06) where not declared; then an agent where none is declared;
+  // then, future, what the rules make on the way to the activity's future
+  // objects (an onion's halves before it is diced).
   std::vector<SymbolicObject> objects;
+  int declared = 0;
   std::set<SymbolicLiteral> init;
   std::vector<SymbolicStep> world_steps;
   // Index of a BDDL instance (or a synthesised substance's synset), -1 if none.

@@ -420,6 +420,53 @@ bool Executor::go_to_pre_pose() {
   return motion_.arm_to(q);
 }
 
+namespace {
+constexpr double kRestingDepth = 0.0005;  // m
+
+// Symbolic release: the object drops straight down onto what is below it.
+void settle_kinematically(World& w, int held) {
+  const SceneObject& o = w.scene().objects()[held];
+  const Aabb box = object_aabb(w, held);
+  std::vector<int> others;
+  const mjModel* m = w.model();
+  for (int g = 0; g < m->ngeom; ++g) {
+    const int root = m->body_rootid[m->geom_bodyid[g]];
+    if ((m->geom_contype[g] || m->geom_conaffinity[g]) && root != o.body &&
+        root != m->body_rootid[w.robot()->gripper_body]) {
+      others.push_back(g);
+    }
+  }
+  double drop = 1e9;
+  const Eigen::Vector3d c = box.center();
+  const double hx = (box.hi.x() - box.lo.x()) / 2 * 0.8, hy = (box.hi.y() - box.lo.y()) / 2 * 0.8;
+  for (const auto& [dx, dy] : {std::pair{0.0, 0.0}, {hx, hy}, {-hx, hy}, {hx, -hy}, {-hx, -hy}}) {
+    const double hit = ray_to_geoms(w, others, Eigen::Vector3d(c.x() + dx, c.y() + dy, box.lo.z()), kDown, 5.0);
+    if (hit >= 0) drop = std::min(drop, hit);
+  }
+  if (drop < 1e9) {
+    const int adr = m->jnt_qposadr[m->body_jntadr[o.body]];
+    // Half a millimetre into the support, as MuJoCo's soft contacts rest:
+    // a gap, however small, is no contact, and ontop needs one.
+    w.data()->qpos[adr + 2] -= std::max(0.0, drop + kRestingDepth);
+    mj_forward(m, w.data());
+  }
+}
+
+}  // namespace
+
+bool Executor::release() {
+  const int held = w_.grasped_object();
+  motion_.gripper(true);
+  if (!motion_.physical() && held >= 0) {
+    const Clock::time_point t = Clock::now();
+    settle_kinematically(w_, held);
+    result_.execution_seconds += since(t);
+  }
+  motion_.wait(0.3);
+  motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
+  return tuck_where_possible();
+}
+
 bool Executor::go_to_pre_pose_with_load() {
   if (!go_to_pre_pose()) return false;
   const Eigen::Vector3d spot = approach_.point;

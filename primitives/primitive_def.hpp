@@ -147,6 +147,9 @@ class Executor {
   // The pre-pose, then the load (which hangs off-centre from the hand) moved
   // over the spot it is aimed at.
   bool go_to_pre_pose_with_load();
+  // Opens the hand where it is (symbolically the load drops straight onto
+  // what is below it), waits 0.3 s, lifts and tucks: the end of a place.
+  bool release();
 
  private:
   bool reach_pre_pose(ArmConfiguration& q);

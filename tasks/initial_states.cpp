@@ -48,7 +48,7 @@ ObjectAbilities synset_abilities(const KnowledgeBase& kb, const std::string& s) 
   ab.soakable = keeps(ExtendedState::soaked_level);
   ab.covered = keeps(ExtendedState::covered_level);
   ab.toggleable = kb.has_property(s, "toggleable");
-  ab.sliceable = keeps(ExtendedState::sliced_state);
+  ab.sliceable = keeps(ExtendedState::sliced_state) || kb.has_property(s, "diceable");
   ab.breakable = keeps(ExtendedState::broken_state);
   ab.cleaning_tool = kb.is_cleaning_tool(s);
   ab.slicer = kb.is_slicer(s);

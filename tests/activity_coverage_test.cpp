@@ -92,7 +92,7 @@ TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
 TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
   const auto dir = test::scratch_dir("coverage_goals");
   const std::string head = "(define (problem r) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 ";
-  // A steak on a pan on a lit stove gets cooked; nothing puts it next to the fridge.
+  // A steak on a pan on a lit stove gets cooked; nothing folds it (not a cloth).
   test::write_file(dir / "steak" / "problem0.bddl",
                    head +
                        "steak.n.01_1 - steak.n.01 frying_pan.n.01_1 - frying_pan.n.01 stove.n.01_1 - stove.n.01 "
@@ -100,7 +100,7 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
                        "(:init (ontop agent.n.01_1 floor.n.01_1) (ontop steak.n.01_1 frying_pan.n.01_1) (ontop "
                        "frying_pan.n.01_1 stove.n.01_1) (toggled_on stove.n.01_1) (inroom stove.n.01_1 kitchen) "
                        "(inroom electric_refrigerator.n.01_1 kitchen) (inroom floor.n.01_1 kitchen)) (:goal (and "
-                       "(cooked steak.n.01_1) (nextto steak.n.01_1 electric_refrigerator.n.01_1))))");
+                       "(cooked steak.n.01_1) (folded steak.n.01_1))))");
   // An apple no rule makes.
   test::write_file(dir / "apple" / "problem0.bddl",
                    head +
@@ -114,8 +114,8 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
   EXPECT_EQ(c["goal_literals"], 3);
   EXPECT_EQ(c["goal_literals_achievable"], 1);
   ASSERT_EQ(c["unachievable_by_predicate"].size(), 2u) << c["unachievable_by_predicate"].dump(1);
-  EXPECT_EQ(c["unachievable_by_predicate"][0]["predicate"], "nextto");
-  EXPECT_EQ(c["unachievable_by_predicate"][0]["example"], "steak: (nextto steak.n.01_1 electric_refrigerator.n.01_1)");
+  EXPECT_EQ(c["unachievable_by_predicate"][0]["predicate"], "folded");
+  EXPECT_EQ(c["unachievable_by_predicate"][0]["example"], "steak: (folded steak.n.01_1)");
   EXPECT_EQ(c["unachievable_by_predicate"][1]["predicate"], "real");
   EXPECT_EQ(c["activities_with_future"], 1);
   EXPECT_EQ(c["future_without_rule"], nlohmann::json::array({"apple: apple.n.01_1"}));

@@ -105,10 +105,22 @@ TEST(Planner, CleaningFollowsTheRemoversConditions) {
   EXPECT_TRUE(achievable(wet, "saturated", {"rag.n.01_1", "water.n.06_1"}));
   EXPECT_TRUE(achievable(wet, "covered", {"table.n.02_1", "mud.n.03_1"}, true));
   EXPECT_EQ(wet.goal.achievable, 2u);
+
+  // What the conditions do not name, the remover's defaults decide: sand
+  // (a visual substance; default_visual_conditions []) comes off as it is;
+  // rust is named with null: a rag does not take it off.
+  const Case defaults = solve(
+      "mussel.n.01_1 - mussel.n.01 rag.n.01_1 - rag.n.01 sand.n.04_1 - sand.n.04 rust.n.01_1 - rust.n.01 "
+      "table.n.02_1 - table.n.02 agent.n.01_1 - agent.n.01",
+      "(covered mussel.n.01_1 sand.n.04_1) (covered mussel.n.01_1 rust.n.01_1) (ontop mussel.n.01_1 table.n.02_1) "
+      "(ontop rag.n.01_1 table.n.02_1) (inroom table.n.02_1 kitchen)",
+      "(and (not (covered mussel.n.01_1 sand.n.04_1)) (not (covered mussel.n.01_1 rust.n.01_1)))");
+  EXPECT_TRUE(achievable(defaults, "covered", {"mussel.n.01_1", "sand.n.04_1"}, true));
+  EXPECT_FALSE(achievable(defaults, "covered", {"mussel.n.01_1", "rust.n.01_1"}, true));
 }
 
-// Transition rules: an apple with a knife has a rule that makes its halves
-// (slicing.json), but no primitive makes the knife touch it yet; a blender
+// Transition rules: an apple cut with a knife becomes its halves
+// (slicing.json); without a knife the rule cannot fire; a blender
 // that is on turns what is inside it into the recipe's output; a sink that
 // is on gives water (its particleSource conditions).
 TEST(Planner, TransitionRulesAndSources) {
@@ -117,7 +129,16 @@ TEST(Planner, TransitionRulesAndSources) {
       "half__apple.n.01 agent.n.01_1 - agent.n.01",
       "(future half__apple.n.01_1) (future half__apple.n.01_2)", "(and (real half__apple.n.01_1))");
   EXPECT_TRUE(apple.goal.future_without_rule.empty());
-  EXPECT_EQ(apple.goal.future_unreachable, (std::vector<std::string>{"half__apple.n.01_1", "half__apple.n.01_2"}));
+  // The knife cuts the apple (cut), the slicing rule makes the halves.
+  EXPECT_TRUE(apple.goal.future_unreachable.empty());
+  EXPECT_EQ(apple.reach.achiever.at({"sliced", {0}}), "cut(apple.n.01_1)");
+  EXPECT_EQ(apple.reach.achiever.at({"real", {2}}), "slicing:apple.n.01-slicing");
+  // With no knife, nothing cuts it: the rule is there, its halves are not.
+  const Case no_knife = solve(
+      "apple.n.01_1 - apple.n.01 half__apple.n.01_1 half__apple.n.01_2 - half__apple.n.01 agent.n.01_1 - agent.n.01",
+      "(future half__apple.n.01_1) (future half__apple.n.01_2)", "(and (real half__apple.n.01_1))");
+  EXPECT_TRUE(no_knife.goal.future_without_rule.empty());
+  EXPECT_EQ(no_knife.goal.future_unreachable, (std::vector<std::string>{"half__apple.n.01_1", "half__apple.n.01_2"}));
 
   const std::string smoothie_objects =
       "strawberry.n.01_1 - strawberry.n.01 ice_cube.n.01_1 - ice_cube.n.01 lemon_juice.n.01_1 - lemon_juice.n.01 "
@@ -183,6 +204,29 @@ TEST(Planner, PouringFromAContainerOrAnApplier) {
       "(and (covered salad.n.01_1 cinnamon.n.03_1))");
   EXPECT_EQ(salad.goal.achievable, 1u);
   EXPECT_EQ(salad.reach.achiever.at({"covered", {0, 2}}), "pour(salad.n.01_1)");
+}
+
+// What the rules make on the way is there to be made, undeclared: BEHAVIOR-
+// 1K's chop_an_onion declares the onion and its diced pieces; slicing makes
+// the halves that dicing takes. Without the knife, neither.
+TEST(Planner, IntermediatesTheRulesMakeOnTheWay) {
+  const std::string objects =
+      "vidalia_onion.n.01_1 - vidalia_onion.n.01 diced__vidalia_onion.n.01_1 - diced__vidalia_onion.n.01 "
+      "countertop.n.01_1 - countertop.n.01 agent.n.01_1 - agent.n.01";
+  const std::string init =
+      "(ontop vidalia_onion.n.01_1 countertop.n.01_1) (future diced__vidalia_onion.n.01_1) "
+      "(inroom countertop.n.01_1 kitchen)";
+  const Case knife = solve(objects + " parer.n.02_1 - parer.n.02", init + " (ontop parer.n.02_1 countertop.n.01_1)",
+                           "(and (real diced__vidalia_onion.n.01_1))");
+  const int halves = knife.symbolic.index("half__vidalia_onion.n.01_made");
+  ASSERT_GE(halves, knife.symbolic.declared);
+  EXPECT_TRUE(knife.symbolic.init.count({"future", {halves}}));
+  EXPECT_EQ(knife.reach.achiever.at({"real", {halves}}), "slicing:vidalia_onion.n.01-slicing");
+  EXPECT_EQ(knife.reach.achiever.at({"real", {1}}), "dicing:uncooked-half__vidalia_onion.n.01-dicing");
+  EXPECT_EQ(knife.goal.achievable, 1u);
+  EXPECT_EQ(knife.goal.future, 1u);  // the declared one only
+  const Case none = solve(objects, init, "(and (real diced__vidalia_onion.n.01_1))");
+  EXPECT_EQ(none.goal.achievable, 0u);
 }
 
 // Future objects no rule makes are named.

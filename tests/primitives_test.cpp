@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "env/env.hpp"
@@ -18,6 +20,7 @@
 #include "test_util.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
+#include "world/renderer.hpp"
 
 namespace chore {
 namespace {
@@ -46,6 +49,24 @@ Env::Impl::Outcome act(Env& env, const std::string& name) {
   const float a = static_cast<float>(index_of(env, name));
   const Env::StepResult r = env.step({&a, 1});
   return {r.reward, r.terminated, r.truncated, r.info};
+}
+
+// What the robot's camera sees, to build/test_output/<file> (pictures of what
+// a primitive did, to look at); how many distinct colours it has (a black or
+// blank view has one or two).
+double save_robot_view(const World& w, const std::string& file) {
+  constexpr int kSize = 512;
+  Renderer renderer(w.model(), kSize, kSize, 1);
+  std::vector<std::uint8_t> rgb(kSize * kSize * 3);
+  std::vector<CameraView> view = {{w.model(), const_cast<mjData*>(w.data()), w.scene().camera(), rgb.data(), nullptr}};
+  renderer.render(view);
+  cv::Mat bgr;
+  cv::cvtColor(cv::Mat(kSize, kSize, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
+  cv::imwrite((test::output_dir() / file).string(), bgr);
+  std::set<int> colours;
+  for (size_t i = 0; i + 2 < rgb.size(); i += 3)
+    colours.insert((rgb[i] >> 4) << 8 | (rgb[i + 1] >> 4) << 4 | rgb[i + 2] >> 4);
+  return static_cast<double>(colours.size());
 }
 
 // Runs the expert to the end of the episode; the actions it took.
@@ -118,11 +139,11 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
     EXPECT_EQ(parse_primitive_type(to_string(type)), type);
   }
   EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
-                                          "pour"}));
-  EXPECT_EQ(defs.size(), 9u);
+                                          "pour", "place_next_to", "cut"}));
+  EXPECT_EQ(defs.size(), 11u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
-            "pour)");
+            "pour, place_next_to, cut)");
   for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
     EXPECT_TRUE(primitive_touches(t)) << to_string(t);
   EXPECT_FALSE(primitive_touches(PrimitiveType::navigate));
@@ -431,6 +452,61 @@ TEST(Primitives, WaterFromTheToggledSinkIsCarriedInAMugAndPouredIntoABowl) {
     EXPECT_TRUE(contains(w, bowl, "water"));
     EXPECT_FALSE(contains(w, mug, "water"));
     EXPECT_TRUE(poured.info.success);
+  }
+}
+
+// An apple taken from the counter and set down next to the bowl on the table
+// (tests/data/bddl/behavior-1k/set_the_apple_next_to_the_bowl.bddl): the
+// goal's nextto and ontop both hold, in both modes.
+TEST(Primitives, PlaceNextToSetsTheAppleBesideTheBowl) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    Env env(primitive_config(test::data_path("bddl/behavior-1k/set_the_apple_next_to_the_bowl.bddl"), mode));
+    env.reset(0);
+    World& w = env.impl().world();
+    const Activity& activity = *env.activity();
+    const int apple = activity.object("apple.n.01_1"), bowl = activity.object("bowl.n.01_1");
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::place_next_to, bowl), "the hand holds nothing");
+    for (const char* a :
+         {"navigate(apple.n.01_1)", "pick(apple.n.01_1)", "navigate(bowl.n.01_1)", "place_next_to(bowl.n.01_1)"}) {
+      ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
+    }
+    EXPECT_TRUE(nextto(w, apple, bowl));
+    EXPECT_TRUE(ontop(w, apple, activity.object("breakfast_table.n.01_1")));
+    EXPECT_FALSE(inside(w, apple, bowl));
+    EXPECT_EQ(w.grasped_object(), -1);
+    EXPECT_TRUE(env.activity()->evaluate(w).score.success);
+    EXPECT_GT(save_robot_view(w, std::string("place_next_to_") + to_string(mode) + ".png"), 8);
+  }
+}
+
+// The carving knife cuts the apple on the table
+// (tests/data/bddl/behavior-1k/slice_an_apple.bddl): physically the world's
+// slicing rule reads the blade pressed in over the apple's slice force; both
+// modes end with the apple sliced, the knife still in hand.
+TEST(Primitives, CutSlicesTheAppleWithTheKnife) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    Env env(primitive_config(test::data_path("bddl/behavior-1k/slice_an_apple.bddl"), mode));
+    env.reset(0);
+    World& w = env.impl().world();
+    const Activity& activity = *env.activity();
+    const int apple = activity.object("apple.n.01_1"), knife = activity.object("carving_knife.n.01_1");
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::cut, apple), "the hand holds nothing");
+    for (const char* a : {"navigate(carving_knife.n.01_1)", "pick(carving_knife.n.01_1)"}) {
+      ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
+    }
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::cut, knife),
+              "'" + w.scene().objects()[knife].name + "' cannot be cut");
+    EXPECT_FALSE(sliced(w, apple));
+    // (Where the knife lay, the apple may be within reach already.)
+    if (act(env, "navigate(apple.n.01_1)").info.primitive_status != 0) {
+      ASSERT_EQ(env.last_primitive().reason, "already within reach of 'apple_1'");
+    }
+    ASSERT_EQ(act(env, "cut(apple.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_TRUE(sliced(w, apple));
+    EXPECT_EQ(w.grasped_object(), knife);
+    EXPECT_GT(save_robot_view(w, std::string("cut_") + to_string(mode) + ".png"), 8);
   }
 }
 
