@@ -299,14 +299,27 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
   extras.least_sizes = support_sizes(problem, models);
   extras.modelled_as = needs.modelled_as;
   extras.floors.assign(needs.floors.begin(), needs.floors.end());
+  // A weld for each pair :init attaches or the goal would (a quantified pair:
+  // every pair of those types).
   std::map<std::string, std::string> synset_of;
   for (const ObjectDecl& d : problem.objects) synset_of[d.name] = d.type;
-  for (const Literal& l : problem.init) {
-    if (l.negated || l.predicate != "attached" || l.args.size() != 2) continue;
-    const auto object = synset_of.find(l.args[0]), to = synset_of.find(l.args[1]);
-    if (object != synset_of.end() && to != synset_of.end())
-      extras.attachments.push_back({needs_model(needs, object->second), needs_model(needs, to->second)});
-  }
+  std::set<std::pair<std::string, std::string>> attachable;
+  const auto attaches = [&](const Literal& l, const std::vector<Variable>& scope) {
+    if (l.negated || l.predicate != "attached" || l.args.size() != 2) return;
+    std::string types[2];
+    for (int i = 0; i < 2; ++i) {
+      const auto var =
+          std::find_if(scope.rbegin(), scope.rend(), [&](const Variable& v) { return v.name == l.args[i]; });
+      const auto declared = synset_of.find(l.args[i]);
+      types[i] = var != scope.rend() ? var->type : declared != synset_of.end() ? declared->second : "";
+    }
+    if (!types[0].empty() && !types[1].empty() && types[1] != "agent.n.01")
+      attachable.insert({needs_model(needs, types[0]), needs_model(needs, types[1])});
+  };
+  std::vector<Variable> none;
+  for (const Literal& l : problem.init) attaches(l, none);
+  each_literal(problem.goal, none, attaches);
+  for (const auto& [object, to] : attachable) extras.attachments.push_back({object, to});
   return generate_scene_analog(inventory, models, 0, extras);
 }
 

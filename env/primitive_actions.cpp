@@ -57,6 +57,9 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   std::set<std::string> neighbours;
   arguments_of(problem.goal, {"nextto"}, 0, neighbours, scope);
   arguments_of(problem.goal, {"nextto"}, 1, neighbours, scope);
+  // Attaching serves goals that attach things: to what they attach to.
+  std::set<std::string> attach_to;
+  arguments_of(problem.goal, {"attached"}, 1, attach_to, scope);
   // Pouring serves goals that put a substance in or on something.
   std::set<std::string> receivers;
   arguments_of(problem.goal, {"contains", "filled", "covered"}, 0, receivers, scope);
@@ -101,6 +104,7 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::pour) applies = applies && named(receivers);
       if (type == PrimitiveType::place_next_to) applies = named(neighbours);
       if (type == PrimitiveType::cut) applies = applies && slicer;
+      if (type == PrimitiveType::attach) applies = applies && named(attach_to);
       if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(b.index));
       if (applies) actions.push_back({type, b.index, decl.name});
     }

@@ -10,15 +10,16 @@ namespace {
 // Navigation aims at what will be done there: an articulated object's handle
 // (to push it) while the hand is empty; while holding, dirt lying on it to
 // wipe, a liquid to dip into, a container or surface to pour what the held
-// container holds into or onto, something to cut with the held knife, or a
-// place to put the load.
+// container holds into or onto, something to cut with the held knife or to
+// attach the held object to, or a place to put the load.
 PrimitiveType purpose_of_navigation(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
   if (w.grasped_object() < 0) {
     return articulation(w, object) && !is_open(w, object) ? PrimitiveType::push : PrimitiveType::pick;
   }
   if (ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
-  for (const PrimitiveType with_load : {PrimitiveType::dip, PrimitiveType::pour, PrimitiveType::cut}) {
+  for (const PrimitiveType with_load :
+       {PrimitiveType::dip, PrimitiveType::pour, PrimitiveType::cut, PrimitiveType::attach}) {
     const PrimitiveDef& def = primitive_def(with_load);
     if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) return with_load;
   }

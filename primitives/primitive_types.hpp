@@ -11,7 +11,8 @@ namespace chore {
 // primitive action space's actions): each is defined in its own file,
 // primitives/<name>.cpp (docs/architecture.md, "A primitive").
 #define CHORE_PRIMITIVES(X) \
-  X(navigate) X(pick) X(place) X(push) X(dip) X(wipe) X(toggle_on) X(toggle_off) X(pour) X(place_next_to) X(cut)
+  X(navigate)               \
+  X(pick) X(place) X(push) X(dip) X(wipe) X(toggle_on) X(toggle_off) X(pour) X(place_next_to) X(cut) X(attach)
 
 #define CHORE_PRIMITIVE_ENUM(name) name,
 enum class PrimitiveType { CHORE_PRIMITIVES(CHORE_PRIMITIVE_ENUM) };

@@ -65,8 +65,9 @@ void end_placements(const std::vector<SymbolicObject>& objects, int object, Symb
 // declares none).
 int agent_index(const std::vector<SymbolicObject>& objects);
 
-// The relations that say where an object is; picking it up ends them all.
-inline constexpr const char* kPlacements[] = {"ontop",    "inside",   "nextto", "under",
-                                              "touching", "overlaid", "draped", "onfloor"};
+// The relations that say where an object is; picking it up ends them all
+// (an attached object comes off).
+inline constexpr const char* kPlacements[] = {"ontop",    "inside", "nextto",  "under",   "touching",
+                                              "overlaid", "draped", "onfloor", "attached"};
 
 }  // namespace chore

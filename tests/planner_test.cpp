@@ -229,6 +229,24 @@ TEST(Planner, IntermediatesTheRulesMakeOnTheWay) {
   EXPECT_EQ(none.goal.achievable, 0u);
 }
 
+// attach joins two objects the knowledge base calls attachable (a lid and
+// its jar), not an apple to a counter; picking the lid up ends it.
+TEST(Planner, AttachingNeedsTwoAttachableObjects) {
+  const Case c = solve(
+      "lid.n.02_1 - lid.n.02 hingeless_jar.n.01_1 - hingeless_jar.n.01 apple.n.01_1 - apple.n.01 "
+      "countertop.n.01_1 - countertop.n.01 agent.n.01_1 - agent.n.01",
+      "(ontop lid.n.02_1 countertop.n.01_1) (ontop hingeless_jar.n.01_1 countertop.n.01_1) "
+      "(ontop apple.n.01_1 countertop.n.01_1) (inroom countertop.n.01_1 kitchen)",
+      "(and (attached lid.n.02_1 hingeless_jar.n.01_1) (attached apple.n.01_1 countertop.n.01_1))");
+  EXPECT_EQ(c.reach.achiever.at({"attached", {0, 1}}), "attach(hingeless_jar.n.01_1)");
+  EXPECT_FALSE(achievable(c, "attached", {"apple.n.01_1", "countertop.n.01_1"}));
+  EXPECT_EQ(c.goal.achievable, 1u);
+  const Case on = solve("lid.n.02_1 - lid.n.02 hingeless_jar.n.01_1 - hingeless_jar.n.01 agent.n.01_1 - agent.n.01",
+                        "(attached lid.n.02_1 hingeless_jar.n.01_1) (inroom hingeless_jar.n.01_1 kitchen)",
+                        "(and (not (attached lid.n.02_1 hingeless_jar.n.01_1)))");
+  EXPECT_EQ(on.goal.achievable, 1u);
+}
+
 // Future objects no rule makes are named.
 TEST(Planner, FutureObjectsWithoutARule) {
   const Case c = solve("apple.n.01_1 - apple.n.01 agent.n.01_1 - agent.n.01", "(future apple.n.01_1)",

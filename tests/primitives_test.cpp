@@ -139,11 +139,11 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
     EXPECT_EQ(parse_primitive_type(to_string(type)), type);
   }
   EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
-                                          "pour", "place_next_to", "cut"}));
-  EXPECT_EQ(defs.size(), 11u);
+                                          "pour", "place_next_to", "cut", "attach"}));
+  EXPECT_EQ(defs.size(), 12u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
-            "pour, place_next_to, cut)");
+            "pour, place_next_to, cut, attach)");
   for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
     EXPECT_TRUE(primitive_touches(t)) << to_string(t);
   EXPECT_FALSE(primitive_touches(PrimitiveType::navigate));
@@ -507,6 +507,35 @@ TEST(Primitives, CutSlicesTheAppleWithTheKnife) {
     EXPECT_TRUE(sliced(w, apple));
     EXPECT_EQ(w.grasped_object(), knife);
     EXPECT_GT(save_robot_view(w, std::string("cut_") + to_string(mode) + ".png"), 8);
+  }
+}
+
+// The lid set onto the jar attaches to it
+// (tests/data/bddl/behavior-1k/put_the_lid_on_the_jar.bddl), in both modes;
+// taken hold of again, it comes off.
+TEST(Primitives, AttachPutsTheLidOnTheJar) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    Env env(primitive_config(test::data_path("bddl/behavior-1k/put_the_lid_on_the_jar.bddl"), mode));
+    env.reset(3);
+    World& w = env.impl().world();
+    const Activity& activity = *env.activity();
+    const int lid = activity.object("lid.n.02_1"), jar = activity.object("hingeless_jar.n.01_1");
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::attach, jar), "the hand holds nothing");
+    for (const char* a : {"navigate(lid.n.02_1)", "pick(lid.n.02_1)"}) {
+      ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
+    }
+    if (act(env, "navigate(hingeless_jar.n.01_1)").info.primitive_status != 0) {
+      ASSERT_EQ(env.last_primitive().reason, "already within reach of '" + w.scene().objects()[jar].name + "'");
+    }
+    const Env::Impl::Outcome attached_now = act(env, "attach(hingeless_jar.n.01_1)");
+    ASSERT_EQ(attached_now.info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_TRUE(attached(w, lid, jar));
+    EXPECT_TRUE(attached_now.info.success);
+    EXPECT_GT(save_robot_view(w, std::string("attach_") + to_string(mode) + ".png"), 8);
+    // Taken hold of (the assistive grasp's weld, as pick ends), it comes off.
+    ASSERT_TRUE(w.hold(lid));
+    EXPECT_FALSE(attached(w, lid, jar));
   }
 }
 

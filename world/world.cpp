@@ -281,6 +281,11 @@ void World::hold_in_place(int weld) {
 }
 
 void World::attach(int object, int weld) {
+  // Taken hold of, an attached object comes off what it was attached to (as
+  // OmniGibson's AttachedTo gives way to a pull).
+  for (const Scene::Attachment& a : scene_->attachments()) {
+    if (a.weld >= 0 && (a.object == object || a.to == object)) data_->eq_active[a.weld] = 0;
+  }
   hold_in_place(weld);  // the grasp welds go from the gripper to the object
   grasped_ = object;
   grasped_weld_ = weld;
