@@ -244,6 +244,29 @@ class WorldSteps {
         step.adds.push_back(literal(substance ? "contains" : "inside", {substance ? place : o, substance ? o : place}));
       }
     };
+    // A substance one object becomes (diced pieces, melted butter) stays
+    // where the object was: in the container it was in, or on what it lay
+    // on (a chopping board, covered with it). The step as it is, then one
+    // for each container or support.
+    const auto where_it_was = [&](const SymbolicStep& step) {
+      add(step);
+      for (int at = 0; at < static_cast<int>(p_.objects.size()); ++at) {
+        if (at == bound[0] || p_.objects[at].kind != Kind::object) continue;
+        for (const char* relation : {"inside", "ontop"}) {
+          const bool in = std::string(relation) == "inside";
+          if (in && !p_.objects[at].has("fillable")) continue;
+          SymbolicStep placed = step;
+          placed.needs.push_back(literal(relation, {bound[0], at}));
+          bool substance = false;
+          for (const int o : outputs) {
+            if (p_.objects[o].kind != Kind::substance) continue;
+            substance = true;
+            placed.adds.push_back(literal(in ? "contains" : "covered", {at, o}));
+          }
+          if (substance) add(placed);
+        }
+      }
+    };
     switch (r.family) {
       case TransitionFamily::slicing:
       case TransitionFamily::dicing: {
@@ -251,13 +274,13 @@ class WorldSteps {
         // rule reads a slicer pressed in with the seed's F_sliced, not a touch).
         SymbolicStep step = s;
         step.needs = {literal("real", {bound[0]}), literal("sliced", {bound[0]})};
-        if (states(step)) add(step);
+        if (states(step)) where_it_was(step);
         break;
       }
       case TransitionFamily::melting: {
         SymbolicStep step = s;
         step.needs = {literal("real", {bound[0]}), literal(kHeated, {bound[0]})};
-        if (states(step)) add(step);
+        if (states(step)) where_it_was(step);
         break;
       }
       case TransitionFamily::heat_cook:

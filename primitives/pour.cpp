@@ -1,6 +1,6 @@
-// pour(object): the substance the held container holds, into the object (a
-// container: it then contains it) or onto it (covered), OmniGibson's pouring
-// and particle application. The held container is carried over the object's
+// pour(object): the substance the held container holds, onto the object
+// (covered) and, into a container, into it (it then contains it too),
+// OmniGibson's pouring and particle application. The held container is carried over the object's
 // top as place carries a load; there what it holds runs out. Substances are
 // states (world/object_states.hpp), not simulated particles: physically the
 // motion is tracked in physics and the substance moves at the pour pose.
@@ -49,11 +49,15 @@ bool act(Executor& e) {
   m.wait(0.3);
   ObjectState& from = w.states().state(held);
   const std::string substance = from.liquid;
-  if (w.states().abilities(target)->holds_liquid) {
+  // Into a container it fills it; onto anything that keeps a covered state,
+  // a container too (poured in, it wets it), it covers it.
+  const ObjectAbilities& to_ab = *w.states().abilities(target);
+  if (to_ab.holds_liquid) {
     ObjectState& to = w.states().state(target);
     to.liquid = substance;
     to.liquid_level = std::min(kFullLevel, to.liquid_level + from.liquid_level);
-  } else {
+  }
+  if (to_ab.covered) {
     Rng rng(m.next_seed());
     sample_covered(w, target, substance, true, rng);
   }
@@ -66,8 +70,8 @@ bool act(Executor& e) {
   return true;
 }
 
-// Symbolically: what the held container contains goes into the object, a
-// container (contains, filled), or onto it (covered).
+// Symbolically: what the held container contains goes onto the object
+// (covered) and, for a container, into it (contains, filled).
 std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
   const int agent = agent_index(objects);
   const SymbolicObject& target = objects[a.target];
@@ -83,10 +87,10 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
   s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}),
              literal("contains", {a.held, a.substance})};
   s.deletes = {literal("contains", {a.held, a.substance}), literal("filled", {a.held, a.substance})};
+  s.adds = {literal("covered", {a.target, a.substance})};
   if (target.has("fillable")) {
-    s.adds = {literal("contains", {a.target, a.substance}), literal("filled", {a.target, a.substance})};
-  } else {
-    s.adds = {literal("covered", {a.target, a.substance})};
+    s.adds.push_back(literal("contains", {a.target, a.substance}));
+    s.adds.push_back(literal("filled", {a.target, a.substance}));
   }
   return {s};
 }

@@ -208,7 +208,8 @@ TEST(Planner, PouringFromAContainerOrAnApplier) {
 
 // What the rules make on the way is there to be made, undeclared: BEHAVIOR-
 // 1K's chop_an_onion declares the onion and its diced pieces; slicing makes
-// the halves that dicing takes. Without the knife, neither.
+// the halves that dicing takes. Without the knife, neither. Diced pieces
+// stay where the halves were.
 TEST(Planner, IntermediatesTheRulesMakeOnTheWay) {
   const std::string objects =
       "vidalia_onion.n.01_1 - vidalia_onion.n.01 diced__vidalia_onion.n.01_1 - diced__vidalia_onion.n.01 "
@@ -227,6 +228,13 @@ TEST(Planner, IntermediatesTheRulesMakeOnTheWay) {
   EXPECT_EQ(knife.goal.future, 1u);  // the declared one only
   const Case none = solve(objects, init, "(and (real diced__vidalia_onion.n.01_1))");
   EXPECT_EQ(none.goal.achievable, 0u);
+
+  // Diced where the halves lie: in a bowl, the bowl contains the pieces.
+  const Case bowl = solve(objects + " parer.n.02_1 - parer.n.02 bowl.n.01_1 - bowl.n.01",
+                          init + " (ontop parer.n.02_1 countertop.n.01_1) (ontop bowl.n.01_1 countertop.n.01_1)",
+                          "(and (contains bowl.n.01_1 diced__vidalia_onion.n.01_1))");
+  EXPECT_EQ(bowl.goal.achievable, 1u);
+  EXPECT_EQ(bowl.reach.achiever.at({"contains", {5, 1}}), "dicing:uncooked-half__vidalia_onion.n.01-dicing");
 }
 
 // attach joins two objects the knowledge base calls attachable (a lid and
