@@ -169,8 +169,9 @@ TEST(Planner, TransitionRulesAndSources) {
 }
 
 // Filling and pouring: water from the sink fills a mug or bowl dipped under
-// it, and a bathtub only by pouring from one; a shaker (a particleApplier, toggled on as it is held) covers the
-// salad. Without the sink, no water reaches the bowl.
+// it, and a bathtub only by pouring from one; a shaker (a particleApplier,
+// toggled on as it is held) covers the salad. Without the sink, no water
+// reaches the bowl.
 TEST(Planner, PouringFromAContainerOrAnApplier) {
   const std::string objects =
       "sink.n.01_1 - sink.n.01 mug.n.04_1 - mug.n.04 bowl.n.01_1 - bowl.n.01 water.n.06_1 - water.n.06 "
