@@ -10,9 +10,11 @@ namespace chore {
 // The registry of primitives, in the order of PrimitiveType (and of the
 // primitive action space's actions): each is defined in its own file,
 // primitives/<name>.cpp (docs/architecture.md, "A primitive").
+// clang-format off
 #define CHORE_PRIMITIVES(X) \
-  X(navigate)               \
-  X(pick) X(place) X(push) X(dip) X(wipe) X(toggle_on) X(toggle_off) X(pour) X(place_next_to) X(cut) X(attach)
+  X(navigate) X(pick) X(place) X(push) X(dip) X(wipe) X(toggle_on) X(toggle_off) X(pour) X(place_next_to) \
+  X(cut) X(attach)
+// clang-format on
 
 #define CHORE_PRIMITIVE_ENUM(name) name,
 enum class PrimitiveType { CHORE_PRIMITIVES(CHORE_PRIMITIVE_ENUM) };
