@@ -120,7 +120,7 @@ Aabb carried_aabb_at(const World& w, const Pose2& base) {
 }
 }  // namespace
 
-Eigen::Vector3d top_centre(const World& w, int object, const std::optional<Pose2>& base) {
+Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
   Eigen::Vector3d centre, along, across;  // the region: centre +- along +- across
   double top = 0;
   if (const auto a = articulation(w, object); a && open_fraction(*a) > 0.3) {
@@ -146,7 +146,7 @@ Eigen::Vector3d top_centre(const World& w, int object, const std::optional<Pose2
   // Keep the carried object's half width inside the region.
   double margin = 0.03;
   const int held = w.carried_object();
-  const Aabb load = held < 0 ? Aabb{} : base ? carried_aabb_at(w, *base) : object_aabb(w, held);
+  const Aabb load = held < 0 ? Aabb{} : carried_aabb_at(w, base);
   if (held >= 0) margin += std::max(load.hi.x() - load.lo.x(), load.hi.y() - load.lo.y()) / 2;
   const double fa = std::max(0.0, 1 - margin / std::max(along.norm(), 1e-9));
   const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));

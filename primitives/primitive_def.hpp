@@ -56,9 +56,9 @@ struct Approach {
 
 // Where a place or dip aims (an open drawer's exposed part, else the
 // object's top, at the spot farthest from what lies there already), with
-// the robot standing at `base` (default: where it stands): the carried
-// load's footprint turns with the base.
-Eigen::Vector3d top_centre(const World& w, int object, const std::optional<Pose2>& base = std::nullopt);
+// the robot standing at `base`: the carried load's footprint turns with the
+// base.
+Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base);
 // Where the dirt on an object lies (world frame).
 std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object);
 // How far a held object hangs below the hand's centre (0 with an empty hand).

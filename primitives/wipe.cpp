@@ -34,7 +34,7 @@ std::string unmet_precondition(const World& w, int object) {
 std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
   constexpr double kPatchRadius = 0.25, kPatchSpacing = 0.15;
   const std::vector<Eigen::Vector3d> particles = dirt_particles(w, object);
-  if (particles.empty()) return {top_centre(w, object)};
+  if (particles.empty()) return {top_centre(w, object, w.base_pose())};
   std::vector<std::pair<int, size_t>> density;  // (-neighbours, particle): sorted densest first
   for (size_t i = 0; i < particles.size(); ++i) {
     int n = 0;
