@@ -21,6 +21,7 @@ namespace {
 struct Needs {
   std::map<std::string, std::vector<std::string>> in_room;  // BDDL room -> synsets
   std::vector<std::string> loose;
+  std::vector<std::string> future;  // objects transitions make (hidden until then)
   std::set<std::string> rooms;
   std::map<std::string, std::string> modelled_as;
   std::set<std::string> floors;  // BDDL rooms whose floor a state is asked of (dirt)
@@ -115,7 +116,7 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   for (const Literal& l : problem.init) floor_state(l, scope);
   each_literal(problem.goal, scope, floor_state);
   for (const ObjectDecl& d : problem.objects) {
-    if (d.type == "agent.n.01" || d.type == "floor.n.01" || future.contains(d.name)) continue;
+    if (d.type == "agent.n.01" || d.type == "floor.n.01") continue;
     const bool substance = dialect.contains(d.type) && dialect.is_substance(d.type) && !placed.contains(d.name);
     if (substances.contains(d.name) || substance) continue;
     const std::string synset = made_as(problem, d, dialect);
@@ -123,7 +124,9 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
     if (model.empty()) continue;
     if (model != synset) needs.modelled_as[synset] = model;
     const auto room = room_of.find(d.name);
-    if (room != room_of.end()) {
+    if (future.contains(d.name)) {
+      needs.future.push_back(synset);  // a free object, hidden until a transition makes it
+    } else if (room != room_of.end()) {
       needs.in_room[room->second].push_back(synset);
     } else {
       needs.loose.push_back(synset);
@@ -296,6 +299,7 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
     }
   }
   for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
+  for (const std::string& synset : needs.future) extras.objects.push_back({"", synset, true, true});
   extras.least_sizes = support_sizes(problem, models);
   extras.modelled_as = needs.modelled_as;
   extras.floors.assign(needs.floors.begin(), needs.floors.end());

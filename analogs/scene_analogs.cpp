@@ -546,7 +546,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
   // space: furniture first (it makes surfaces), then the rest.
   for (int pass = 0; pass < 2; ++pass) {
     for (const ExtraObject& e : extra) {
-      if (is_furniture(models, e) != (pass == 0)) continue;
+      if (e.future || is_furniture(models, e) != (pass == 0)) continue;
       RoomLayout& room = rooms[room_of(inventory, e)];
       if (pass == 0) {
         analog.left_out += !furnish(room, models, e.synset, extras.clear_tops, rng, builder);
@@ -603,17 +603,36 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
     }
   }
   // The robot: in the first room with floor clear of everything around it.
-  for (const RoomLayout& start : rooms) {
+  bool robot = false;
+  for (size_t s = 0; s < rooms.size() && !robot; ++s) {
+    const RoomLayout& start = rooms[s];
     const Rect inner = start.rect.grown(-kWall / 2 - kRobotClear);
-    for (int t = 0; t < 20 * kTries && inner.width() > 0 && inner.depth() > 0; ++t) {
+    for (int t = 0; t < 20 * kTries && inner.width() > 0 && inner.depth() > 0 && !robot; ++t) {
       const Eigen::Vector2d c(uniform(rng, inner.x0, inner.x1), uniform(rng, inner.y0, inner.y1));
       const Rect r = footprint(c, {kRobotClear, kRobotClear});
       if (std::any_of(start.taken.begin(), start.taken.end(), [&](const Rect& o) { return o.overlaps(r); })) continue;
       file.robot_start = {c.x(), c.y(), uniform(rng, -M_PI, M_PI)};
-      return analog;
+      robot = true;
     }
   }
-  throw Error("scene " + inventory.name + ": no room has free floor for the robot");
+  if (!robot) throw Error("scene " + inventory.name + ": no room has free floor for the robot");
+  // Last, what transitions make: hidden from the start, anywhere there is room.
+  Rng futures(0);
+  for (const ExtraObject& e : extra) {
+    if (!e.future) continue;
+    Eigen::Vector3d at;
+    int turns = 0;
+    bool placed = false;
+    for (size_t r = 0; !placed && r < rooms.size(); ++r) {
+      placed = place_small(rooms[r], models.size(e.synset), futures, at, turns);
+    }
+    if (placed) {
+      builder.add(e.synset, at, turns, false);
+    } else {
+      ++analog.left_out;
+    }
+  }
+  return analog;
 }
 
 }  // namespace chore

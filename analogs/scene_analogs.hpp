@@ -68,6 +68,10 @@ struct SceneAnalog {
 struct ExtraObject {
   std::string room, synset;
   bool loose = false;
+  // Hidden until a transition makes it (World::hide): placed after all else,
+  // by draws of its own, so that the rest of the scene is the one it would
+  // be without it.
+  bool future = false;
 };
 
 // What a caller adds to an inventory: objects, the synsets of furniture

@@ -152,10 +152,10 @@ void run_primitives(EnvConfig config, uint64_t seed, int steps) {
 // What the primitives and the knowledge base's transition rules can make of
 // the goal, by the planner's relaxed reachability.
 nlohmann::json goal_reach_json(const CheckedActivity& checked) {
-  static const std::shared_ptr<const TransitionRules> rules = TransitionRules::load();
+  const TransitionRules& rules = behavior_transition_rules();
   const auto kb = dialect_knowledge_base(checked.problem.domain);
-  const SymbolicProblem problem = symbolic_problem(checked.problem, *kb, *rules);
-  const GoalReach g = goal_reach(problem, reachability(problem), checked.goal, *kb, *rules);
+  const SymbolicProblem problem = symbolic_problem(checked.problem, *kb, rules);
+  const GoalReach g = goal_reach(problem, reachability(problem), checked.goal, *kb, rules);
   return {{"literals", g.literals},
           {"achievable", g.achievable},
           {"future", g.future},

@@ -171,7 +171,7 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
     if (rule != "none" && rule != "precondition" && rule != "paper") {
       throw Error("env config: unknown policy_failure_rule '" + rule + "' (known: none, precondition, paper)");
     }
-    primitive_actions_ = chore::primitive_actions(*activity_, *world_);
+    primitive_actions_ = chore::primitive_actions(*activity_, *world_, config_.primitive_mode);
     action_space_ = Space::discrete(static_cast<int64_t>(primitive_actions_.size()));
   } else {
     throw Error("env config: unknown action space '" + config_.action_space + "' (known: low_level, primitives)");
@@ -193,7 +193,7 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
       }
       return false;
     };
-    for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_)) {
+    for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_, config_.primitive_mode)) {
       if (primitive_touches(a.type) && !(a.type == PrimitiveType::pick && placed_inside(a.instance)))
         reach_checks_.push_back(a);
     }

@@ -43,7 +43,7 @@ std::string to_string(const PrimitiveAction& action) {
   return std::string(to_string(action.type)) + "(" + action.instance + ")";
 }
 
-std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const World& world) {
+std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const World& world, ExecutionMode mode) {
   const Problem& problem = activity.problem();
   const std::set<std::string> supports = arguments_of(problem, {"ontop", "inside"}, 1);
   const std::set<std::string> dirty = arguments_of(problem, {"stained", "dusty", "covered"}, 0);
@@ -63,6 +63,7 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   // Pouring serves goals that put a substance in or on something.
   std::set<std::string> receivers;
   arguments_of(problem.goal, {"contains", "filled", "covered"}, 0, receivers, scope);
+  const std::set<std::string> folds = arguments_of(problem, {"folded", "unfolded"}, 0);
   std::set<std::string> openable = arguments_of(problem, {"open"}, 0);
   openable.insert(goal_supports.begin(), goal_supports.end());
   // Dipping goes into what :init fills (a bucket of water) or under a source
@@ -106,6 +107,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::cut) applies = applies && slicer;
       if (type == PrimitiveType::attach) applies = applies && named(attach_to);
       if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(b.index));
+      if (type == PrimitiveType::fold || type == PrimitiveType::unfold) applies = applies && named(folds);
+      if (mode == ExecutionMode::physical && !primitive_is_physical(type)) applies = false;
       if (applies) actions.push_back({type, b.index, decl.name});
     }
   }

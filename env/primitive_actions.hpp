@@ -10,6 +10,12 @@
 //             :goal puts something on or in
 //   dip       liquid containers and sources
 //   wipe      those a stained/dusty/covered literal names (and dirt can lie on)
+//   toggle_on/off  toggleable objects
+//   pour      what a goal's contains/filled/covered fills or covers
+//   place_next_to  what a goal's nextto names
+//   cut       sliceable objects, where the activity has a slicer
+//   attach    what a goal's attached attaches to
+//   fold/unfold    cloths a folded/unfolded literal names (symbolic mode only)
 // Objects in :objects order, primitives in that order for each.
 #pragma once
 
@@ -33,6 +39,7 @@ std::string to_string(const PrimitiveAction& action);
 
 // `world` must be configured by the activity (its extended states say which
 // objects hold liquid or can be dirty).
-std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const World& world);
+// Primitives that execute symbolically only (fold) are left out in physical mode.
+std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const World& world, ExecutionMode mode);
 
 }  // namespace chore

@@ -52,7 +52,7 @@ std::optional<int> ScriptedExpert::clean(const EnvState& env, int surface, bool 
   if (w.grasped_object() != tool) return go_and(env, PrimitiveType::pick, tool);
   if (needs_soaked_tool && container >= 0) {
     const auto& soaked = states.state(tool).soaked;
-    const std::string& liquid = states.state(container).liquid;
+    const std::string liquid = states.state(container).main_substance();
     if (!soaked.count(liquid) || soaked.at(liquid) < ObjectStates::kSoakedLevel) {
       return go_and(env, PrimitiveType::dip, container);
     }

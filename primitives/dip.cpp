@@ -22,7 +22,7 @@ std::string unmet_precondition(const World& w, int object) {
   if (held < 0) return "the hand holds nothing";
   const ObjectAbilities* ab = w.states().abilities(object);
   // A source (a sink) counts as it runs, whether or not it is on yet.
-  if (!ab || !ab->holds_liquid || (w.states().state(object).liquid_level <= 0 && ab->source.empty())) {
+  if (!ab || !ab->holds_liquid || (w.states().state(object).level() <= 0 && ab->source.empty())) {
     return "'" + w.scene().objects().at(object).name + "' holds no liquid";
   }
   const ObjectAbilities* hab = w.states().abilities(held);
@@ -37,7 +37,7 @@ Eigen::Vector3d line_end(const World& w, int object, const Approach& a, const Po
   const Aabb box = object_aabb(w, object);
   // A source (a sink) is aimed at as it runs, whether or not it is on yet.
   const ObjectAbilities* ab = w.states().abilities(object);
-  double level = w.states().state(object).liquid_level;
+  double level = w.states().state(object).level();
   if (ab && !ab->source.empty()) level = std::max(level, ObjectStates::kSourceLevel);
   const double surface = box.lo.z() + level * (box.hi.z() - box.lo.z());
   return {a.point.x(), a.point.y(), surface - kSoakDepth + load};
@@ -58,12 +58,12 @@ bool act(Executor& e) {
   const int held = w.grasped_object();
   if (held < 0) return e.fail(PrimitiveStatus::grasp_failure, "dropped what it held");
   const ObjectAbilities* ab = w.states().abilities(held);
-  if (ab && ab->holds_liquid && !ab->soakable && !contains(w, held, w.states().state(e.object()).liquid)) {
+  if (ab && ab->holds_liquid && !ab->soakable && !contains(w, held, w.states().state(e.object()).main_substance())) {
     return e.fail(PrimitiveStatus::motion_planning_failure, "the held container did not reach the liquid");
   }
   if (ab && ab->soakable) {
     const auto& soaked = w.states().state(held).soaked;
-    const std::string& liquid = w.states().state(e.object()).liquid;
+    const std::string liquid = w.states().state(e.object()).main_substance();
     if (!soaked.count(liquid) || soaked.at(liquid) < ObjectStates::kSoakedLevel) {
       return e.fail(PrimitiveStatus::motion_planning_failure, "the held object did not reach the liquid");
     }

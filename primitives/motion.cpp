@@ -93,6 +93,7 @@ void Motion::step_physics(int env_steps) {
 }
 
 void Motion::look_at_object() {
+  if (!world_.real(look_at_)) return;  // used up by a transition (a cut apple): the head stays
   const Robot& r = *world_.robot();
   const mjModel* m = world_.model();
   const mjData* d = world_.data();

@@ -29,15 +29,10 @@ std::string unmet_precondition(const World& w, int object) {
   if (held == object) return "cannot pour into what the hand holds";
   const ObjectAbilities* from = w.states().abilities(held);
   const std::string name = "'" + w.scene().objects()[held].name + "'";
-  if (!from || !from->holds_liquid || w.states().state(held).liquid_level <= 0) return name + " holds nothing to pour";
+  if (!from || !from->holds_liquid || w.states().state(held).level() <= 0) return name + " holds nothing to pour";
   const ObjectAbilities* to = w.states().abilities(object);
   const std::string target = "'" + w.scene().objects()[object].name + "'";
   if (!to || !(to->holds_liquid || to->covered)) return target + " takes no substance";
-  const ObjectState& into = w.states().state(object);
-  // One substance per container: mixing is a transition rule's (not yet).
-  if (to->holds_liquid && into.liquid_level > 0 && into.liquid != w.states().state(held).liquid) {
-    return target + " holds another substance";
-  }
   return "";
 }
 
@@ -48,20 +43,21 @@ bool act(Executor& e) {
   if (!e.go_to_pre_pose_with_load()) return false;
   m.wait(0.3);
   ObjectState& from = w.states().state(held);
-  const std::string substance = from.liquid;
-  // Into a container it fills it; onto anything that keeps a covered state,
-  // a container too (poured in, it wets it), it covers it.
+  const std::string substance = from.main_substance();
+  // Into a container it fills it, beside what is there (a recipe's
+  // ingredients mix there); onto anything that keeps a covered state, a
+  // container too (poured in, it wets it), it covers it.
   const ObjectAbilities& to_ab = *w.states().abilities(target);
   if (to_ab.holds_liquid) {
     ObjectState& to = w.states().state(target);
-    to.liquid = substance;
-    to.liquid_level = std::min(kFullLevel, to.liquid_level + from.liquid_level);
+    const double room = std::max(0.0, kFullLevel - to.level()), poured = from.level();
+    for (const auto& [name, level] : from.contents) to.contents[name] += level * std::min(1.0, room / poured);
   }
   if (to_ab.covered) {
     Rng rng(m.next_seed());
-    sample_covered(w, target, substance, true, rng);
+    for (const auto& [name, level] : from.contents) sample_covered(w, target, name, true, rng);
   }
-  from.liquid_level = 0;
+  from.contents.clear();
   m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
   if (!e.tuck_where_possible()) return false;
   if (!contains(w, target, substance) && !covered(w, target, substance)) {

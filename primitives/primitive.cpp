@@ -13,6 +13,7 @@
 #include "primitives/primitive_def.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
+#include "world/transitions.hpp"
 
 namespace chore {
 namespace {
@@ -37,6 +38,11 @@ const char* const kStatusNames[] = {"success", "motion_planning_failure", "grasp
 Eigen::Vector3d line_end(const World& w, const PrimitiveDef& def, int object, const Approach& a, const Pose2& base,
                          double load) {
   return def.line_end ? def.line_end(w, object, a, base, load) : contact_point(w, object, a);
+}
+
+// An object transitions have not made yet, or have used up.
+std::string not_real(const World& w, int object) {
+  return "'" + w.scene().objects()[object].name + "' does not exist (not made yet, or used up)";
 }
 
 void check_object(const World& w, int object) {
@@ -362,8 +368,9 @@ Executor::Executor(World& w, PrimitiveType type, int object, uint64_t seed, cons
 }
 
 PrimitiveResult Executor::run() {
-  // navigate checks its precondition itself, after tucking, with its own IK solver.
-  const std::string unmet = def_.drives ? "" : def_.unmet_precondition(w_, object_);
+  // navigate checks the rest of its precondition itself, after tucking, with its own IK solver.
+  std::string unmet = w_.real(object_) ? "" : not_real(w_, object_);
+  if (unmet.empty() && !def_.drives) unmet = def_.unmet_precondition(w_, object_);
   const bool ok = unmet.empty() ? def_.act(*this) : fail(PrimitiveStatus::precondition_failure, unmet);
   // A failed manipulation still ends tucked where it can, so the robot can drive on.
   if (!ok && !result_.diverged && !def_.drives) {
@@ -376,7 +383,12 @@ PrimitiveResult Executor::run() {
     result_.execution_seconds = execution;
     result_.physics_steps = steps;
   }
-  if (!motion_.physical()) motion_.look_at_object();  // physical motions turned the head as they went
+  if (!motion_.physical()) {
+    motion_.look_at_object();  // physical motions turned the head as they went
+    // What the primitive did makes its transitions at once (physically they
+    // are made every env step, as the motion went).
+    if (w_.state_updates()) make_transitions(w_);
+  }
   return result_;
 }
 
@@ -518,6 +530,9 @@ ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& type
   if (types.size() != objects.size()) throw Error("first_out_of_reach: as many types as objects are needed");
   ReachProblem problem;
   const auto check = [&](size_t i) {
+    // What transitions have not made yet is not anywhere to reach (it will
+    // be where what it is made of was).
+    if (!w.real(objects[i])) return true;
     problem.reason = out_of_reach(w, types[i], objects[i], seed + i);
     if (!problem.reason.empty()) problem.index = static_cast<int>(i);
     return problem.reason.empty();
@@ -545,7 +560,7 @@ ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& type
 
 std::string unmet_precondition(const World& w, PrimitiveType type, int object) {
   check_object(w, object);
-  return primitive_def(type).unmet_precondition(w, object);
+  return w.real(object) ? primitive_def(type).unmet_precondition(w, object) : not_real(w, object);
 }
 
 bool primitive_applies(const World& w, PrimitiveType type, int object) {
@@ -574,6 +589,10 @@ bool primitive_about_substance(PrimitiveType type) {
 
 bool primitive_touches(PrimitiveType type) {
   return primitive_def(type).touches;
+}
+
+bool primitive_is_physical(PrimitiveType type) {
+  return !primitive_def(type).symbolic_only;
 }
 
 PrimitiveResult execute_primitive(World& world, PrimitiveType type, int object, uint64_t seed,

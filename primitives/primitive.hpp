@@ -71,7 +71,8 @@ std::string out_of_reach(const World& world, PrimitiveType type, int object, uin
 // be done: pushes first, from the world as it is, then the others with what
 // the pushes open pulled open as push leaves it (the hand holds one thing at
 // a time, so what it picks must be within reach once the drawers are open).
-// The world is left as it was. The first check that fails (index -1: none).
+// The world is left as it was. The first check that fails (index -1: none);
+// objects that are not real (World::real: not made yet) are not checked.
 struct ReachProblem {
   int index = -1;
   std::string reason;
@@ -102,5 +103,7 @@ bool primitive_about_substance(PrimitiveType type);
 // Whether the hand acts on the object itself (pick, push, dip, wipe), not
 // from beside it (navigate) or above it (place).
 bool primitive_touches(PrimitiveType type);
+// Whether it executes physically too (fold and unfold are symbolic only).
+bool primitive_is_physical(PrimitiveType type);
 
 }  // namespace chore

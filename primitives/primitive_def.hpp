@@ -189,6 +189,7 @@ struct PrimitiveDef {
   bool with_tool = false;        // acts with a tool in hand (reach checks count one hanging below it)
   bool opens = false;            // opens an articulated object: the base stands in front of it, room to pull
   bool drives = false;           // moves the base: checks its own precondition, no tuck after failing
+  bool symbolic_only = false;    // no physical execution (act fails it); offered in symbolic action spaces only
   double yaw_spread = M_PI;      // rad: base poses face the target within +-half this (side-on: pi)
   double clearance = kClearance;  // m the pre-pose keeps above the approach point (fingertips or load first)
 };

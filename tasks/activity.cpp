@@ -148,8 +148,23 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
   for (const ObjectDecl& decl : a->problem_.objects) {
     Binding b;
     const auto room = rooms.find(decl.name);
-    if (a->future_.count(decl.name)) {
+    const bool substance_type =
+        !placed.count(decl.name) && a->kb_->contains(decl.type) && a->kb_->is_substance(decl.type);
+    if (a->future_.count(decl.name) && !substances.count(decl.name) && !substance_type) {
+      // An object a transition makes: a free scene object of its type, hidden
+      // until then (the scene analogs make one); where the scene has none, no
+      // transition can make it.
       b.kind = Binding::Kind::future;
+      for (size_t i = 0; i < scene.objects().size() && b.index < 0; ++i) {
+        const SceneObject& o = scene.objects()[i];
+        const KnowledgeBase& kb = a->kb_of(o.synset);
+        if (taken[i] || o.fixed || o.grasp_weld < 0 || !kb.contains(o.synset) || !kb.contains(decl.type) ||
+            !kb.is_a(o.synset, decl.type))
+          continue;
+        b.kind = Binding::Kind::object;
+        b.index = static_cast<int>(i);
+        taken[i] = true;
+      }
     } else if (decl.type == "agent.n.01") {
       if (!scene.has_robot()) throw Error(where + ": " + decl.name + " needs the robot");
       b.kind = Binding::Kind::agent;
@@ -169,7 +184,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
     } else if (substances.count(decl.name) ||
                // What :init places is an object, whatever the knowledge base
                // (BEHAVIOR-100's soap on a shelf; its knowledge base calls soap a liquid).
-               (!placed.count(decl.name) && a->kb_->contains(decl.type) && a->kb_->is_substance(decl.type))) {
+               substance_type) {
       b.kind = Binding::Kind::substance;
     } else {
       a->kb_->is_a(decl.type, decl.type);  // an unknown synset is an error here
@@ -202,6 +217,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
                     (seen.empty() ? "" : "; of that type: " + seen));
       }
     }
+    if (b.kind == Binding::Kind::future) a->unmade_.insert(decl.name);
     a->bindings_.emplace_back(decl.name, b);
   }
 
@@ -222,7 +238,10 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
     }
     return d;
   };
-  auto rank = [](const Literal& l) { return l.predicate == "open" ? 0 : kKinematic.count(l.predicate) ? 1 : 2; };
+  // Future objects leave the world first: nothing is placed against them.
+  auto rank = [](const Literal& l) {
+    return l.predicate == "future" || l.predicate == "open" ? 0 : kKinematic.count(l.predicate) ? 1 : 2;
+  };
   auto key = [&](const Literal& l) {
     const size_t below = rank(l) == 1 && l.args.size() == 2 ? depth(l.args[1]) : 0;
     return std::pair(rank(l), below);
@@ -276,11 +295,16 @@ void Activity::configure(World& world) const {
   // Stains need a soaked cleaning tool, dust any (iGibson's rules).
   world.states().add_substance({"stain", true});
   world.states().add_substance({"dust", false});
+  configure_transitions(world);
 }
 
 bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
   const Binding& first = binding(l.args.at(0));
   if (first.kind == Binding::Kind::future) return holds(w, l);
+  if (l.predicate == "future" && !l.negated && first.kind == Binding::Kind::object) {
+    w.hide(first.index);
+    return true;
+  }
   if (first.kind == Binding::Kind::agent) {
     // The start: (onfloor agent floor) in BEHAVIOR-100, (ontop agent floor) in
     // most BEHAVIOR-1K files, (ontop agent lawn) in some: the robot stands in
@@ -372,13 +396,19 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
   };
   const std::string& p = l.predicate;
   bool value = false;
-  if (!future_.empty() &&
-      std::any_of(l.args.begin(), l.args.end(), [&](const std::string& a) { return future_.count(a) > 0; })) {
-    // Not yet created: only (future X) holds. chore has no transition that
-    // creates objects yet, so (real X) stays false.
+  if (!unmade_.empty() &&
+      std::any_of(l.args.begin(), l.args.end(), [&](const std::string& a) { return unmade_.count(a) > 0; })) {
+    // No scene object stands for it: nothing makes it, only (future X) holds.
     value = p == "future";
   } else if (p == "future" || p == "real") {
-    value = p == "real";  // a scene object is real
+    // Objects transitions make or use up are hidden until made; a substance
+    // of the future is real once something holds it or is covered with it.
+    const Binding& b = arg(0);
+    bool real = true;
+    if (b.kind == Binding::Kind::object) real = w.real(b.index);
+    if (b.kind == Binding::Kind::substance && future_.count(l.args[0]))
+      real = substance_exists(w, synset_lemma(type_of(l.args[0])));
+    value = (p == "real") == real;
   } else if ((p == "onfloor" || p == "ontop") && arg(0).kind == Binding::Kind::agent) {
     const int room = agent_room(w, arg(1));
     const Pose2 base = w.base_pose();

@@ -30,8 +30,10 @@
 namespace chore {
 
 struct Binding {
-  // future: an object a transition will create, (future X) in :init; no scene
-  // object stands for it, and every literal on it is false but (future X).
+  // future: an object a transition will create, (future X) in :init, for which
+  // the scene has no free object of its type to hide until it is made: every
+  // literal on it is false but (future X). Future objects the scene has one
+  // for are bound as objects, hidden (World::hide) until made.
   enum class Kind { object, floor, agent, substance, future };
   Kind kind = Kind::object;
   int index = -1;  // object: index in scene().objects(); floor: index in scene().rooms()
@@ -89,6 +91,9 @@ class Activity {
   std::string type_of(const std::string& instance) const;
   std::string liquid_of(const Literal& literal) const;
   int agent_room(const World& world, const Binding& where) const;
+  // The knowledge base's transition rules bound to this activity's objects,
+  // given to the world (tasks/activity_transitions.cpp).
+  void configure_transitions(World& world) const;
   // What knows a scene object's synset: the activity's knowledge base, else
   // BEHAVIOR-1K's, whose synsets scene analogs are built of (a BEHAVIOR-100
   // activity meets their openable_window.n.01).
@@ -99,7 +104,8 @@ class Activity {
   GroundGoal goal_;
   std::shared_ptr<const KnowledgeBase> kb_;
   std::vector<std::pair<std::string, Binding>> bindings_;  // in :objects order
-  std::set<std::string> future_;                           // the objects bound as Kind::future
+  std::set<std::string> future_;                           // (future X) in :init
+  std::set<std::string> unmade_;                           // of those, bound as Kind::future
   std::vector<Literal> init_order_;                        // :init without inroom, in sampling order
 };
 

@@ -173,4 +173,9 @@ std::vector<const TransitionRule*> TransitionRules::consuming(const std::string&
   return lookup(rules_, consuming_, synset);
 }
 
+const TransitionRules& behavior_transition_rules() {
+  static const std::shared_ptr<const TransitionRules> rules = TransitionRules::load();
+  return *rules;
+}
+
 }  // namespace chore

@@ -64,6 +64,10 @@ struct TransitionRule {
   std::optional<int> timesteps;
 };
 
+class TransitionRules;
+// BEHAVIOR-1K's rules (TransitionRules::load()), loaded on first use and kept.
+const TransitionRules& behavior_transition_rules();
+
 class TransitionRules {
  public:
   // Reads <dir>/transition_map/<family>.json for every family and

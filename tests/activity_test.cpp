@@ -111,27 +111,45 @@ TEST(Activity, TheAgentStartsOnTheFloorOfItsRoomInEitherDialect) {
   }
 }
 
-// (future X): an object a transition will create. No scene object stands for
-// it; (future X) holds, (real X) and every other literal on it do not.
+// (future X): an object a transition will create. A free scene object of its
+// type stands for it, hidden until made: (future X) holds, (real X) does not,
+// until the world reveals it. Where the scene has none (no half apple in the
+// apartment), nothing can make it: only (future X) ever holds.
 TEST(Activity, FutureObjectsAreAbsentUntilCreated) {
   auto apartment = Scene::load("apartment");
   const auto dir = test::scratch_dir("future_object");
   test::write_file(dir / "future.bddl",
                    "(define (problem future) (:domain omnigibson)\n"
-                   "  (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01 apple.n.01_1 - apple.n.01)\n"
-                   "  (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 kitchen) (future apple.n.01_1))\n"
-                   "  (:goal (and (real ?apple.n.01_1) (cooked ?apple.n.01_1))))\n");
+                   "  (:objects agent.n.01_1 - agent.n.01 floor.n.01_1 - floor.n.01 apple.n.01_1 - apple.n.01\n"
+                   "    half__apple.n.01_1 - half__apple.n.01)\n"
+                   "  (:init (ontop agent.n.01_1 floor.n.01_1) (inroom floor.n.01_1 kitchen) (future apple.n.01_1)\n"
+                   "    (future half__apple.n.01_1))\n"
+                   "  (:goal (and (real apple.n.01_1) (real half__apple.n.01_1))))\n");
   const auto activity = Activity::load((dir / "future.bddl").string(), *apartment);
-  EXPECT_EQ(activity->binding("apple.n.01_1").kind, Binding::Kind::future);
+  EXPECT_EQ(activity->binding("apple.n.01_1").kind, Binding::Kind::object);
+  EXPECT_EQ(activity->binding("half__apple.n.01_1").kind, Binding::Kind::future);
   World world(apartment);
   activity->configure(world);
   world.reset(apartment->robot_start());
   Rng rng(0);
   activity->instantiate(world, rng);
-  EXPECT_TRUE(activity->holds(world, activity->problem().init.back()));  // (future apple.n.01_1)
-  const Score s = activity->score(world);
-  EXPECT_FALSE(s.success);
-  EXPECT_EQ(s.q, 0.0);
+  const int apple = activity->object("apple.n.01_1");
+  EXPECT_FALSE(world.real(apple));
+  const GroundGoal& goal = activity->goal();
+  const auto holds = [&](const char* predicate, const char* object) {
+    return activity->holds(world, GroundLiteral{predicate, {object}});
+  };
+  EXPECT_TRUE(holds("future", "apple.n.01_1") && holds("future", "half__apple.n.01_1"));
+  EXPECT_FALSE(holds("real", "apple.n.01_1") || holds("real", "half__apple.n.01_1"));
+  EXPECT_EQ(activity->score(world).q, 0.0);
+  // Made (as a transition would), the apple is real, and collides again.
+  world.reveal(apple, Eigen::Vector3d(world.base_pose().x + 0.6, world.base_pose().y, 0.2));
+  EXPECT_TRUE(holds("real", "apple.n.01_1"));
+  EXPECT_FALSE(holds("future", "apple.n.01_1"));
+  world.step(60);
+  EXPECT_TRUE(onfloor(world, apple, activity->binding("floor.n.01_1").index));
+  EXPECT_EQ(activity->score(world).q, 0.5);
+  EXPECT_EQ(goal.literals.size(), 2u);
 }
 
 TEST(Activity, GoalIsScoredFromTheWorld) {

@@ -139,11 +139,15 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
     EXPECT_EQ(parse_primitive_type(to_string(type)), type);
   }
   EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
-                                          "pour", "place_next_to", "cut", "attach"}));
-  EXPECT_EQ(defs.size(), 12u);
+                                          "pour", "place_next_to", "cut", "attach", "fold", "unfold"}));
+  EXPECT_EQ(defs.size(), 14u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
-            "pour, place_next_to, cut, attach)");
+            "pour, place_next_to, cut, attach, fold, unfold)");
+  for (int t = 0; t < kPrimitiveTypes; ++t) {
+    const auto type = static_cast<PrimitiveType>(t);
+    EXPECT_EQ(primitive_is_physical(type), type != PrimitiveType::fold && type != PrimitiveType::unfold);
+  }
   for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
     EXPECT_TRUE(primitive_touches(t)) << to_string(t);
   EXPECT_FALSE(primitive_touches(PrimitiveType::navigate));
@@ -492,6 +496,12 @@ TEST(Primitives, CutSlicesTheAppleWithTheKnife) {
     World& w = env.impl().world();
     const Activity& activity = *env.activity();
     const int apple = activity.object("apple.n.01_1"), knife = activity.object("carving_knife.n.01_1");
+    const int halves[2] = {activity.object("half__apple.n.01_1"), activity.object("half__apple.n.01_2")};
+    const int table = activity.object("breakfast_table.n.01_1");
+    // The halves are hidden until the apple is cut: nothing can act on them.
+    EXPECT_FALSE(w.real(halves[0]) || w.real(halves[1]));
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::pick, halves[0]),
+              "'" + w.scene().objects()[halves[0]].name + "' does not exist (not made yet, or used up)");
     EXPECT_EQ(unmet_precondition(w, PrimitiveType::cut, apple), "the hand holds nothing");
     for (const char* a : {"navigate(carving_knife.n.01_1)", "pick(carving_knife.n.01_1)"}) {
       ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
@@ -503,11 +513,57 @@ TEST(Primitives, CutSlicesTheAppleWithTheKnife) {
     if (act(env, "navigate(apple.n.01_1)").info.primitive_status != 0) {
       ASSERT_EQ(env.last_primitive().reason, "already within reach of 'apple_1'");
     }
-    ASSERT_EQ(act(env, "cut(apple.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
-    EXPECT_TRUE(sliced(w, apple));
+    const Env::Impl::Outcome cut = act(env, "cut(apple.n.01_1)");
+    ASSERT_EQ(cut.info.primitive_status, 0) << env.last_primitive().reason;
+    // The knowledge base's slicing rule: the apple is gone, two halves lie where it was.
+    EXPECT_FALSE(w.real(apple));
+    EXPECT_TRUE(w.real(halves[0]) && w.real(halves[1]));
+    EXPECT_TRUE(cut.info.success);
     EXPECT_EQ(w.grasped_object(), knife);
+    w.step(60);  // settled (physically: revealed just above the table)
+    for (const int half : halves) EXPECT_TRUE(ontop(w, half, table)) << w.scene().objects()[half].name;
     EXPECT_GT(save_robot_view(w, std::string("cut_") + to_string(mode) + ".png"), 8);
   }
+}
+
+// The towel spread on the table (tests/data/bddl/behavior-1k/fold_a_towel.bddl)
+// folded in half, then spread again: symbolically. Physically neither is
+// offered, and executing one fails its precondition, saying why.
+TEST(Primitives, FoldFoldsTheTowelAndUnfoldSpreadsIt) {
+  const std::string bddl = test::data_path("bddl/behavior-1k/fold_a_towel.bddl");
+  Env env(primitive_config(bddl, ExecutionMode::symbolic));
+  env.reset(0);
+  World& w = env.impl().world();
+  const int towel = env.activity()->object("hand_towel.n.01_1");
+  EXPECT_EQ(action_names(env), (std::vector<std::string>{"navigate(hand_towel.n.01_1)", "pick(hand_towel.n.01_1)",
+                                                         "fold(hand_towel.n.01_1)", "unfold(hand_towel.n.01_1)",
+                                                         "navigate(breakfast_table.n.01_1)"}));
+  EXPECT_TRUE(unfolded(w, towel));
+  EXPECT_EQ(unmet_precondition(w, PrimitiveType::unfold, towel),
+            "'" + w.scene().objects()[towel].name + "' is already unfolded");
+  if (act(env, "navigate(hand_towel.n.01_1)").info.primitive_status != 0) {
+    ASSERT_EQ(env.last_primitive().reason, "already within reach of '" + w.scene().objects()[towel].name + "'");
+  }
+  const Env::Impl::Outcome fold = act(env, "fold(hand_towel.n.01_1)");
+  ASSERT_EQ(fold.info.primitive_status, 0) << env.last_primitive().reason;
+  EXPECT_TRUE(folded(w, towel));
+  EXPECT_TRUE(fold.info.success);
+  EXPECT_GT(save_robot_view(w, "fold_symbolic.png"), 8);
+  // (The goal held: the episode is over. The primitive itself, on the world.)
+  const PrimitiveResult unfold =
+      execute_primitive(w, PrimitiveType::unfold, towel, 0, {.mode = ExecutionMode::symbolic});
+  ASSERT_TRUE(unfold.ok()) << unfold.reason;
+  EXPECT_TRUE(unfolded(w, towel));
+  EXPECT_GT(save_robot_view(w, "unfold_symbolic.png"), 8);
+
+  Env physical(primitive_config(bddl, ExecutionMode::physical));
+  EXPECT_EQ(action_names(physical), (std::vector<std::string>{"navigate(hand_towel.n.01_1)", "pick(hand_towel.n.01_1)",
+                                                              "navigate(breakfast_table.n.01_1)"}));
+  physical.reset(0);
+  const PrimitiveResult r =
+      execute_primitive(physical.impl().world(), PrimitiveType::fold, towel, 0, {.mode = ExecutionMode::physical});
+  EXPECT_EQ(r.status, PrimitiveStatus::precondition_failure);
+  EXPECT_EQ(r.reason, "folding is symbolic only: the assistive grasp holds a cloth by its centre, not an edge");
 }
 
 // The lid set onto the jar attaches to it

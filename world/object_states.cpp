@@ -19,6 +19,21 @@ std::string missing_for_state(const std::string& p, const ObjectAbilities& ab) {
   return "";
 }
 
+double ObjectState::level() const {
+  double sum = 0;
+  for (const auto& [substance, level] : contents) sum += level;
+  return sum;
+}
+
+std::string ObjectState::main_substance() const {
+  std::string most;
+  double highest = 0;
+  for (const auto& [substance, level] : contents) {
+    if (level > highest) most = substance, highest = level;
+  }
+  return most;
+}
+
 void ObjectStates::configure(int object, const ObjectAbilities& abilities) {
   abilities_[object] = abilities;
   states_[object] = ObjectState{};
@@ -38,8 +53,14 @@ const Substance* ObjectStates::substance(const std::string& name) const {
   return it == substances_.end() ? nullptr : &it->second;
 }
 
+void ObjectStates::add_transition(Transition transition) {
+  transitions_.push_back(std::move(transition));
+  progress_.push_back(0);
+}
+
 void ObjectStates::reset() {
   for (auto& [object, state] : states_) state = ObjectState{};
+  progress_.assign(transitions_.size(), 0);
 }
 
 }  // namespace chore

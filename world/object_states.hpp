@@ -9,8 +9,11 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
+
+#include "world/transitions.hpp"
 
 namespace chore {
 
@@ -56,13 +59,22 @@ struct Substance {
 struct ObjectState {
   double temperature = kRoomTemperature, max_temperature = kRoomTemperature;
   std::map<std::string, double> soaked;                      // per liquid, 0 .. 1 absorbed (1 = saturated)
-  std::string liquid;                                        // what a container holds (holds_liquid) ...
-  double liquid_level = 0;                                   // ... up to this fraction of its inner height
+  // What a container (holds_liquid) holds: per substance, up to this
+  // fraction of its inner height (several at once: a recipe's ingredients).
+  std::map<std::string, double> contents;
   std::map<std::string, std::vector<Eigen::Vector3d>> dirt;  // particles in the object's frame
   std::map<std::string, int> dirt_sampled;                   // how many particles each substance was sampled with
   bool toggled = false;
   int toggle_steps = 0;  // consecutive env steps the hand is at the toggle point
   bool sliced = false, broken = false;
+  // A machine (ObjectStates::machines()) has processed its contents since it
+  // was turned on: it processes them once each time it is.
+  bool machine_ran = false;
+
+  // How high the contents reach, all together.
+  double level() const;
+  // What the container holds most of ("" for nothing): what a dip soaks in.
+  std::string main_substance() const;
 };
 
 // What sampling the state `predicate` on an object needs of it: "" when
@@ -98,7 +110,16 @@ class ObjectStates {
   const ObjectState& state(int object) const { return states_.at(object); }
   bool tracked(int object) const { return states_.count(object) > 0; }
 
-  // Back to room temperature, dry, clean, off, whole.
+  // The transitions the world makes (world/transitions.hpp), and the machines
+  // that make sludge of what no transition takes.
+  void add_transition(Transition transition);
+  const std::vector<Transition>& transitions() const { return transitions_; }
+  void add_machine(int object) { machines_.insert(object); }
+  const std::set<int>& machines() const { return machines_; }
+  // Per transition, the env steps its condition has held in a row.
+  std::vector<int>& transition_progress() { return progress_; }
+
+  // Back to room temperature, dry, clean, off, whole; no transition under way.
   void reset();
   // Every tracked object's abilities and states, by object index.
   const std::map<int, ObjectAbilities>& all_abilities() const { return abilities_; }
@@ -109,6 +130,9 @@ class ObjectStates {
   std::map<int, ObjectAbilities> abilities_;
   std::map<int, ObjectState> states_;
   std::map<std::string, Substance> substances_;
+  std::vector<Transition> transitions_;
+  std::vector<int> progress_;
+  std::set<int> machines_;
 };
 
 }  // namespace chore

@@ -275,7 +275,8 @@ namespace {
 double content_level(const World& w, int a, const std::string& substance) {
   double level = 0;
   state_test(w, a, [&](const auto& ab, const auto& s) {
-    level = ab.holds_liquid && s.liquid == substance ? s.liquid_level : 0;
+    const auto it = s.contents.find(substance);
+    level = ab.holds_liquid && it != s.contents.end() ? it->second : 0;
     return true;
   });
   return level;
@@ -286,6 +287,17 @@ bool filled(const World& w, int a, const std::string& substance) {
 }
 bool contains(const World& w, int a, const std::string& substance) {
   return content_level(w, a, substance) > 0;
+}
+bool substance_exists(const World& w, const std::string& substance) {
+  for (const auto& [object, s] : w.states().all_states()) {
+    const auto held = s.contents.find(substance);
+    const auto dirt = s.dirt.find(substance);
+    const auto soaked = s.soaked.find(substance);
+    if ((held != s.contents.end() && held->second > 0) || (dirt != s.dirt.end() && !dirt->second.empty()) ||
+        (soaked != s.soaked.end() && soaked->second > 0))
+      return true;
+  }
+  return false;
 }
 bool toggled_on(const World& w, int a) {
   return state_test(w, a, [](const auto& ab, const auto& s) { return ab.toggleable && s.toggled; });

@@ -64,6 +64,9 @@ bool dirty(const World& world, int a, const std::string& substance);
 // (filled), or any of it (contains).
 bool filled(const World& world, int a, const std::string& substance = "water");
 bool contains(const World& world, int a, const std::string& substance);
+// Whether any object holds `substance`, is covered with it or has soaked it up
+// (BDDL's (real substance)).
+bool substance_exists(const World& world, const std::string& substance);
 bool toggled_on(const World& world, int a);
 bool sliced(const World& world, int a);
 bool broken(const World& world, int a);

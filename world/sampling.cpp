@@ -250,10 +250,11 @@ void sample_state(World& w, const std::string& predicate, int a, bool value, con
   } else if (predicate == "soaked" || predicate == "saturated") {
     s->soaked[liquid] = value ? 1.0 : 0.0;
   } else if (predicate == "filled" || predicate == "contains") {
-    if (value || s->liquid == liquid) {
-      s->liquid = liquid;
-      // filled: four fifths up; contains: a little, below filled's level.
-      s->liquid_level = !value ? 0.0 : predicate == "filled" ? 0.8 : ObjectStates::kFilledLevel / 2;
+    // filled: four fifths up; contains: a little, below filled's level.
+    if (value) {
+      s->contents[liquid] = predicate == "filled" ? 0.8 : ObjectStates::kFilledLevel / 2;
+    } else {
+      s->contents.erase(liquid);
     }
   } else if (predicate == "toggled_on") {
     s->toggled = value;

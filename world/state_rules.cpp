@@ -10,6 +10,7 @@
 
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
+#include "world/transitions.hpp"
 
 namespace chore {
 namespace {
@@ -27,11 +28,11 @@ void soak(World& w, double dt, int moved, const Aabb* moved_box) {
   // a scene of hundreds of objects would otherwise pair every two of them.
   std::vector<int> holding;
   for (const auto& [container, ca] : abilities_of) {
-    if (ca.holds_liquid && state_of[container].liquid_level > 0) holding.push_back(container);
+    if (ca.holds_liquid && state_of[container].level() > 0) holding.push_back(container);
   }
   for (const int container : holding) {
-    const double level = state_of[container].liquid_level;
-    const std::string& liquid = state_of[container].liquid;
+    const double level = state_of[container].level();
+    const std::string liquid = state_of[container].main_substance();
     Aabb water = box(container);
     water.lo.head<2>().array() += 0.01;
     water.hi.head<2>().array() -= 0.01;
@@ -43,10 +44,9 @@ void soak(World& w, double dt, int moved, const Aabb* moved_box) {
       if (oa.soakable) s.soaked[liquid] = std::min(1.0, s.soaked[liquid] + dt / kSoakSeconds);
       // The container the robot dips in fills with the liquid (not over
       // another one); containers merely standing in a basin do not.
-      if (oa.holds_liquid && object == w.carried_object() && (s.liquid_level <= 0 || s.liquid == liquid)) {
-        s.liquid = liquid;
-        s.liquid_level =
-            std::min(ObjectStates::kSourceLevel, s.liquid_level + ObjectStates::kSourceLevel * dt / kSoakSeconds);
+      if (oa.holds_liquid && object == w.carried_object() && s.level() <= s.contents[liquid]) {
+        s.contents[liquid] =
+            std::min(ObjectStates::kSourceLevel, s.contents[liquid] + ObjectStates::kSourceLevel * dt / kSoakSeconds);
       }
     }
   }
@@ -126,6 +126,13 @@ void update_states_at_motion_waypoint(World& w, double dt, int moved, const Aabb
   }
 }
 
+bool thermal_source_acts(const World& w, int source, const ThermalSource& t, int object) {
+  if (t.requires_toggled_on && !w.states().state(source).toggled) return false;
+  if (t.requires_closed && is_open(w, source)) return false;
+  return t.requires_inside ? inside(w, object, source)
+                           : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t.distance;
+}
+
 Eigen::Vector3d toggle_point(const World& w, int object) {
   const Aabb box = object_aabb(w, object);
   return {box.center().x(), box.center().y(), box.hi.z()};
@@ -150,9 +157,8 @@ void update_states_after_env_step(World& w, double dt) {
   for (auto& [object, s] : state_of) {
     const ObjectAbilities& ab = abilities_of.at(object);
     if (ab.source.empty() || !ab.holds_liquid || !s.toggled) continue;
-    if (s.liquid_level > 0 && s.liquid != ab.source) continue;  // holds something else: it mixes no recipe here
-    s.liquid = ab.source;
-    s.liquid_level = std::max(s.liquid_level, ObjectStates::kSourceLevel);
+    if (s.level() > s.contents[ab.source]) continue;  // holds something else: a tap does not top up a mix
+    s.contents[ab.source] = std::max(s.contents[ab.source], ObjectStates::kSourceLevel);
   }
   // Heat: each source in force pulls temperatures towards its own. The
   // sources first: a few in a scene of hundreds of objects.
@@ -166,19 +172,14 @@ void update_states_after_env_step(World& w, double dt) {
     if (!abilities_of.at(object).temperature) continue;
     bool heated = false;
     for (const auto& [source, t] : sources) {
-      if (source == object) continue;
-      const ObjectState& ss = state_of.at(source);
-      if (t->requires_toggled_on && !ss.toggled) continue;
-      if (t->requires_closed && is_open(w, source)) continue;
-      const bool near = t->requires_inside ? inside(w, object, source)
-                                           : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t->distance;
-      if (!near) continue;
+      if (source == object || !thermal_source_acts(w, source, *t, object)) continue;
       s.temperature += (t->temperature - s.temperature) * std::min(1.0, t->rate * dt);
       heated = true;
     }
     if (!heated) s.temperature += (kRoomTemperature - s.temperature) * std::min(1.0, kCoolingRate * dt);
     s.max_temperature = std::max(s.max_temperature, s.temperature);
   }
+  make_transitions(w);
 }
 
 void draw_states(const World& w, mjvScene* scene) {

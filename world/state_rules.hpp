@@ -27,7 +27,11 @@ void update_states_at_motion_waypoint(World& world, double dt, int moved, const 
 // rule toggles it after ObjectStates::kToggleSteps consecutive env steps with
 // the hand within ObjectStates::kToggleDistance of it.
 Eigen::Vector3d toggle_point(const World& world, int object);
-// Heat transfer and toggling, after each env step of `dt` seconds.
+// Whether heat or cold source `source` (its ThermalSource `t`) acts on
+// `object` now: on, closed, near or inside, as it requires.
+bool thermal_source_acts(const World& world, int source, const ThermalSource& t, int object);
+// Heat transfer, toggling and the transitions (world/transitions.hpp), after
+// each env step of `dt` seconds.
 void update_states_after_env_step(World& world, double dt);
 
 // How the states look, in a scene being rendered (after mjv_updateScene):

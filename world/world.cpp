@@ -20,6 +20,7 @@ World::World(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
   if (!model_ || !data_) throw Error("world: out of memory copying scene '" + scene_->name() + "'");
   if (scene_->has_robot()) robot_ = Robot::bind(model_);
   object_trees_.resize(scene_->objects().size());
+  hidden_.assign(scene_->objects().size(), 0);
   for (int b = 1; b < model_->nbody; ++b) {
     const int object = scene_->object_of_body(b), tree = model_->body_treeid[b];
     if (object < 0 || tree < 0) continue;
@@ -44,6 +45,15 @@ mjData* World::scratch() const {
 void World::reset(const Pose2& base) {
   release();
   states_.reset();
+  // Every object real, colliding as compiled (mj_resetData puts it back where it was).
+  for (size_t object = 0; object < hidden_.size(); ++object) {
+    if (!hidden_[object]) continue;
+    for (const int g : scene_->objects()[object].geoms) {
+      model_->geom_contype[g] = scene_->model()->geom_contype[g];
+      model_->geom_conaffinity[g] = scene_->model()->geom_conaffinity[g];
+    }
+    hidden_[object] = 0;
+  }
   // Grasps and attachments off (eq_active0); the scene's objects asleep where
   // they were placed, with their resting contacts kept.
   reset_data();
@@ -180,7 +190,52 @@ World::StepReport World::step(int substeps) {
     if (state_updates_) update_states_after_physics_step(*this, model_->opt.timestep);
   }
   if (state_updates_) update_states_after_env_step(*this, substeps * model_->opt.timestep);
+  // Hidden objects fell freely (they collide with nothing): back, at rest.
+  for (size_t object = 0; object < hidden_.size(); ++object) {
+    if (hidden_[object]) keep_out(static_cast<int>(object));
+  }
   return report;
+}
+
+void World::hide(int object) {
+  const SceneObject& o = scene_->objects().at(object);
+  if (o.fixed || o.grasp_weld < 0) throw Error("world: '" + o.name + "' is not a free object and cannot be hidden");
+  if (hidden_[object]) return;
+  if (grasped_ == object) release();
+  for (const Scene::Attachment& a : scene_->attachments()) {
+    if ((a.object == object || a.to == object) && a.weld >= 0) data_->eq_active[a.weld] = 0;
+  }
+  for (const int g : o.geoms) model_->geom_contype[g] = model_->geom_conaffinity[g] = 0;
+  hidden_[object] = 1;
+  keep_out(object);
+  mj_forward(model_, data_);
+}
+
+void World::keep_out(int object) {
+  // Under the floor and outside every room, each object at its own place.
+  constexpr double kOut = -1000, kSpacing = 3, kDepth = -10;
+  const int joint = model_->body_jntadr[scene_->objects()[object].body];
+  mjtNum* qpos = data_->qpos + model_->jnt_qposadr[joint];
+  qpos[0] = kOut - kSpacing * object;
+  qpos[1] = kOut;
+  qpos[2] = kDepth;
+  mju_zero(data_->qvel + model_->jnt_dofadr[joint], 6);
+}
+
+void World::reveal(int object, const Eigen::Vector3d& pos) {
+  const SceneObject& o = scene_->objects().at(object);
+  if (!hidden_.at(object)) return;
+  for (const int g : o.geoms) {
+    model_->geom_contype[g] = scene_->model()->geom_contype[g];
+    model_->geom_conaffinity[g] = scene_->model()->geom_conaffinity[g];
+  }
+  hidden_[object] = 0;
+  const int joint = model_->body_jntadr[o.body];
+  mjtNum* qpos = data_->qpos + model_->jnt_qposadr[joint];
+  for (int k = 0; k < 3; ++k) qpos[k] = pos[k];
+  mju_mat2Quat(qpos + 3, o.mat.data());
+  mju_zero(data_->qvel + model_->jnt_dofadr[joint], 6);
+  mj_forward(model_, data_);
 }
 
 void World::set_sleeping(bool enabled) {

@@ -4,6 +4,8 @@
 // physics step, as OmniGibson's does.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <memory>
 #include <optional>
 #include <vector>
@@ -125,6 +127,17 @@ class World {
   // Scene::attachments() weld; false when the scene has none for the pair.
   // reset() detaches all.
   bool attach_objects(int object, int to);
+
+  // Objects that transitions make and use up (world/transitions.hpp). MuJoCo's
+  // models are static, so an object that is not real (not yet made, or used
+  // up) is a body kept out of the world: far under the floor, colliding with
+  // nothing, held still after every step. Only free objects can be hidden.
+  // reset() makes every object real again.
+  void hide(int object);
+  // Makes a hidden object real, at rest, at `pos` in the orientation the scene
+  // compiled it in.
+  void reveal(int object, const Eigen::Vector3d& pos);
+  bool real(int object) const { return !hidden_.at(object); }
   Pose2 base_pose() const;
   double time() const;
 
@@ -137,6 +150,8 @@ class World {
   void attach(int object, int weld);
   // Sets `weld` (body1 -> body2) to hold body2 where it is now relative to body1, and turns it on.
   void hold_in_place(int weld);
+  // Keeps a hidden object at its place out of the world, at rest.
+  void keep_out(int object);
 
   std::shared_ptr<const Scene> scene_;
   mjModel_* model_ = nullptr;
@@ -148,6 +163,7 @@ class World {
   bool state_updates_ = true;
   RestingContacts resting_;
   std::vector<std::vector<int>> object_trees_;  // per object, the trees of its moving bodies
+  std::vector<char> hidden_;                    // per object: not real (hide())
   int texture_version_ = 0;
   mutable mjData_* scratch_ = nullptr;
   std::vector<double> payload_jacobian_;  // 3 x nv, for the load's gravity compensation
