@@ -57,6 +57,12 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   std::set<std::string> neighbours;
   arguments_of(problem.goal, {"nextto"}, 0, neighbours, scope);
   arguments_of(problem.goal, {"nextto"}, 1, neighbours, scope);
+  // Laying a cloth over serves goals that drape or overlay cloths on things.
+  std::set<std::string> covered_by_cloth;
+  arguments_of(problem.goal, {"draped", "overlaid"}, 1, covered_by_cloth, scope);
+  // Closing serves goals that want something closed.
+  std::set<std::string> closable;
+  arguments_of(problem.goal, {"open"}, 0, closable, scope);
   // Attaching serves goals that attach things: to what they attach to.
   std::set<std::string> attach_to;
   arguments_of(problem.goal, {"attached"}, 1, attach_to, scope);
@@ -101,6 +107,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       bool applies = primitive_applies(world, type, b.index);
       if (type == PrimitiveType::place) applies = !goal_supports.empty() && named(supports);
       if (type == PrimitiveType::push) applies = applies && named(openable);
+      if (type == PrimitiveType::close) applies = applies && named(closable);
+      if (type == PrimitiveType::drape) applies = named(covered_by_cloth);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
       if (type == PrimitiveType::pour) applies = applies && named(receivers);
       if (type == PrimitiveType::place_next_to) applies = named(neighbours);

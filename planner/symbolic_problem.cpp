@@ -283,19 +283,30 @@ class WorldSteps {
         if (states(step)) where_it_was(step);
         break;
       }
-      case TransitionFamily::heat_cook:
-        // The inputs on (or in) a container of the rule's that is heated.
+      case TransitionFamily::heat_cook: {
+        // The inputs on (or in) a container of the rule's that is heated, or
+        // chilled where its sources are all cold ones (a freezer makes ice).
+        const bool cold =
+            !r.heat_sources.empty() && std::all_of(r.heat_sources.begin(), r.heat_sources.end(), [&](const auto& h) {
+              return kb_.contains(h.synset) && kb_.has_property(h.synset, "coldSource") &&
+                     !kb_.has_property(h.synset, "heatSource");
+            });
         for (const SynsetCount& c : r.containers) {
           for (const int container : matching(c.synset)) {
             for (const char* relation : {"ontop", "inside"}) {
               SymbolicStep step = s;
-              step.needs = {literal(kHeated, {container})};
-              for (const int in : bound) step.needs.push_back(literal(relation, {in, container}));
+              step.needs = {literal(cold ? kChilled : kHeated, {container})};
+              for (const int in : bound) {
+                const bool substance = p_.objects[in].kind == Kind::substance;
+                step.needs.push_back(substance ? literal("contains", {container, in})
+                                               : literal(relation, {in, container}));
+              }
               if (states(step)) add(step);
             }
           }
         }
         break;
+      }
       case TransitionFamily::substance_cooking:
       case TransitionFamily::substance_watercooking:
         // The substances in a heated container (any that holds them).

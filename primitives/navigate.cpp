@@ -8,14 +8,15 @@ namespace chore {
 namespace {
 
 // Navigation aims at what will be done there: an articulated object's handle
-// (to push it) while the hand is empty; while holding, dirt lying on it to
+// (to push it open, or shut) while the hand is empty; while holding, dirt lying on it to
 // wipe, a liquid to dip into, a container or surface to pour what the held
 // container holds into or onto, something to cut with the held knife or to
 // attach the held object to, or a place to put the load.
 PrimitiveType purpose_of_navigation(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
   if (w.grasped_object() < 0) {
-    return articulation(w, object) && !is_open(w, object) ? PrimitiveType::push : PrimitiveType::pick;
+    if (!articulation(w, object)) return PrimitiveType::pick;
+    return is_open(w, object) ? PrimitiveType::close : PrimitiveType::push;
   }
   if (ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
   for (const PrimitiveType with_load :

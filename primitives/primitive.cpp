@@ -537,8 +537,11 @@ ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& type
     if (!problem.reason.empty()) problem.index = static_cast<int>(i);
     return problem.reason.empty();
   };
+  // (An opening or closing primitive whose drawer is already as it would
+  // leave it has nothing to reach.)
   for (size_t i = 0; i < types.size(); ++i) {
-    if (primitive_def(types[i]).opens && !check(i)) return problem;
+    const PrimitiveDef& def = primitive_def(types[i]);
+    if (def.opens && def.unmet_precondition(w, objects[i]).empty() && !check(i)) return problem;
   }
   // The rest with the drawers pulled open as push leaves them.
   std::vector<std::pair<int, double>> saved;  // qpos address, value

@@ -138,15 +138,18 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
     defs.insert(&primitive_def(type));
     EXPECT_EQ(parse_primitive_type(to_string(type)), type);
   }
-  EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
-                                          "pour", "place_next_to", "cut", "attach", "fold", "unfold"}));
-  EXPECT_EQ(defs.size(), 14u);
+  EXPECT_EQ(names,
+            (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
+                                   "pour", "place_next_to", "cut", "attach", "fold", "unfold", "close", "drape"}));
+  EXPECT_EQ(defs.size(), 16u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
-            "pour, place_next_to, cut, attach, fold, unfold)");
+            "pour, place_next_to, cut, attach, fold, unfold, close, drape)");
   for (int t = 0; t < kPrimitiveTypes; ++t) {
     const auto type = static_cast<PrimitiveType>(t);
-    EXPECT_EQ(primitive_is_physical(type), type != PrimitiveType::fold && type != PrimitiveType::unfold);
+    const bool symbolic_only =
+        type == PrimitiveType::fold || type == PrimitiveType::unfold || type == PrimitiveType::drape;
+    EXPECT_EQ(primitive_is_physical(type), !symbolic_only);
   }
   for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
     EXPECT_TRUE(primitive_touches(t)) << to_string(t);
@@ -319,6 +322,8 @@ TEST(Primitives, PhysicalModeTracksThePlansInPhysics) {
   EXPECT_TRUE(success) << taken.size() << " actions, last " << taken.back() << ": " << env.last_primitive().reason;
   EXPECT_EQ(env.last_primitive().mode, ExecutionMode::physical);
   EXPECT_GT(env.last_primitive().physics_steps, 100);  // simulated, not teleported
+  // The drawer pulled open, both pumpkins placed inside it.
+  EXPECT_GT(save_robot_view(env.world(), "store_decoration_physical.png"), 8);
 }
 
 // The head follows the primitive's object, so the image shows what the robot
@@ -403,6 +408,7 @@ TEST(Primitives, TogglePressesTheRadioOnAndOff) {
     const Env::Impl::Outcome on = act(env, "toggle_on(radio_receiver.n.01_1)");
     EXPECT_EQ(on.info.primitive_status, 0);
     EXPECT_TRUE(toggled_on(w, radio));
+    EXPECT_GT(save_robot_view(w, std::string("toggle_on_") + to_string(mode) + ".png"), 8);
     EXPECT_TRUE(on.info.success);
     EXPECT_TRUE(on.terminated);
     const PrimitiveResult off = execute_primitive(w, PrimitiveType::toggle_off, radio, 7, {.mode = mode});
@@ -566,6 +572,29 @@ TEST(Primitives, FoldFoldsTheTowelAndUnfoldSpreadsIt) {
   EXPECT_EQ(r.reason, "folding is symbolic only: the assistive grasp holds a cloth by its centre, not an edge");
 }
 
+// The hand towel taken from the counter and laid over the bowl on
+// the table (tests/data/bddl/behavior-1k/drape_a_towel_over_the_bowl.bddl),
+// symbolically: it hangs down the bowl's sides. Physically it is not offered.
+TEST(Primitives, DrapeLaysTheTowelOverTheBowl) {
+  const std::string bddl = test::data_path("bddl/behavior-1k/drape_a_towel_over_the_bowl.bddl");
+  const Env physical(primitive_config(bddl, ExecutionMode::physical));
+  for (const std::string& name : action_names(physical)) EXPECT_FALSE(name.starts_with("drape")) << name;
+  Env env(primitive_config(bddl, ExecutionMode::symbolic));
+  env.reset(0);
+  World& w = env.impl().world();
+  const int towel = env.activity()->object("hand_towel.n.01_1"), bowl = env.activity()->object("bowl.n.01_1");
+  EXPECT_EQ(unmet_precondition(w, PrimitiveType::drape, bowl), "the hand holds nothing");
+  for (const char* a : {"navigate(hand_towel.n.01_1)", "pick(hand_towel.n.01_1)", "navigate(bowl.n.01_1)"}) {
+    ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
+  }
+  const Env::Impl::Outcome laid = act(env, "drape(bowl.n.01_1)");
+  ASSERT_EQ(laid.info.primitive_status, 0) << env.last_primitive().reason;
+  EXPECT_TRUE(draped(w, towel, bowl));
+  EXPECT_TRUE(laid.info.success);
+  EXPECT_EQ(w.grasped_object(), -1);
+  EXPECT_GT(save_robot_view(w, "drape_symbolic.png"), 8);
+}
+
 // The lid set onto the jar attaches to it
 // (tests/data/bddl/behavior-1k/put_the_lid_on_the_jar.bddl), in both modes;
 // taken hold of again, it comes off.
@@ -592,6 +621,40 @@ TEST(Primitives, AttachPutsTheLidOnTheJar) {
     // Taken hold of (the assistive grasp's weld, as pick ends), it comes off.
     ASSERT_TRUE(w.hold(lid));
     EXPECT_FALSE(attached(w, lid, jar));
+  }
+}
+
+// StoreDecoration's cabinet, open, pushed shut (tests/data/bddl/close_the_cabinet.bddl,
+// in the apartment), in both modes: physically the closed hand pushes the
+// drawer along its joint. (The apartment's second pumpkin stands where the
+// base must, in front of the drawer: it is moved aside.)
+TEST(Primitives, CloseShutsTheOpenCabinet) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    EnvConfig config = primitive_config(test::data_path("bddl/close_the_cabinet.bddl"), mode);
+    config.scene = "apartment";
+    // (push, also offered, need not reach a drawer the sampler left half open.)
+    config.reachable_instances = false;
+    Env env(config);
+    env.reset(0);
+    World& w = env.impl().world();
+    const int cabinet = env.activity()->object("cabinet.n.01_1");
+    const SceneObject& pumpkin = *w.scene().find_object("pumpkin_2");
+    double* q = w.data()->qpos + w.model()->jnt_qposadr[w.model()->body_jntadr[pumpkin.body]];
+    q[0] = 1.0;
+    q[1] = 2.5;
+    mj_forward(w.model(), w.data());
+    ASSERT_TRUE(is_open(w, cabinet));
+    if (act(env, "navigate(cabinet.n.01_1)").info.primitive_status != 0) {
+      ASSERT_EQ(env.last_primitive().reason, "already within reach of '" + w.scene().objects()[cabinet].name + "'");
+    }
+    const Env::Impl::Outcome shut = act(env, "close(cabinet.n.01_1)");
+    ASSERT_EQ(shut.info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_FALSE(is_open(w, cabinet));
+    EXPECT_TRUE(shut.info.success);
+    EXPECT_GT(save_robot_view(w, std::string("close_") + to_string(mode) + ".png"), 8);
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::close, cabinet),
+              "'" + w.scene().objects()[cabinet].name + "' is already closed");
   }
 }
 

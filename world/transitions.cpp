@@ -19,14 +19,15 @@ bool on_or_in(const World& w, int object, int place) {
   return ontop(w, object, place) || inside(w, object, place);
 }
 
-// Whether a heat source of `t` (any, when it lists none) heats `place` now.
+// Whether a source of `t` (any heat source, when it lists none) acts on
+// `place` now. A source the rule lists may be a cold one: a freezer makes ice.
 bool heated(const World& w, const Transition& t, int place) {
   for (const auto& [source, ab] : w.states().all_abilities()) {
-    if (source == place || !ab.heat_source) continue;
-    if (!t.heat_sources.empty() &&
-        std::find(t.heat_sources.begin(), t.heat_sources.end(), source) == t.heat_sources.end())
-      continue;
-    if (thermal_source_acts(w, source, *ab.heat_source, place)) return true;
+    if (source == place) continue;
+    const bool listed = std::find(t.heat_sources.begin(), t.heat_sources.end(), source) != t.heat_sources.end();
+    if (!t.heat_sources.empty() && !listed) continue;
+    const std::optional<ThermalSource>& acting = ab.heat_source || !listed ? ab.heat_source : ab.cold_source;
+    if (acting && thermal_source_acts(w, source, *acting, place)) return true;
   }
   return false;
 }
