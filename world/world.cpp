@@ -45,14 +45,9 @@ mjData* World::scratch() const {
 void World::reset(const Pose2& base) {
   release();
   states_.reset();
-  // Every object real, colliding as compiled (mj_resetData puts it back where it was).
+  // Every object real (mj_resetData puts it back where it was).
   for (size_t object = 0; object < hidden_.size(); ++object) {
-    if (!hidden_[object]) continue;
-    for (const int g : scene_->objects()[object].geoms) {
-      model_->geom_contype[g] = scene_->model()->geom_contype[g];
-      model_->geom_conaffinity[g] = scene_->model()->geom_conaffinity[g];
-    }
-    hidden_[object] = 0;
+    if (hidden_[object]) make_real(static_cast<int>(object));
   }
   // Grasps and attachments off (eq_active0); the scene's objects asleep where
   // they were placed, with their resting contacts kept.
@@ -222,14 +217,18 @@ void World::keep_out(int object) {
   mju_zero(data_->qvel + model_->jnt_dofadr[joint], 6);
 }
 
-void World::reveal(int object, const Eigen::Vector3d& pos) {
-  const SceneObject& o = scene_->objects().at(object);
-  if (!hidden_.at(object)) return;
-  for (const int g : o.geoms) {
+void World::make_real(int object) {
+  for (const int g : scene_->objects()[object].geoms) {
     model_->geom_contype[g] = scene_->model()->geom_contype[g];
     model_->geom_conaffinity[g] = scene_->model()->geom_conaffinity[g];
   }
   hidden_[object] = 0;
+}
+
+void World::reveal(int object, const Eigen::Vector3d& pos) {
+  const SceneObject& o = scene_->objects().at(object);
+  if (!hidden_.at(object)) return;
+  make_real(object);
   const int joint = model_->body_jntadr[o.body];
   mjtNum* qpos = data_->qpos + model_->jnt_qposadr[joint];
   for (int k = 0; k < 3; ++k) qpos[k] = pos[k];

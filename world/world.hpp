@@ -152,6 +152,8 @@ class World {
   void hold_in_place(int weld);
   // Keeps a hidden object at its place out of the world, at rest.
   void keep_out(int object);
+  // Marks a hidden object real, colliding as compiled (where it is is the caller's).
+  void make_real(int object);
 
   std::shared_ptr<const Scene> scene_;
   mjModel_* model_ = nullptr;
