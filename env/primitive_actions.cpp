@@ -57,6 +57,9 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   std::set<std::string> neighbours;
   arguments_of(problem.goal, {"nextto"}, 0, neighbours, scope);
   arguments_of(problem.goal, {"nextto"}, 1, neighbours, scope);
+  // Putting beneath serves goals that put things under others.
+  std::set<std::string> above;
+  arguments_of(problem.goal, {"under"}, 1, above, scope);
   // Laying a cloth over serves goals that drape or overlay cloths on things.
   std::set<std::string> covered_by_cloth;
   arguments_of(problem.goal, {"draped", "overlaid"}, 1, covered_by_cloth, scope);
@@ -109,6 +112,7 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::push) applies = applies && named(openable);
       if (type == PrimitiveType::close) applies = applies && named(closable);
       if (type == PrimitiveType::drape) applies = named(covered_by_cloth);
+      if (type == PrimitiveType::place_under) applies = named(above);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
       if (type == PrimitiveType::pour) applies = applies && named(receivers);
       if (type == PrimitiveType::place_next_to) applies = named(neighbours);

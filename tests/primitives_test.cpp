@@ -138,17 +138,17 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
     defs.insert(&primitive_def(type));
     EXPECT_EQ(parse_primitive_type(to_string(type)), type);
   }
-  EXPECT_EQ(names,
-            (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
-                                   "pour", "place_next_to", "cut", "attach", "fold", "unfold", "close", "drape"}));
-  EXPECT_EQ(defs.size(), 16u);
+  EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
+                                          "pour", "place_next_to", "cut", "attach", "fold", "unfold", "close", "drape",
+                                          "place_under"}));
+  EXPECT_EQ(defs.size(), 17u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
-            "pour, place_next_to, cut, attach, fold, unfold, close, drape)");
+            "pour, place_next_to, cut, attach, fold, unfold, close, drape, place_under)");
   for (int t = 0; t < kPrimitiveTypes; ++t) {
     const auto type = static_cast<PrimitiveType>(t);
-    const bool symbolic_only =
-        type == PrimitiveType::fold || type == PrimitiveType::unfold || type == PrimitiveType::drape;
+    const bool symbolic_only = type == PrimitiveType::fold || type == PrimitiveType::unfold ||
+                               type == PrimitiveType::drape || type == PrimitiveType::place_under;
     EXPECT_EQ(primitive_is_physical(type), !symbolic_only);
   }
   for (const PrimitiveType t : {PrimitiveType::pick, PrimitiveType::push, PrimitiveType::dip, PrimitiveType::wipe})
@@ -593,6 +593,30 @@ TEST(Primitives, DrapeLaysTheTowelOverTheBowl) {
   EXPECT_TRUE(laid.info.success);
   EXPECT_EQ(w.grasped_object(), -1);
   EXPECT_GT(save_robot_view(w, "drape_symbolic.png"), 8);
+}
+
+// The gym shoe taken from the counter and put under the table
+// (tests/data/bddl/behavior-1k/put_the_shoe_under_the_table.bddl),
+// symbolically. Physically it is not offered.
+TEST(Primitives, PlaceUnderPutsTheShoeUnderTheTable) {
+  const std::string bddl = test::data_path("bddl/behavior-1k/put_the_shoe_under_the_table.bddl");
+  const Env physical(primitive_config(bddl, ExecutionMode::physical));
+  for (const std::string& name : action_names(physical)) EXPECT_FALSE(name.starts_with("place_under")) << name;
+  Env env(primitive_config(bddl, ExecutionMode::symbolic));
+  env.reset(0);
+  World& w = env.impl().world();
+  const int shoe = env.activity()->object("gym_shoe.n.01_1"), table = env.activity()->object("breakfast_table.n.01_1");
+  EXPECT_EQ(unmet_precondition(w, PrimitiveType::place_under, table), "the hand holds nothing");
+  EXPECT_FALSE(under(w, shoe, table));
+  for (const char* a : {"navigate(gym_shoe.n.01_1)", "pick(gym_shoe.n.01_1)", "navigate(breakfast_table.n.01_1)"}) {
+    ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
+  }
+  const Env::Impl::Outcome put = act(env, "place_under(breakfast_table.n.01_1)");
+  ASSERT_EQ(put.info.primitive_status, 0) << env.last_primitive().reason;
+  EXPECT_TRUE(under(w, shoe, table));
+  EXPECT_TRUE(put.info.success);
+  EXPECT_EQ(w.grasped_object(), -1);
+  EXPECT_GT(save_robot_view(w, "place_under_symbolic.png"), 8);
 }
 
 // The lid set onto the jar attaches to it
