@@ -53,12 +53,9 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
       !objects[a.held].has("attachable") || !objects[a.target].has("attachable")) {
     return {};
   }
-  SymbolicStep s;
-  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
-  s.deletes = {literal("grasped", {agent, a.held})};
-  s.adds = {literal(kHandEmpty, {}), literal("attached", {a.held, a.target}), literal("touching", {a.held, a.target}),
-            literal("touching", {a.target, a.held})};
-  return {s};
+  return {setting_down(agent, a,
+                       {literal("attached", {a.held, a.target}), literal("touching", {a.held, a.target}),
+                        literal("touching", {a.target, a.held})})};
 }
 
 }  // namespace

@@ -138,12 +138,9 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
       !objects[a.held].has("cloth")) {
     return {};
   }
-  SymbolicStep s;
-  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
-  s.deletes = {literal("grasped", {agent, a.held})};
-  s.adds = {literal(kHandEmpty, {}), literal("draped", {a.held, a.target}), literal("overlaid", {a.held, a.target}),
-            literal("touching", {a.held, a.target})};
-  return {s};
+  return {setting_down(agent, a,
+                       {literal("draped", {a.held, a.target}), literal("overlaid", {a.held, a.target}),
+                        literal("touching", {a.held, a.target})})};
 }
 
 }  // namespace

@@ -37,15 +37,12 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
       (target.kind != SymbolicObject::Kind::object && target.kind != SymbolicObject::Kind::floor)) {
     return {};
   }
-  SymbolicStep on;
-  on.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
-  on.deletes = {literal("grasped", {agent, a.held})};
   // On it, it touches it.
-  on.adds = {literal(kHandEmpty, {}), literal("touching", {a.held, a.target}), literal("touching", {a.target, a.held}),
-             literal("ontop", {a.held, a.target})};
+  const SymbolicStep on = setting_down(agent, a,
+                                       {literal("touching", {a.held, a.target}),
+                                        literal("touching", {a.target, a.held}), literal("ontop", {a.held, a.target})});
   if (!target.has("fillable")) return {on};
-  SymbolicStep in = on;
-  in.adds = {literal(kHandEmpty, {}), literal("inside", {a.held, a.target})};
+  SymbolicStep in = setting_down(agent, a, {literal("inside", {a.held, a.target})});
   if (target.has("openable")) in.needs.push_back(literal("open", {a.target}));
   return {on, in};
 }

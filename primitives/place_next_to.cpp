@@ -59,11 +59,7 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
   if (agent < 0 || a.held < 0 || a.held == a.target || objects[a.target].kind != SymbolicObject::Kind::object) {
     return {};
   }
-  SymbolicStep s;
-  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
-  s.deletes = {literal("grasped", {agent, a.held})};
-  s.adds = {literal(kHandEmpty, {}), literal("nextto", {a.held, a.target}), literal("nextto", {a.target, a.held})};
-  return {s};
+  return {setting_down(agent, a, {literal("nextto", {a.held, a.target}), literal("nextto", {a.target, a.held})})};
 }
 
 }  // namespace

@@ -50,11 +50,7 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
   if (agent < 0 || a.held < 0 || a.held == a.target || objects[a.target].kind != SymbolicObject::Kind::object) {
     return {};
   }
-  SymbolicStep s;
-  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
-  s.deletes = {literal("grasped", {agent, a.held})};
-  s.adds = {literal(kHandEmpty, {}), literal("under", {a.held, a.target})};
-  return {s};
+  return {setting_down(agent, a, {literal("under", {a.held, a.target})})};
 }
 
 }  // namespace

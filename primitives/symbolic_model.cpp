@@ -23,6 +23,15 @@ void end_placements(const std::vector<SymbolicObject>& objects, int object, Symb
   }
 }
 
+SymbolicStep setting_down(int agent, const SymbolicArgs& a, std::vector<SymbolicLiteral> adds) {
+  SymbolicStep s;
+  s.needs = {literal("grasped", {agent, a.held}), literal(kWithinReach, {a.target}), literal("real", {a.target})};
+  s.deletes = {literal("grasped", {agent, a.held})};
+  s.adds = {literal(kHandEmpty, {})};
+  s.adds.insert(s.adds.end(), adds.begin(), adds.end());
+  return s;
+}
+
 int agent_index(const std::vector<SymbolicObject>& objects) {
   for (size_t i = 0; i < objects.size(); ++i) {
     if (objects[i].kind == SymbolicObject::Kind::agent) return static_cast<int>(i);

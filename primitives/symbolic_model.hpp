@@ -61,6 +61,11 @@ SymbolicLiteral literal(const char* predicate, std::vector<int> args);
 // argument), as picking it up ends them.
 void end_placements(const std::vector<SymbolicObject>& objects, int object, SymbolicStep& step);
 
+// What the hand holds set down at the target (place, place_next_to,
+// place_under, attach, drape): the object held by `agent`, the target within
+// reach and real; then the hand empty, and `adds`.
+SymbolicStep setting_down(int agent, const SymbolicArgs& args, std::vector<SymbolicLiteral> adds);
+
 // The first agent among the objects (the planner adds one where the activity
 // declares none).
 int agent_index(const std::vector<SymbolicObject>& objects);
