@@ -347,28 +347,48 @@ class WorldSteps {
     }
   }
 
-  // A washer toggled on cleans what is inside it of each substance the
-  // washer removes, with one of its solvents inside where it needs one.
+  // A washer toggled on and closed cleans what is inside it of each
+  // substance the washer removes, with one of its solvents inside where it
+  // needs one, and wets it; a clothes dryer dries it (OmniGibson's WasherRule
+  // and DryerRule).
   void washing(const TransitionRules& rules) {
-    for (const int washer : matching("washer.n.03")) {
-      for (int item = 0; item < static_cast<int>(p_.objects.size()); ++item) {
-        if (!p_.objects[item].movable()) continue;
-        for (const auto& [dirt, solvents] : rules.washer_solvents()) {
-          for (const int d : matching(dirt)) {
-            SymbolicStep base{"washer(" + p_.objects[item].name + ")",
-                              {literal("toggled_on", {washer}), literal("inside", {item, washer})},
-                              {},
-                              {literal("covered", {item, d})},
-                              {}};
-            if (solvents.empty()) add(base);
-            for (const std::string& solvent : solvents) {
-              for (const int s : matching(solvent)) {
-                SymbolicStep step = base;
-                step.needs.push_back(literal("contains", {washer, s}));
-                add(step);
-              }
+    const std::vector<int> water = matching(kWater);
+    for (int item = 0; item < static_cast<int>(p_.objects.size()); ++item) {
+      if (!p_.objects[item].movable()) continue;
+      const bool soaks = p_.objects[item].has("soakable") || p_.objects[item].has("particleRemover");
+      for (const int washer : matching(kWasher)) {
+        SymbolicStep base{"washer(" + p_.objects[item].name + ")",
+                          {literal("toggled_on", {washer}), literal("inside", {item, washer})},
+                          {literal("open", {washer})},
+                          {},
+                          {}};
+        for (const int w : water) {
+          SymbolicStep wet = base;
+          wet.adds = {literal(soaks ? "saturated" : "covered", {item, w})};
+          add(wet);
+        }
+        for (int d = 0; d < static_cast<int>(p_.objects.size()); ++d) {
+          if (p_.objects[d].kind != Kind::substance) continue;
+          const std::optional<std::vector<std::string>> solvents = rules.washer_solvents(p_.objects[d].synset);
+          if (!solvents) continue;
+          base.deletes = {literal("covered", {item, d})};
+          if (solvents->empty()) add(base);
+          for (const std::string& solvent : *solvents) {
+            for (const int s : matching(solvent)) {
+              SymbolicStep step = base;
+              step.needs.push_back(literal("contains", {washer, s}));
+              add(step);
             }
           }
+        }
+      }
+      for (const int dryer : matching(kClothesDryer)) {
+        for (const int w : water) {
+          add({"dryer(" + p_.objects[item].name + ")",
+               {literal("toggled_on", {dryer}), literal("inside", {item, dryer})},
+               {literal("open", {dryer})},
+               {literal("saturated", {item, w})},
+               {}});
         }
       }
     }

@@ -24,7 +24,7 @@ double wrap(double yaw) {
 
 }  // namespace
 
-OccupancyMap::OccupancyMap(const World& world, double inflation, double above) {
+OccupancyMap::OccupancyMap(const World& world, double inflation, double above, int moving) {
   const mjModel* m = world.model();
   const Scene& scene = world.scene();
   Aabb bounds;
@@ -50,7 +50,7 @@ OccupancyMap::OccupancyMap(const World& world, double inflation, double above) {
   for (int g = 0; g < m->ngeom; ++g) {
     if (!m->geom_contype[g] && !m->geom_conaffinity[g]) continue;
     const int root = m->body_rootid[m->geom_bodyid[g]];
-    if (root == robot || root == held) continue;  // the robot and what it carries move along
+    if (root == robot || root == held || m->geom_bodyid[g] == moving) continue;  // they move along
     const Aabb box = geom_aabb(world, g);
     if (box.hi.z() < std::max(kFloorClearance, above) || box.lo.z() > kRobotHeight) continue;
     const int i0 = std::max(0, static_cast<int>(std::floor((box.lo.x() - x0_) / kResolution)));
@@ -211,7 +211,8 @@ double body_radius_of(const World& world) {
 
 }  // namespace
 
-Footprint::Footprint(const World& world) : body_radius_(body_radius_of(world)), body_(world, body_radius_ + kMargin) {
+Footprint::Footprint(const World& world, int moving)
+    : body_radius_(body_radius_of(world)), body_(world, body_radius_ + kMargin, 0.0, moving) {
   const mjModel* m = world.model();
   const Robot& r = *world.robot();
   const Pose2 base = world.base_pose();

@@ -21,8 +21,9 @@ class OccupancyMap {
   // Cells covered by a collision geom of the scene reaching above `above`
   // (the floor by default) and below the robot's height, grown by `inflation`
   // (a radius plus a margin). Free objects count as obstacles where they are
-  // now; the robot and what it carries do not.
-  OccupancyMap(const World& world, double inflation, double above = 0.0);
+  // now; the robot, what it carries and the body `moving` (a door the robot
+  // turns with it) do not.
+  OccupancyMap(const World& world, double inflation, double above = 0.0, int moving = -1);
 
   bool free(double x, double y) const;
   // Whether free cells join (x0, y0) to (x1, y1), 8-connected: a base path's
@@ -53,7 +54,8 @@ class OccupancyMap {
 class Footprint {
  public:
   static constexpr double kMargin = 0.03;  // m added to both radii
-  explicit Footprint(const World& world);
+  // `moving`: a body that moves with the robot (OccupancyMap).
+  explicit Footprint(const World& world, int moving = -1);
   bool free(const Pose2& pose) const;
   double body_radius() const { return body_radius_; }
   const OccupancyMap& body_map() const { return body_; }

@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -266,13 +267,33 @@ bool Motion::base_to(const Pose2& goal, const Footprint& footprint) {
 }
 
 bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed, double min_fraction) {
-  touched_ = false;
-  const Clock::time_point start = Clock::now();
-  const int n = std::max(1, static_cast<int>(std::ceil(delta.norm() / kLineSpacing)));
-  const Eigen::Vector3d from = hand_position();
+  const Eigen::Vector3d from = hand_position(), approach = hand_axis(0);
   // The approach axis is held; the roll about it may drift (the IK steps from
   // the last solution, so it barely does), which keeps long lines feasible.
-  IkTarget target{from, hand_axis(0), std::nullopt};
+  return follow(
+      [&](double f) {
+        return IkTarget{from + delta * f, approach, std::nullopt};
+      },
+      delta.norm(), "a line", until_contact, speed, min_fraction);
+}
+
+bool Motion::arc(const Eigen::Vector3d& pivot, const Eigen::Vector3d& axis, double angle, bool until_contact,
+                 double speed, double min_fraction, bool turn_hand) {
+  const Eigen::Vector3d from = hand_position(), approach = hand_axis(0), unit = axis.normalized();
+  const Eigen::Vector3d radial = from - pivot - unit * unit.dot(from - pivot);
+  const auto turned = [&](double f) {
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(angle * f, unit).toRotationMatrix();
+    return IkTarget{pivot + r * (from - pivot), turn_hand ? std::optional<Eigen::Vector3d>(r * approach) : std::nullopt,
+                    std::nullopt};
+  };
+  return follow(turned, std::abs(angle) * radial.norm(), "an arc", until_contact, speed, min_fraction);
+}
+
+bool Motion::follow(const std::function<IkTarget(double)>& target_at, double length, const char* what,
+                    bool until_contact, double speed, double min_fraction) {
+  touched_ = false;
+  const Clock::time_point start = Clock::now();
+  const int n = std::max(1, static_cast<int>(std::ceil(length / kLineSpacing)));
   IkOptions options;
   options.start = arm_configuration(world_);
   options.iterations = 100;
@@ -280,17 +301,16 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
   bool cut_short = false;
   int reached = n;
   for (int i = 1; i <= n; ++i) {
-    target.position = from + delta * (static_cast<double>(i) / n);
-    const IkResult r = ik_.solve(target, options);
+    const IkResult r = ik_.solve(target_at(static_cast<double>(i) / n), options);
     if (!r.success) {
       // As far as the arm reaches; with until_contact, contact decides below.
       cut_short = true;
       reached = i - 1;
       if (until_contact || i > min_fraction * n) break;
       result_.planning_seconds += since(start);
-      return fail(PrimitiveStatus::motion_planning_failure, "the hand cannot follow a line beyond " +
+      return fail(PrimitiveStatus::motion_planning_failure, std::string("the hand cannot follow ") + what + " beyond " +
                                                                 std::to_string(100 * (i - 1) / n) + "% of its " +
-                                                                std::to_string(delta.norm()) + " m (" + r.reason + ")");
+                                                                std::to_string(length) + " m (" + r.reason + ")");
     }
     path.push_back(r.joints);
     options.start = r.joints;
@@ -361,33 +381,60 @@ bool Motion::line(const Eigen::Vector3d& delta, bool until_contact, double speed
 
 bool Motion::base_line(const Eigen::Vector3d& delta, double speed) {
   const Pose2 from = world_.base_pose();
-  const Pose2 to{from.x + delta.x(), from.y + delta.y(), from.yaw};
+  return base_path(
+      [&](double f) {
+        return Pose2{from.x + f * delta.x(), from.y + f * delta.y(), from.yaw};
+      },
+      delta.norm(), speed, 1.0, "no room to back the base out");
+}
+
+bool Motion::base_arc(const Eigen::Vector3d& pivot, double angle, int moving, double speed, double min_fraction) {
+  const Pose2 from = world_.base_pose();
+  const double dx = from.x - pivot.x(), dy = from.y - pivot.y();
+  const auto turned = [&](double f) {
+    const double c = std::cos(angle * f), s = std::sin(angle * f);
+    return Pose2{pivot.x() + c * dx - s * dy, pivot.y() + s * dx + c * dy, from.yaw + angle * f};
+  };
+  return base_path(turned, std::abs(angle) * std::hypot(dx, dy), speed, min_fraction, "no room to swing the base round",
+                   moving);
+}
+
+bool Motion::base_path(const std::function<Pose2(double)>& pose_at, double length, double speed, double min_fraction,
+                       const char* blocked, int moving) {
+  const Pose2 from = world_.base_pose();
+  // As far along as the body's map is free.
+  double reached = 1.0;
   {
     const Clock::time_point t = Clock::now();
-    const Footprint footprint(world_);
-    const int n = std::max(1, static_cast<int>(std::ceil(delta.norm() / OccupancyMap::kResolution)));
-    bool clear = true;
-    for (int i = 1; i <= n && clear; ++i) {
+    const Footprint footprint(world_, moving);
+    const int n = std::max(1, static_cast<int>(std::ceil(length / OccupancyMap::kResolution)));
+    for (int i = 1; i <= n; ++i) {
       const double f = static_cast<double>(i) / n;
-      clear = footprint.body_map().free(from.x + f * delta.x(), from.y + f * delta.y());
+      const Pose2 p = pose_at(f);
+      if (!footprint.body_map().free(p.x, p.y)) {
+        reached = static_cast<double>(i - 1) / n;
+        break;
+      }
     }
     result_.planning_seconds += since(t);
-    if (!clear) return fail(PrimitiveStatus::motion_planning_failure, "no room to back the base out");
+    if (reached < min_fraction) return fail(PrimitiveStatus::motion_planning_failure, blocked);
+    if (reached <= 0) return true;  // (min_fraction 0: as far as it goes, here nowhere)
   }
+  const auto along = [&](double f) { return reached < 1.0 ? pose_at(f * reached) : pose_at(f); };
   if (!physical()) {
     const Clock::time_point t = Clock::now();
-    world_.set_robot_configuration(to, arm_configuration(world_).data());
+    world_.set_robot_configuration(along(1.0), arm_configuration(world_).data());
     result_.execution_seconds += since(t);
     return true;
   }
-  const int steps = std::max(1, static_cast<int>(std::ceil(delta.norm() / speed / kControlDt)));
+  const int steps = std::max(1, static_cast<int>(std::ceil(length * reached / speed / kControlDt)));
   for (int i = 1; i <= steps && !result_.diverged; ++i) {
-    const double f = static_cast<double>(i) / steps;
+    const Pose2 to = along(static_cast<double>(i) / steps);
     const Pose2 now = world_.base_pose();
-    const double vx = (from.x + f * delta.x() - now.x) / kControlDt, vy = (from.y + f * delta.y() - now.y) / kControlDt;
+    const double vx = (to.x - now.x) / kControlDt, vy = (to.y - now.y) / kControlDt;
     const double c = std::cos(now.yaw), s = std::sin(now.yaw);
     world_.command_base_velocity(c * vx + s * vy, -s * vx + c * vy,
-                                 std::remainder(from.yaw - now.yaw, 2 * M_PI) / kControlDt);
+                                 std::remainder(to.yaw - now.yaw, 2 * M_PI) / kControlDt);
     step_physics(1);
   }
   world_.command_base_velocity(0, 0, 0);

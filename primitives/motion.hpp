@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <random>
 
 #include "primitives/base_planner.hpp"
@@ -39,9 +40,21 @@ class Motion {
   // at every waypoint for the time the motion would take.
   bool line(const Eigen::Vector3d& delta, bool until_contact, double speed = 0.2, double min_fraction = 1.0);
   bool touched() const { return touched_; }
+  // The hand's pose turned by `angle` (rad, right-handed) about the line
+  // through `pivot` along `axis`, as a door's handle turns with the door
+  // (without `turn_hand` its position only, pointing as IK finds),
+  // otherwise as line() (`speed` along the hand's path).
+  bool arc(const Eigen::Vector3d& pivot, const Eigen::Vector3d& axis, double angle, bool until_contact,
+           double speed = 0.2, double min_fraction = 1.0, bool turn_hand = true);
   // The base along a straight line by `delta` (world frame, heading kept), the
   // arm held: the hand, and what it holds, follow (pulling a drawer open).
   bool base_line(const Eigen::Vector3d& delta, double speed = 0.15);
+  // The base turned by `angle` (rad, about +z) round the vertical line
+  // through `pivot`, the arm held: the hand turns with it, and the body
+  // `moving` (the door whose handle it turns about its hinge). As far as the
+  // body's map is free; less than `min_fraction` of the way is a
+  // motion-planning failure.
+  bool base_arc(const Eigen::Vector3d& pivot, double angle, int moving, double speed = 0.15, double min_fraction = 1.0);
   // Opens or closes the gripper and waits for the fingers; the assistive
   // grasp attaches or releases as they do.
   void gripper(bool open);
@@ -61,6 +74,15 @@ class Motion {
   IkSolver& ik() { return ik_; }
 
  private:
+  // line() and arc(): the hand through target_at(f) for f in (0, 1], `length`
+  // m in all, named `what` in failures.
+  bool follow(const std::function<IkTarget(double)>& target_at, double length, const char* what, bool until_contact,
+              double speed, double min_fraction);
+  // base_line() and base_arc(): the base through pose_at(f) for f in (0, 1],
+  // `length` m in all; failing with `blocked` where the map stops it short
+  // of min_fraction.
+  bool base_path(const std::function<Pose2(double)>& pose_at, double length, double speed, double min_fraction,
+                 const char* blocked, int moving = -1);
   void step_physics(int env_steps);  // with divergence bookkeeping
   bool hand_in_contact() const;
   // Steps until the torso and arm are within `tolerance` (rad) of `goal`, at

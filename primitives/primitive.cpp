@@ -70,20 +70,82 @@ const PrimitiveDef& primitive_def(PrimitiveType type) {
   return *defs[static_cast<int>(type)];
 }
 
+namespace {
+
+constexpr double kHandleInset = 0.05;  // m from a door's free edge to where the hand takes hold
+
+// The corners of a geom's box (its own frame's box for boxes, else its
+// world box's).
+std::vector<Eigen::Vector3d> geom_corners(const World& w, int g) {
+  const mjModel* m = w.model();
+  const mjData* d = w.data();
+  std::vector<Eigen::Vector3d> out;
+  if (m->geom_type[g] == mjGEOM_BOX) {
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->geom_xmat + 9 * g);
+    const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3d s((k & 1 ? 1 : -1) * m->geom_size[3 * g], (k & 2 ? 1 : -1) * m->geom_size[3 * g + 1],
+                              (k & 4 ? 1 : -1) * m->geom_size[3 * g + 2]);
+      out.push_back(c + r * s);
+    }
+    return out;
+  }
+  const Aabb box = geom_aabb(w, g);
+  for (int k = 0; k < 8; ++k) {
+    out.emplace_back(k & 1 ? box.hi.x() : box.lo.x(), k & 2 ? box.hi.y() : box.lo.y(), k & 4 ? box.hi.z() : box.lo.z());
+  }
+  return out;
+}
+
+// A hinge's handle: on the face the free edge turns towards, kHandleInset in
+// from that edge, half way along the hinge (over the link's geoms).
+void hinge_handle(const World& w, Articulation& a) {
+  std::vector<Eigen::Vector3d> corners;
+  for (int g = 0; g < w.model()->ngeom; ++g) {
+    if (w.model()->geom_bodyid[g] != a.link) continue;
+    const std::vector<Eigen::Vector3d> c = geom_corners(w, g);
+    corners.insert(corners.end(), c.begin(), c.end());
+  }
+  // Radially outwards from the axis to the furthest corner.
+  Eigen::Vector3d outwards = Eigen::Vector3d::Zero();
+  double along_lo = 1e9, along_hi = -1e9;
+  for (const Eigen::Vector3d& c : corners) {
+    const Eigen::Vector3d r = c - a.pivot, radial = r - a.axis * a.axis.dot(r);
+    if (radial.norm() > outwards.norm()) outwards = radial;
+    along_lo = std::min(along_lo, a.axis.dot(r));
+    along_hi = std::max(along_hi, a.axis.dot(r));
+  }
+  const double radius = outwards.norm();
+  const Eigen::Vector3d u = radius > 1e-9 ? Eigen::Vector3d(outwards / radius) : Eigen::Vector3d::UnitX();
+  a.pull = a.axis.cross(u);
+  double face = -1e9;
+  for (const Eigen::Vector3d& c : corners) face = std::max(face, a.pull.dot(c - a.pivot));
+  a.handle = a.pivot + a.axis * (along_lo + along_hi) / 2 + u * std::max(0.0, radius - kHandleInset) + a.pull * face;
+}
+
+}  // namespace
+
 std::optional<Articulation> articulation(const World& w, int object) {
   const SceneObject& o = w.scene().objects()[object];
   const mjModel* m = w.model();
   const mjData* d = w.data();
   for (int joint : o.joints) {
-    if (m->jnt_type[joint] != mjJNT_SLIDE) continue;  // hinged doors: not yet (docs/primitives.md)
+    if (m->jnt_type[joint] != mjJNT_SLIDE && m->jnt_type[joint] != mjJNT_HINGE) continue;
     Articulation a;
     a.joint = joint;
     a.link = m->jnt_bodyid[joint];
+    a.hinge = m->jnt_type[joint] == mjJNT_HINGE;
     const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> r(d->xmat + 9 * a.link);
     a.axis = r * Eigen::Vector3d(m->jnt_axis[3 * joint], m->jnt_axis[3 * joint + 1], m->jnt_axis[3 * joint + 2]);
+    a.pivot = Eigen::Vector3d(d->xanchor[3 * joint], d->xanchor[3 * joint + 1], d->xanchor[3 * joint + 2]);
     a.low = m->jnt_range[2 * joint];
     a.high = m->jnt_range[2 * joint + 1];
     a.value = d->qpos[m->jnt_qposadr[joint]];
+    if (a.hinge) {
+      hinge_handle(w, a);
+      return a;
+    }
+    a.pull = a.axis;
     double furthest = -1e9;
     for (int g = 0; g < m->ngeom; ++g) {
       if (m->geom_bodyid[g] != a.link) continue;
@@ -129,7 +191,7 @@ Aabb carried_aabb_at(const World& w, const Pose2& base) {
 Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
   Eigen::Vector3d centre, along, across;  // the region: centre +- along +- across
   double top = 0;
-  if (const auto a = articulation(w, object); a && open_fraction(*a) > 0.3) {
+  if (const auto a = articulation(w, object); a && !a->hinge && open_fraction(*a) > 0.3) {
     Aabb link;
     for (int g = 0; g < w.model()->ngeom; ++g) {
       if (w.model()->geom_bodyid[g] == a->link) link.grow(geom_aabb(w, g));
@@ -295,18 +357,20 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Aabb box = object_aabb(w, object);
   const PrimitiveDef& def = primitive_def(purpose);
-  const auto articulated = def.opens ? articulation(w, object) : std::nullopt;
+  // (A lid opens upwards: the robot may stand anywhere around it.)
+  auto articulated = def.opens ? articulation(w, object) : std::nullopt;
+  if (articulated && std::abs(articulated->pull.z()) > 0.7) articulated.reset();
   const Room* room = w.scene().room_at(around[0].point.x(), around[0].point.y());
   const ArmConfiguration& travel = w.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration;
   for (int i = 0; i < kDrawsPerSample * samples && i - tally.blocked < samples; ++i) {
     const Approach& a = around[i % around.size()];
     Pose2 p;
     if (articulated) {
-      // In front of the drawer, facing it, far enough to pull it open.
-      const Eigen::Vector3d side = kUp.cross(articulated->axis);
-      const Eigen::Vector3d at =
-          a.point + articulated->axis * (0.5 + 0.4 * unit(rng)) + side * (0.7 * unit(rng) - 0.35);
-      p = {at.x(), at.y(), std::atan2(-articulated->axis.y(), -articulated->axis.x()) + 0.8 * unit(rng) - 0.4};
+      // In front of the handle, facing it, far enough to pull it open.
+      const Eigen::Vector3d& pull = articulated->pull;
+      const Eigen::Vector3d side = kUp.cross(pull);
+      const Eigen::Vector3d at = a.point + pull * (0.5 + 0.4 * unit(rng)) + side * (0.7 * unit(rng) - 0.35);
+      p = {at.x(), at.y(), std::atan2(-pull.y(), -pull.x()) + 0.8 * unit(rng) - 0.4};
     } else {
       // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
       const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
@@ -556,7 +620,8 @@ ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& type
   for (size_t i = 0; i < types.size(); ++i) {
     if (!primitive_def(types[i]).opens && !check(i)) break;
   }
-  for (const auto& [adr, value] : saved) w.data()->qpos[adr] = value;
+  // In reverse: push and close of one drawer saved it twice, the second time pulled.
+  for (auto it = saved.rbegin(); it != saved.rend(); ++it) w.data()->qpos[it->first] = it->second;
   if (!saved.empty()) mj_forward(w.model(), w.data());
   return problem;
 }

@@ -37,12 +37,19 @@ inline constexpr double kPullFraction = 0.9;    // of a drawer's range, push ope
 inline constexpr double kApproachSpeed = 0.15;  // m/s of the hand towards a contact
 inline constexpr double kRetreatSpeed = 0.2;    // m/s of the hand away from one
 
-// The articulated joint a push opens, and the geometry it moves.
+// The articulated joint a push opens, and the geometry it moves: a drawer
+// (a slide joint) or a door or lid (a hinge).
 struct Articulation {
   int joint = -1, link = -1;
-  Eigen::Vector3d axis;    // world direction in which the link opens
-  Eigen::Vector3d handle;  // centre of the link's geom furthest along axis
-  double low = 0, high = 0, value = 0;
+  bool hinge = false;
+  Eigen::Vector3d axis;   // world: a drawer's opening direction; a hinge's axis (opening turns about it right-handed)
+  Eigen::Vector3d pivot;  // world: a point on a hinge's axis
+  // Where the hand takes hold: a drawer's front (the centre of its geom
+  // furthest along axis); on a door, its front face a hand's width in from
+  // the edge furthest from the hinge, half way along the hinge.
+  Eigen::Vector3d handle;
+  Eigen::Vector3d pull;                 // world direction in which the handle moves as the link opens (a drawer's axis)
+  double low = 0, high = 0, value = 0;  // m, or rad
 };
 std::optional<Articulation> articulation(const World& w, int object);
 double open_fraction(const Articulation& a);

@@ -10,6 +10,8 @@
 // slicing makes both halves). Counts: up to a rule's count of each input
 // object are bound, and the rule fires with those (relaxed where the
 // activity has fewer).
+#include <map>
+#include <optional>
 #include <set>
 
 #include "tasks/activity.hpp"
@@ -189,11 +191,30 @@ void Activity::configure_transitions(World& w) const {
         break;
       case TransitionFamily::washer_particleremover:
       case TransitionFamily::washer_nonparticleremover:
-        // Washers clean what is inside them of their substances: not made by
-        // the world yet (docs/activities.md).
-        break;
+        break;  // what any washer does to what it holds: below
     }
   }
+
+  // Washers, with what they remove of the activity's substances, and dryers.
+  std::map<std::string, std::vector<std::string>> removes;
+  for (const Thing& t : things) {
+    if (t.object >= 0) continue;
+    const std::optional<std::vector<std::string>> solvents = rules.washer_solvents(t.type);
+    if (!solvents) continue;
+    std::vector<std::string> present;
+    for (const std::string& solvent : *solvents) {
+      for (const Thing* s : matching(solvent)) {
+        if (s->object < 0) present.push_back(s->substance);
+      }
+    }
+    // One that needs a solvent the activity lacks is never removed here.
+    if (solvents->empty() || !present.empty()) removes[t.substance] = std::move(present);
+  }
+  const std::vector<int> washers = objects_matching(kWasher), dryers = objects_matching(kClothesDryer);
+  for (const int washer : washers) w.states().add_washer({washer, false, removes});
+  for (const int dryer : dryers) w.states().add_washer({dryer, true, {}});
+  // What a washer wets and cannot soak it covers with water.
+  if (!washers.empty() && !w.states().substance("water")) w.states().add_substance({"water", false});
 }
 
 }  // namespace chore

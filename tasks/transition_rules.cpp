@@ -142,15 +142,21 @@ std::shared_ptr<const TransitionRules> TransitionRules::load(const std::string& 
   if (!solvents.is_object()) throw Error(washer + ": expected an object of substances");
   for (const auto& item : solvents.items()) {
     const RuleReader read(solvents, washer, kb);
-    if (item.value().is_null()) continue;  // a substance the washer does not remove
+    std::optional<std::vector<std::string>>& list = out->washer_solvents_[read.synset(item.key(), item.key())];
+    if (item.value().is_null()) continue;  // a substance the washer never removes
     if (!item.value().is_array()) read.fail(item.key(), "must list solvents (or be null)");
-    std::vector<std::string>& list = out->washer_solvents_[read.synset(item.key(), item.key())];
+    list.emplace();
     for (const nlohmann::json& s : item.value()) {
       if (!s.is_string()) read.fail(item.key(), "must list solvents by synset");
-      list.push_back(read.synset(item.key(), s.get<std::string>()));
+      list->push_back(read.synset(item.key(), s.get<std::string>()));
     }
   }
   return out;
+}
+
+std::optional<std::vector<std::string>> TransitionRules::washer_solvents(const std::string& substance) const {
+  const auto it = washer_solvents_.find(substance);
+  return it == washer_solvents_.end() ? std::vector<std::string>{} : it->second;
 }
 
 namespace {

@@ -64,6 +64,12 @@ struct TransitionRule {
   std::optional<int> timesteps;
 };
 
+// The machines of OmniGibson's WasherRule and DryerRule (its category
+// filters "washer" and "clothes_dryer"): the washer rules name the washer as
+// their machine; no file names the dryer.
+inline constexpr const char* kWasher = "washer.n.03";
+inline constexpr const char* kClothesDryer = "clothes_dryer.n.01";
+
 class TransitionRules;
 // BEHAVIOR-1K's rules (TransitionRules::load()), loaded on first use and kept.
 const TransitionRules& behavior_transition_rules();
@@ -82,16 +88,18 @@ class TransitionRules {
   // Rules with `synset` among their outputs, or among their inputs.
   std::vector<const TransitionRule*> producing(const std::string& synset) const;
   std::vector<const TransitionRule*> consuming(const std::string& synset) const;
-  // washer.json: the substances a washer removes from what it washes, each
-  // with the solvents of which one must be in the washer too (none: water
-  // alone). A substance it never removes (rust.n.01) is absent.
-  const std::map<std::string, std::vector<std::string>>& washer_solvents() const { return washer_solvents_; }
+  // washer.json (OmniGibson's WasherRule cleaning conditions): whether a
+  // washer removes `substance` from what it washes: nullopt never
+  // (rust.n.01); an empty list always (dust.n.01, and, as OmniGibson's
+  // default, every substance the file does not name); else when one of the
+  // listed solvents is in the washer too.
+  std::optional<std::vector<std::string>> washer_solvents(const std::string& substance) const;
 
  private:
   TransitionRules() = default;
   std::vector<TransitionRule> rules_;
   std::multimap<std::string, size_t> producing_, consuming_;
-  std::map<std::string, std::vector<std::string>> washer_solvents_;
+  std::map<std::string, std::optional<std::vector<std::string>>> washer_solvents_;  // nullopt: never
 };
 
 }  // namespace chore

@@ -119,6 +119,41 @@ TEST(Planner, CleaningFollowsTheRemoversConditions) {
   EXPECT_FALSE(achievable(defaults, "covered", {"mussel.n.01_1", "rust.n.01_1"}, true));
 }
 
+// Washers (washer.json): a towel inside one that is on loses its dust to
+// water alone, its stain only with a solvent poured in (detergent), its rust
+// never, and is soaked; a dryer that is on dries it.
+TEST(Planner, WashersCleanAsWasherJsonSaysAndDryersDry) {
+  const std::string objects =
+      "washer.n.03_1 - washer.n.03 dishtowel.n.01_1 - dishtowel.n.01 stain.n.01_1 - stain.n.01 "
+      "dust.n.01_1 - dust.n.01 rust.n.01_1 - rust.n.01 water.n.06_1 - water.n.06 floor.n.01_1 - floor.n.01 "
+      "agent.n.01_1 - agent.n.01";
+  const std::string init =
+      "(ontop dishtowel.n.01_1 floor.n.01_1) (covered dishtowel.n.01_1 stain.n.01_1) "
+      "(covered dishtowel.n.01_1 dust.n.01_1) (covered dishtowel.n.01_1 rust.n.01_1) "
+      "(inroom washer.n.03_1 utility_room) (inroom floor.n.01_1 utility_room) (ontop agent.n.01_1 floor.n.01_1)";
+  const std::string goal = "(and (not (covered dishtowel.n.01_1 dust.n.01_1)))";
+  const Case water = solve(objects, init, goal);
+  EXPECT_TRUE(achievable(water, "inside", {"dishtowel.n.01_1", "washer.n.03_1"}));
+  EXPECT_TRUE(achievable(water, "covered", {"dishtowel.n.01_1", "dust.n.01_1"}, true));
+  EXPECT_EQ(water.reach.achiever.count({"saturated", {1, 5}}), 1u);
+  EXPECT_EQ(water.reach.achiever.at({"saturated", {1, 5}}), "washer(dishtowel.n.01_1)");
+  EXPECT_FALSE(achievable(water, "covered", {"dishtowel.n.01_1", "stain.n.01_1"}, true));
+  EXPECT_FALSE(achievable(water, "covered", {"dishtowel.n.01_1", "rust.n.01_1"}, true));
+
+  const Case detergent = solve(
+      objects + " detergent.n.02_1 - detergent.n.02 detergent__bottle.n.01_1 - detergent__bottle.n.01",
+      init + " (filled detergent__bottle.n.01_1 detergent.n.02_1) (ontop detergent__bottle.n.01_1 floor.n.01_1)", goal);
+  EXPECT_TRUE(achievable(detergent, "contains", {"washer.n.03_1", "detergent.n.02_1"}));
+  EXPECT_TRUE(achievable(detergent, "covered", {"dishtowel.n.01_1", "stain.n.01_1"}, true));
+  EXPECT_FALSE(achievable(detergent, "covered", {"dishtowel.n.01_1", "rust.n.01_1"}, true));
+
+  const std::string wet = init + " (saturated dishtowel.n.01_1 water.n.06_1)";
+  EXPECT_FALSE(achievable(solve(objects, wet, goal), "saturated", {"dishtowel.n.01_1", "water.n.06_1"}, true));
+  EXPECT_TRUE(achievable(solve(objects + " clothes_dryer.n.01_1 - clothes_dryer.n.01",
+                               wet + " (inroom clothes_dryer.n.01_1 utility_room)", goal),
+                         "saturated", {"dishtowel.n.01_1", "water.n.06_1"}, true));
+}
+
 // Transition rules: an apple cut with a knife becomes its halves
 // (slicing.json); without a knife the rule cannot fire; a blender
 // that is on turns what is inside it into the recipe's output; a sink that

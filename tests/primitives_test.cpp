@@ -682,6 +682,74 @@ TEST(Primitives, CloseShutsTheOpenCabinet) {
   }
 }
 
+// A door on a hinge: push takes its handle and turns it open with the hand
+// about the hinge, close pushes it back shut.
+TEST(Primitives, PushSwingsTheCabinetDoorOpenAndCloseShutsIt) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    EnvConfig config = primitive_config(test::data_path("bddl/open_the_cabinet_door.bddl"), mode);
+    config.scene = "apartment";
+    Env env(config);
+    env.reset(0);
+    World& w = env.impl().world();
+    const int cabinet = env.activity()->object("cabinet.n.01_1");
+    ASSERT_EQ(w.scene().objects()[cabinet].name, "cabinet_door_1");
+    const auto hinge = articulation(w, cabinet);
+    ASSERT_TRUE(hinge && hinge->hinge);
+    // The handle is on the door's front, by its free edge, and moves
+    // outwards (-y: the cabinet faces -y) as the door opens.
+    EXPECT_LT(hinge->pull.y(), -0.99);
+    EXPECT_FALSE(is_open(w, cabinet));
+
+    ASSERT_EQ(act(env, "navigate(cabinet.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    const Env::Impl::Outcome opened = act(env, "push(cabinet.n.01_1)");
+    ASSERT_EQ(opened.info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_TRUE(is_open(w, cabinet));
+    EXPECT_TRUE(opened.info.success);
+    const double angle = articulation(w, cabinet)->value;
+    EXPECT_GT(angle, 20 * M_PI / 180);
+    EXPECT_GT(save_robot_view(w, std::string("push_door_") + to_string(mode) + ".png"), 8);
+
+    // Open at the start (as far as :init's sampler opened it), it is shut.
+    config.activity = test::data_path("bddl/close_the_cabinet_door.bddl");
+    Env closing(config);
+    closing.reset(0);
+    World& w2 = closing.impl().world();
+    ASSERT_TRUE(is_open(w2, cabinet));
+    if (act(closing, "navigate(cabinet.n.01_1)").info.primitive_status != 0) {
+      ASSERT_EQ(closing.last_primitive().reason, "already within reach of 'cabinet_door_1'");
+    }
+    const Env::Impl::Outcome shut = act(closing, "close(cabinet.n.01_1)");
+    ASSERT_EQ(shut.info.primitive_status, 0) << closing.last_primitive().reason;
+    EXPECT_FALSE(is_open(w2, cabinet));
+    EXPECT_TRUE(shut.info.success);
+    EXPECT_GT(save_robot_view(w2, std::string("close_door_") + to_string(mode) + ".png"), 8);
+  }
+}
+
+// A lid on a hinge along its back edge: push takes it by its front and the
+// arm lifts it round the hinge (symbolically: physically the assistive grasp
+// on a knobless lid often takes the whole jar, docs/primitives.md).
+TEST(Primitives, PushLiftsTheJarsLidOpen) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic}) {
+    SCOPED_TRACE(to_string(mode));
+    Env env(primitive_config(test::data_path("bddl/behavior-1k/open_the_hinged_jar.bddl"), mode));
+    env.reset(1);
+    World& w = env.impl().world();
+    const int jar = env.activity()->object("hinged_jar.n.01_1");
+    const auto lid = articulation(w, jar);
+    ASSERT_TRUE(lid && lid->hinge);
+    EXPECT_GT(lid->pull.z(), 0.99);  // the front edge rises first
+    EXPECT_FALSE(is_open(w, jar));
+    ASSERT_EQ(act(env, "navigate(hinged_jar.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    const Env::Impl::Outcome opened = act(env, "push(hinged_jar.n.01_1)");
+    ASSERT_EQ(opened.info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_TRUE(opened.info.success);
+    EXPECT_GT(articulation(w, jar)->value, 45 * M_PI / 180);
+    EXPECT_GT(save_robot_view(w, std::string("push_lid_") + to_string(mode) + ".png"), 8);
+  }
+}
+
 // Along a symbolic motion the state rules read the load's contacts from the
 // collision checker instead of posing the world at every waypoint: they are
 // the contacts MuJoCo's own collision pass finds for the load at that pose.

@@ -116,6 +116,8 @@ class ObjectStates {
   const std::vector<Transition>& transitions() const { return transitions_; }
   void add_machine(int object) { machines_.insert(object); }
   const std::set<int>& machines() const { return machines_; }
+  void add_washer(Washer washer) { washers_.push_back(std::move(washer)); }
+  const std::vector<Washer>& washers() const { return washers_; }
   // Per transition, the env steps its condition has held in a row.
   std::vector<int>& transition_progress() { return progress_; }
 
@@ -133,6 +135,7 @@ class ObjectStates {
   std::vector<Transition> transitions_;
   std::vector<int> progress_;
   std::set<int> machines_;
+  std::vector<Washer> washers_;
 };
 
 }  // namespace chore

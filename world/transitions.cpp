@@ -158,6 +158,54 @@ void fire(World& w, const Transition& t, int place, uint64_t seed) {
   }
 }
 
+// One step of a washer or dryer that is on and closed (Washer).
+void wash(World& w, const Washer& m, uint64_t seed) {
+  ObjectStates& states = w.states();
+  if (!w.real(m.object) || !states.tracked(m.object)) return;
+  ObjectState& machine = states.state(m.object);
+  if (!machine.toggled || is_open(w, m.object)) return;
+  std::vector<int> items;
+  for (const auto& [item, ab] : states.all_abilities()) {
+    if (item != m.object && w.real(item) && inside(w, item, m.object)) items.push_back(item);
+  }
+  if (m.dryer) {
+    machine.contents.erase("water");
+    for (const int item : items) states.state(item).soaked.erase("water");
+    return;
+  }
+  // What it removes is decided by what it holds before any of it goes.
+  const auto removes = [&](const std::string& substance) {
+    const auto it = m.removes.find(substance);
+    if (it == m.removes.end()) return false;
+    if (it->second.empty()) return true;
+    return std::any_of(it->second.begin(), it->second.end(), [&](const std::string& solvent) {
+      const auto held = machine.contents.find(solvent);
+      return held != machine.contents.end() && held->second > 0;
+    });
+  };
+  std::set<std::string> removed;
+  for (const auto& [name, level] : machine.contents) {
+    if (removes(name)) removed.insert(name);
+  }
+  for (const int item : items) {
+    for (const auto& [name, particles] : states.state(item).dirt) {
+      if (removes(name)) removed.insert(name);
+    }
+  }
+  for (const std::string& name : removed) machine.contents.erase(name);
+  for (const int item : items) {
+    ObjectState& s = states.state(item);
+    for (const std::string& name : removed) s.dirt.erase(name);
+    const ObjectAbilities& ab = *states.abilities(item);
+    if (ab.soakable) {
+      s.soaked["water"] = 1.0;
+    } else if (ab.covered && states.substance("water") && !covered(w, item, "water")) {
+      Rng rng(seed ^ static_cast<uint64_t>(item));
+      sample_covered(w, item, "water", true, rng);
+    }
+  }
+}
+
 }  // namespace
 
 const char* to_string(TransitionTrigger trigger) {
@@ -210,6 +258,7 @@ void make_transitions(World& w) {
     s.contents.clear();
     s.contents[kSludge] = level;
   }
+  for (const Washer& washer : states.washers()) wash(w, washer, washer.object);
 }
 
 }  // namespace chore

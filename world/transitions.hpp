@@ -1,6 +1,6 @@
 // Transitions: what the world makes of objects and substances by itself,
 // OmniGibson's transition rules (slicing, dicing, melting, cooking, toggled
-// machines, mixing tools). The activity layer binds the knowledge base's
+// machines, mixing tools, washers and dryers). The activity layer binds the knowledge base's
 // rules to one activity's objects (tasks/activity_transitions.hpp); this
 // layer knows only objects, substances and the conditions below.
 //
@@ -12,6 +12,7 @@
 // container it was in, else onto what it lay on (covered).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -60,13 +61,29 @@ struct Transition {
   int steps = 1;           // consecutive env steps the condition must hold
 };
 
+// A washer or a clothes dryer (OmniGibson's WasherRule and DryerRule): while
+// it is toggled on and not open it acts on what is inside it, every step. A
+// washer takes each substance it removes out of its contents and off what
+// is inside it (where the substance needs a solvent, with one of them in its
+// contents), then wets what is inside: saturated with water where it soaks,
+// else covered with it. A dryer dries what is inside it and lets its water
+// out.
+struct Washer {
+  int object = -1;
+  bool dryer = false;
+  // The substances a washer removes, each with the solvents of which one
+  // must be in its contents (none: always); one absent it never removes.
+  std::map<std::string, std::vector<std::string>> removes;
+};
+
 // What a machine makes of contents no recipe takes (OmniGibson's sludge).
 inline constexpr const char* kSludge = "sludge";
 
 // Evaluates every transition of world.states() and fires those whose
 // condition has held for their steps; after each env step (physical) and
 // each primitive (symbolic). A machine turned on with contents that no
-// transition takes turns its substances into sludge.
+// transition takes turns its substances into sludge; washers and dryers
+// that are on and closed act on what they hold.
 void make_transitions(World& world);
 
 // The unary state `predicate` of `object` ("cooked", "sliced", ...); false for
