@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <set>
 
+#include "world/transitions.hpp"
+#include "world/world.hpp"
+
 namespace chore {
 namespace {
 
@@ -72,6 +75,14 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   // Pouring serves goals that put a substance in or on something.
   std::set<std::string> receivers;
   arguments_of(problem.goal, {"contains", "filled", "covered"}, 0, receivers, scope);
+  // Setting down on a heat or cold source serves goals that heat, cook, burn
+  // or freeze something, and rules of the activity that heat (cooking).
+  std::set<std::string> heated;
+  arguments_of(problem.goal, {"cooked", "burnt", "hot", "frozen", "on_fire"}, 0, heated, scope);
+  const std::vector<Transition>& transitions = world.states().transitions();
+  const bool heating = !heated.empty() || std::any_of(transitions.begin(), transitions.end(), [](const Transition& t) {
+    return t.trigger == TransitionTrigger::heated;
+  });
   const std::set<std::string> folds = arguments_of(problem, {"folded", "unfolded"}, 0);
   std::set<std::string> openable = arguments_of(problem, {"open"}, 0);
   openable.insert(goal_supports.begin(), goal_supports.end());
@@ -120,6 +131,7 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::attach) applies = applies && named(attach_to);
       if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(b.index));
       if (type == PrimitiveType::fold || type == PrimitiveType::unfold) applies = applies && named(folds);
+      if (type == PrimitiveType::place_near_heating_element) applies = applies && heating;
       if (mode == ExecutionMode::physical && !primitive_is_physical(type)) applies = false;
       if (applies) actions.push_back({type, b.index, decl.name});
     }

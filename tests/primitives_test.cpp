@@ -21,6 +21,8 @@
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/renderer.hpp"
+#include "world/sampling.hpp"
+#include "world/state_rules.hpp"
 
 namespace chore {
 namespace {
@@ -140,11 +142,12 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
   }
   EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
                                           "pour", "place_next_to", "cut", "attach", "fold", "unfold", "close", "drape",
-                                          "place_under"}));
-  EXPECT_EQ(defs.size(), 17u);
+                                          "place_under", "place_near_heating_element"}));
+  EXPECT_EQ(defs.size(), 18u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
-            "pour, place_next_to, cut, attach, fold, unfold, close, drape, place_under)");
+            "pour, place_next_to, cut, attach, fold, unfold, close, drape, place_under, "
+            "place_near_heating_element)");
   for (int t = 0; t < kPrimitiveTypes; ++t) {
     const auto type = static_cast<PrimitiveType>(t);
     const bool symbolic_only = type == PrimitiveType::fold || type == PrimitiveType::unfold ||
@@ -747,6 +750,36 @@ TEST(Primitives, PushLiftsTheJarsLidOpen) {
     EXPECT_TRUE(opened.info.success);
     EXPECT_GT(articulation(w, jar)->value, 45 * M_PI / 180);
     EXPECT_GT(save_robot_view(w, std::string("push_lid_") + to_string(mode) + ".png"), 8);
+  }
+}
+
+// OmniGibson's PLACE_NEAR_HEATING_ELEMENT: the steak set on the stove where
+// its heat reaches; it cooks once the stove is on. An oven heats only what is
+// inside it: there is no element to place near.
+TEST(Primitives, PlaceNearHeatingElementSetsTheSteakWhereTheStoveCooksIt) {
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    SCOPED_TRACE(to_string(mode));
+    Env env(primitive_config(test::data_path("bddl/behavior-1k/cook_a_steak.bddl"), mode));
+    env.reset(0);
+    World& w = env.impl().world();
+    const int stove = env.activity()->object("stove.n.01_1"), oven = env.activity()->object("oven.n.01_1");
+    const int steak = env.activity()->object("steak.n.01_1");
+    const std::vector<std::string> names = action_names(env);
+    EXPECT_NE(std::find(names.begin(), names.end(), "place_near_heating_element(stove.n.01_1)"), names.end());
+    ASSERT_EQ(act(env, "navigate(steak.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    ASSERT_EQ(act(env, "pick(steak.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_EQ(unmet_precondition(w, PrimitiveType::place_near_heating_element, oven),
+              "'" + w.scene().objects()[oven].name + "' acts only on what is inside it: place it inside");
+    ASSERT_EQ(act(env, "navigate(stove.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    ASSERT_EQ(act(env, "place_near_heating_element(stove.n.01_1)").info.primitive_status, 0)
+        << env.last_primitive().reason;
+    EXPECT_TRUE(ontop(w, steak, stove));
+    EXPECT_TRUE(within_thermal_reach(w, stove, *w.states().abilities(stove)->heat_source, steak));
+    EXPECT_GT(save_robot_view(w, std::string("place_near_heating_element_") + to_string(mode) + ".png"), 8);
+    EXPECT_FALSE(cooked(w, steak));
+    sample_state(w, "toggled_on", stove, true);
+    for (int i = 0; i < 30 && !cooked(w, steak); ++i) w.step(4);
+    EXPECT_TRUE(cooked(w, steak));
   }
 }
 

@@ -129,6 +129,10 @@ void update_states_at_motion_waypoint(World& w, double dt, int moved, const Aabb
 bool thermal_source_acts(const World& w, int source, const ThermalSource& t, int object) {
   if (t.requires_toggled_on && !w.states().state(source).toggled) return false;
   if (t.requires_closed && is_open(w, source)) return false;
+  return within_thermal_reach(w, source, t, object);
+}
+
+bool within_thermal_reach(const World& w, int source, const ThermalSource& t, int object) {
   return t.requires_inside ? inside(w, object, source)
                            : Aabb::gap(object_aabb(w, object), object_aabb(w, source)) <= t.distance;
 }

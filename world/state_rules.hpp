@@ -30,6 +30,8 @@ Eigen::Vector3d toggle_point(const World& world, int object);
 // Whether heat or cold source `source` (its ThermalSource `t`) acts on
 // `object` now: on, closed, near or inside, as it requires.
 bool thermal_source_acts(const World& world, int source, const ThermalSource& t, int object);
+// Whether `object` is where the source would act on it were it on (and closed).
+bool within_thermal_reach(const World& world, int source, const ThermalSource& t, int object);
 // Heat transfer, toggling and the transitions (world/transitions.hpp), after
 // each env step of `dt` seconds.
 void update_states_after_env_step(World& world, double dt);
