@@ -271,7 +271,8 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   if (!out_of_reach.empty()) {
     throw Error("env: no instance of activity '" + activity_->name() + "' in " + std::to_string(kInstanceAttempts) +
                 " samples had everything within the robot's reach; the last: " + out_of_reach +
-                " (EnvConfig::reachable_instances = false accepts such instances)");
+                " (EnvConfig::reachable_instances = false, `--set env.reachable_instances=false` for chore train,"
+                " accepts such instances)");
   }
   const Activity::Evaluation goal = activity_->evaluate(*world_);
   potential_ = goal.potential;

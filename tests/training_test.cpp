@@ -302,6 +302,12 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   old["ppo"].erase("target_kl");
   EXPECT_TRUE(train_config_from_json(old).ppo.normalize_advantage);
   EXPECT_EQ(train_config_from_json(old).ppo.target_kl, 0.0);
+  // Any activity trains on instances as drawn with this; runs from before
+  // it was a setting had everything within reach.
+  EXPECT_TRUE(base.env.reachable_instances);
+  EXPECT_FALSE(with_setting(base, "env.reachable_instances=false").env.reachable_instances);
+  old["env"].erase("reachable_instances");
+  EXPECT_TRUE(train_config_from_json(old).env.reachable_instances);
 }
 
 // Without the normalisation the same rollout gives another update.

@@ -75,6 +75,7 @@ nlohmann::json to_json(const EnvConfig& c) {
                       {"policy_failure_repeats", c.policy_failure_repeats},
                       {"policy_failure_rule", c.policy_failure_rule},
                       {"instances", c.instances},
+                      {"reachable_instances", c.reachable_instances},
                       {"instance", c.instance},
                       {"reward", c.reward},
                       {"reach_target", c.reach_target}};
@@ -106,6 +107,8 @@ EnvConfig env_config_from_json(const nlohmann::json& j) {
     // ...and drew an instance at every reset.
     c.instances = j.value("instances", std::string("resample"));
     c.instance = j.value("instance", uint64_t{0});
+    // ...and had all the primitives act on within reach.
+    c.reachable_instances = j.value("reachable_instances", true);
     c.reward = j.at("reward").get<std::string>();
     c.reach_target = j.at("reach_target").get<std::array<double, 3>>();
     sensor_fields(c, [&](const char* group, const char* name, auto& value) {
