@@ -153,6 +153,29 @@ TEST(Transitions, AHalfAppleIsDicedLemonadeStirredButterMeltedAndRiceCooked) {
   EXPECT_TRUE(activity.score(w).success);
 }
 
+// substance_watercooking: beans cook in water the stove has boiled first.
+TEST(Transitions, BlackBeansCookInTheWaterTheStoveBoiled) {
+  Env env(config("cook_black_beans"));
+  env.reset(0);
+  World& w = env.impl().world();
+  const Activity& activity = *env.activity();
+  const int stove = activity.object("stove.n.01_1"), pot = activity.object("stockpot.n.01_1");
+  ASSERT_NE(bound(w, "water.n.06-cooking"), nullptr);
+  const Transition* beans = bound(w, "black_bean.n.01-cooking");
+  ASSERT_NE(beans, nullptr);
+  EXPECT_EQ(beans->input_substances, (std::vector<std::string>{"black_bean", "cooked__water"}));
+  run(w, 1);  // off
+  EXPECT_TRUE(contains(w, pot, "water") && contains(w, pot, "black_bean"));
+  sample_state(w, "toggled_on", stove, true);
+  w.step(4);
+  // The water boils, and the beans' rule (after the water's in the
+  // knowledge base's order) takes the boiled water in the same pass.
+  EXPECT_FALSE(contains(w, pot, "water"));
+  EXPECT_TRUE(contains(w, pot, "cooked__black_bean"));
+  EXPECT_FALSE(contains(w, pot, "black_bean") || contains(w, pot, "cooked__water"));
+  EXPECT_TRUE(activity.score(w).success);
+}
+
 // OmniGibson's WasherRule with washer.json, and its DryerRule: what a washer
 // that is on takes off the towel depends on what it holds.
 TEST(Transitions, AWasherCleansTheTowelAsWasherJsonSaysAndSoaksItAndADryerDriesTheSock) {
