@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "app/activity_commands.hpp"
+#include "app/activity_solve.hpp"
 #include "app/png.hpp"
 #include "base/error.hpp"
 #include "base/json_file.hpp"
@@ -68,11 +69,12 @@ struct Result {
   // hold (planner/reachability.hpp), those none can by predicate, and its
   // future objects no rule makes or none can make here.
   nlohmann::json goal_reach;
+  nlohmann::json solve;  // of an instantiated one, with CoverageOptions::solve (activity_solve.hpp)
 };
 
-// Instantiated, whether or not a later stage ("run", "primitives") failed.
+// Instantiated, whether or not a later stage ("run", "primitives", "solve") failed.
 bool was_instantiated(const Result& r) {
-  return r.stage == "instantiated" || r.stage == "run" || r.stage == "primitives";
+  return r.stage == "instantiated" || r.stage == "run" || r.stage == "primitives" || r.stage == "solve";
 }
 
 constexpr int kSheetHead = 64, kSheetTop = 128, kSheetLabel = 12, kSheetColumns = 16;
@@ -207,6 +209,11 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
       r.stage = "instantiated";
       r.ran_primitives = true;
     }
+    if (options.solve) {
+      r.stage = "solve";
+      r.solve = solve_activity(config, options.seed, *options.solve);
+      r.stage = "instantiated";
+    }
   } catch (const Error& e) {
     r.error = e.what();
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -226,6 +233,7 @@ void write_result(const fs::path& path, const Result& r) {
                             {"ran", r.ran},
                             {"ran_primitives", r.ran_primitives},
                             {"goal_reach", r.goal_reach},
+                            {"solve", r.solve},
                             {"rows", r.picture.rows},
                             {"cols", r.picture.cols}};
   std::ofstream out(path, std::ios::binary);
@@ -251,6 +259,7 @@ Result read_result(const fs::path& path) {
   r.ran = j["ran"];
   r.ran_primitives = j["ran_primitives"];
   r.goal_reach = j["goal_reach"];
+  r.solve = j["solve"];
   if (const int rows = j["rows"], cols = j["cols"]; rows > 0) {
     r.picture = cv::Mat(rows, cols, CV_8UC3);
     in.read(reinterpret_cast<char*>(r.picture.data), static_cast<std::streamsize>(r.picture.total() * 3));
@@ -324,11 +333,16 @@ bool is_domain_file(const fs::path& path) {
 }  // namespace
 
 nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& log) {
-  if (!fs::is_directory(options.dir)) throw Error("activity coverage: '" + options.dir + "' is not a folder");
   std::vector<std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(options.dir)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".bddl" && !is_domain_file(entry.path())) {
-      files.push_back(entry.path().string());
+  if (fs::is_regular_file(options.dir) && fs::path(options.dir).extension() == ".bddl") {
+    files.push_back(options.dir);
+  } else if (!fs::is_directory(options.dir)) {
+    throw Error("activity coverage: '" + options.dir + "' is neither a folder nor a .bddl file");
+  } else {
+    for (const auto& entry : fs::recursive_directory_iterator(options.dir)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".bddl" && !is_domain_file(entry.path())) {
+        files.push_back(entry.path().string());
+      }
     }
   }
   std::sort(files.begin(), files.end());
@@ -354,6 +368,10 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   std::map<std::string, std::string> unachievable_example;
   std::vector<std::string> future_without_rule, future_unreachable;
   std::vector<double> seconds;
+  // With solve: plans found, activities solved, planning seconds, why not.
+  int built = 0, planned = 0, solved = 0;
+  std::vector<double> planning;
+  std::map<std::string, std::pair<int, std::string>> unsolved_causes;
   for (const Result& r : results) {
     parsed += r.stage != "parse" && r.stage != "crashed";
     instantiated += was_instantiated(r);
@@ -382,6 +400,17 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
         future_unreachable.push_back(r.name + ": " + name.get<std::string>());
     }
     if (was_instantiated(r)) a["out_of_reach"] = r.out_of_reach;
+    if (!r.solve.is_null()) {
+      a["solve"] = r.solve;
+      built += r.solve["built"].get<bool>();
+      planned += r.solve["found"].get<bool>();
+      solved += r.solve["solved"].get<bool>();
+      planning.push_back(r.solve["planning_seconds"].get<double>());
+      if (!r.solve["solved"].get<bool>()) {
+        auto& [count, example] = unsolved_causes[failure_cause(r.solve["reason"].get<std::string>())];
+        if (count++ == 0) example = r.name;
+      }
+    }
     if (options.steps > 0) a["ran"] = r.ran;
     if (options.primitive_steps > 0) a["ran_primitives"] = r.ran_primitives;
     if (!r.out_of_reach.empty()) {
@@ -398,6 +427,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
     activities.push_back(std::move(a));
   }
   std::sort(seconds.begin(), seconds.end());
+  std::sort(planning.begin(), planning.end());
   nlohmann::json by_predicate = nlohmann::json::array();
   for (const auto& [predicate, count] : unachievable) {
     by_predicate.push_back({{"predicate", predicate}, {"count", count}, {"example", unachievable_example[predicate]}});
@@ -435,7 +465,14 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
           {"future_without_rule", future_without_rule},
           {"future_unreachable", future_unreachable},
           {"causes", grouped(causes)},
-          {"out_of_reach_causes", grouped(reach_causes)}};
+          {"out_of_reach_causes", grouped(reach_causes)},
+          {"solve_mode", options.solve ? to_string(*options.solve) : ""},
+          {"built", built},
+          {"planned", planned},
+          {"solved", solved},
+          {"median_planning_seconds", planning.empty() ? 0.0 : planning[planning.size() / 2]},
+          {"max_planning_seconds", planning.empty() ? 0.0 : planning.back()},
+          {"unsolved_causes", grouped(unsolved_causes)}};
 }
 
 std::string format_coverage(const nlohmann::json& c) {
@@ -482,6 +519,34 @@ std::string format_coverage(const nlohmann::json& c) {
   }
   list("failures by cause", c["causes"]);
   list("instantiated, out of reach", c["out_of_reach_causes"]);
+  return out.str();
+}
+
+std::string format_solve(const nlohmann::json& c) {
+  std::ostringstream out;
+  out.precision(1);
+  const double instantiated = std::max(1.0, c["instantiated"].get<double>());
+  out << std::fixed << "solve of " << c["dir"].get<std::string>() << " (" << c["solve_mode"].get<std::string>()
+      << ", seed " << c["seed"] << "): " << c["total"] << " activities, " << c["instantiated"] << " instantiated, "
+      << c["built"] << " (" << 100 * c["built"].get<double>() / instantiated
+      << "%) with an instance that has everything in reach; a plan found for " << c["planned"] << " ("
+      << 100 * c["planned"].get<double>() / instantiated << "%), solved (executed to Q = 1) " << c["solved"] << " ("
+      << 100 * c["solved"].get<double>() / instantiated << "%); planning median "
+      << c["median_planning_seconds"].get<double>() << " s, slowest " << c["max_planning_seconds"].get<double>()
+      << " s\n";
+  for (const auto& a : c["activities"]) {
+    if (!a.contains("solve")) continue;
+    const nlohmann::json& s = a["solve"];
+    out << "  " << a["name"].get<std::string>() << ": "
+        << (s["solved"].get<bool>() ? "solved, " + std::to_string(s["primitives"].get<size_t>()) + " primitives"
+                                    : "not solved: " + s["reason"].get<std::string>())
+        << "\n";
+  }
+  if (!c["unsolved_causes"].empty()) out << "not solved, by cause:\n";
+  for (const auto& cause : c["unsolved_causes"]) {
+    out << "  " << cause["count"] << "  " << cause["cause"].get<std::string>() << "  (e.g. "
+        << cause["example"].get<std::string>() << ")\n";
+  }
   return out.str();
 }
 

@@ -10,14 +10,18 @@
 // For every parsed activity it also judges which ground goal literals some
 // sequence of primitives and transition rules could make hold (the planner's
 // relaxed reachability, planner/reachability.hpp), totals them and groups
-// those none can by predicate, and names future objects no rule makes.
+// those none can by predicate, and names future objects no rule makes. With
+// CoverageOptions::solve, it plans and executes each (`chore activity solve`).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
+
+#include "primitives/primitive_types.hpp"
 
 namespace chore {
 
@@ -35,10 +39,16 @@ struct CoverageOptions {
   bool goals_only = false;
   // A PNG of every instantiated activity's head camera and top-down view ("": none).
   std::string sheet;
+  // Then plan and execute each in this mode (app/activity_solve.hpp): `chore
+  // activity solve`.
+  std::optional<ExecutionMode> solve;
 };
 
+// `options.dir` is a folder, or one .bddl file.
 nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& log);
 std::string format_coverage(const nlohmann::json& coverage);
+// activity_coverage's report with `solve`, as `chore activity solve` prints it.
+std::string format_solve(const nlohmann::json& coverage);
 
 // An error message with its location, synsets, names with a '.' or '/', and
 // numbers blanked, so that failures of one cause read alike:

@@ -89,14 +89,15 @@ struct CommandLineParser::Impl {
   // What the options write to, with the defaults each parse starts from.
   struct Values {
     CommandLine c;
-    std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119";
+    std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119",
+                              solve_mode = "symbolic";
     std::vector<std::string> reproduce_seeds = {"0", "1", "2"}, reproduce_seeds_for, compare_methods;
     int64_t train_steps = 0;
     std::string model_cache = default_model_cache_dir();
   } values;
   CLI::App app{"chore: BEHAVIOR-style household activities as fast RL environments"};
-  CLI::App *bench_cmd, *check_cmd, *sample_cmd, *coverage_cmd, *scene_list_cmd, *scene_build_cmd, *expert_cmd,
-      *eval_cmd, *video_cmd, *observe_cmd, *plot_cmd, *train_cmd, *reproduce_cmd;
+  CLI::App *bench_cmd, *check_cmd, *sample_cmd, *coverage_cmd, *solve_cmd, *scene_list_cmd, *scene_build_cmd,
+      *expert_cmd, *eval_cmd, *video_cmd, *observe_cmd, *plot_cmd, *train_cmd, *reproduce_cmd;
   CLI::Option* train_steps_option;
 
   Impl();
@@ -169,6 +170,22 @@ CommandLineParser::Impl::Impl() {
   coverage_cmd->add_option("--sheet", c.coverage.sheet,
                            "Contact sheet PNG: head camera and top-down view of every instantiated activity");
   coverage_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too)");
+  solve_cmd = activity_cmd->add_subcommand(
+      "solve",
+      "Plan each activity over the primitives' symbolic models and execute the plan: solved when it ends at Q = 1");
+  solve_cmd->add_option("path", c.coverage.dir, "A .bddl file, or a folder of them (searched recursively)")
+      ->required()
+      ->check(CLI::ExistingPath);
+  solve_cmd->add_option("--mode", values.solve_mode, "Primitive execution of the plans: symbolic or physical")
+      ->check(CLI::IsMember({"physical", "symbolic"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--seed", c.coverage.seed, "Seed of each instance")
+      ->check(seed_number())
+      ->capture_default_str();
+  solve_cmd->add_option("--threads", c.coverage.threads, "Files at once")
+      ->check(integer_in(1, 64))
+      ->capture_default_str();
+  solve_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too, with its plan)");
   CLI::App* scene_cmd = app.add_subcommand("scene", "BEHAVIOR-1K's scenes as analogs generated from their inventories");
   scene_cmd->require_subcommand(1);
   scene_list_cmd = scene_cmd->add_subcommand("list", "The scenes of the inventories: rooms and objects");
@@ -373,6 +390,10 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
   try {
     if (*check_cmd) c.command = Command::activity_check;
     if (*coverage_cmd) c.command = Command::activity_coverage;
+    if (*solve_cmd) {
+      c.command = Command::activity_solve;
+      c.coverage.solve = parse_execution_mode(values.solve_mode);
+    }
     if (*scene_list_cmd) c.command = Command::scene_list;
     if (*scene_build_cmd) {
       c.command = Command::scene_build;

@@ -29,6 +29,7 @@ enum class Command {
   activity_check,
   activity_sample,
   activity_coverage,
+  activity_solve,
   scene_list,
   scene_build,
   expert,

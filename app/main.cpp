@@ -138,6 +138,11 @@ int main(int argc, char** argv) {
         std::cout << (c.json ? chore::json_text(results, 2) + "\n" : chore::format_coverage(results));
         break;
       }
+      case chore::Command::activity_solve: {
+        const nlohmann::json results = chore::activity_coverage(c.coverage, std::cerr);
+        std::cout << (c.json ? chore::json_text(results, 2) + "\n" : chore::format_solve(results));
+        break;
+      }
       case chore::Command::scene_list:
         chore::list_scenes(std::cout);
         break;

@@ -39,9 +39,15 @@ std::string text(const Literal& l) {
 
 }  // namespace
 
+GroundSteps ground_steps(const SymbolicProblem& problem) {
+  GroundSteps out{primitive_steps(problem.objects), 0};
+  out.primitives = out.steps.size();
+  out.steps.insert(out.steps.end(), problem.world_steps.begin(), problem.world_steps.end());
+  return out;
+}
+
 Reachability reachability(const SymbolicProblem& problem) {
-  std::vector<SymbolicStep> steps = primitive_steps(problem.objects);
-  steps.insert(steps.end(), problem.world_steps.begin(), problem.world_steps.end());
+  const std::vector<SymbolicStep> steps = ground_steps(problem).steps;
   Reachability r;
   r.reachable = problem.init;
   std::vector<bool> fired(steps.size(), false);

@@ -28,8 +28,15 @@ struct Reachability {
   bool achievable(const SymbolicProblem& problem, const Literal& literal) const;
 };
 
-// Every primitive on every target (with every object in hand, and every
-// substance, where its model takes them) and every world step.
+// Every primitive's steps on every target (with every object in hand, and
+// every substance, where its model takes them), then every world step.
+struct GroundSteps {
+  std::vector<SymbolicStep> steps;
+  size_t primitives = 0;  // steps[0, primitives) are the primitives', the rest the world's
+};
+GroundSteps ground_steps(const SymbolicProblem& problem);
+
+// Over ground_steps(problem).
 Reachability reachability(const SymbolicProblem& problem);
 
 // Of an activity's ground goal literals (GroundGoal::literals: each distinct

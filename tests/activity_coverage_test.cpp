@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "app/activity_coverage.hpp"
@@ -127,6 +128,43 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
               activity_coverage({.dir = dir.string(), .steps = 3, .goals_only = true}, log);
             }).find("--goals-only builds no world"),
             std::string::npos);
+}
+
+// `chore activity solve`: planned, executed, and solved only at Q = 1; one
+// whose instances leave something out of reach is not built; one without
+// a plan says why.
+TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
+  const auto dir = test::scratch_dir("solve");
+  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/cook_a_steak.bddl"), dir / "cook_a_steak.bddl");
+  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/make_espresso.bddl"), dir / "make_espresso.bddl");
+  // Nothing puts an apple inside the countertop.
+  test::write_file(dir / "never.bddl",
+                   "(define (problem never) (:domain omnigibson) (:objects apple.n.01_1 - apple.n.01 countertop.n.01_1 "
+                   "- countertop.n.01 floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01) (:init (ontop apple.n.01_1 "
+                   "countertop.n.01_1) (inroom countertop.n.01_1 kitchen) (inroom floor.n.01_1 kitchen) (ontop "
+                   "agent.n.01_1 floor.n.01_1)) (:goal (and (inside apple.n.01_1 countertop.n.01_1))))");
+  std::ostringstream log;
+  const nlohmann::json c =
+      activity_coverage({.dir = dir.string(), .threads = 2, .solve = ExecutionMode::symbolic}, log);
+  ASSERT_EQ(c["activities"].size(), 3u);
+  const nlohmann::json& steak = c["activities"][0]["solve"];
+  EXPECT_TRUE(steak["solved"].get<bool>()) << steak.dump(1);
+  EXPECT_EQ(steak["q"], 1.0);
+  const std::vector<std::string> plan = steak["plan"];
+  EXPECT_NE(std::find(plan.begin(), plan.end(), "place_near_heating_element(stove.n.01_1)"), plan.end());
+  EXPECT_NE(std::find(plan.begin(), plan.end(), "toggle_on(stove.n.01_1)"), plan.end());
+  EXPECT_EQ(plan.back(), "[heat(steak.n.01_1)]");
+  const nlohmann::json& espresso = c["activities"][1]["solve"];
+  EXPECT_FALSE(espresso["built"].get<bool>());
+  EXPECT_NE(espresso["reason"].get<std::string>().find("had everything within the robot's reach"), std::string::npos);
+  const nlohmann::json& never = c["activities"][2]["solve"];
+  EXPECT_TRUE(never["built"].get<bool>());
+  EXPECT_FALSE(never["found"].get<bool>());
+  EXPECT_EQ(never["reason"], "no plan: no sequence of the primitives and the world's steps reaches the goal");
+  EXPECT_EQ(c["built"], 2);
+  EXPECT_EQ(c["planned"], 1);
+  EXPECT_EQ(c["solved"], 1);
+  EXPECT_NE(format_solve(c).find("cook_a_steak: solved, 6 primitives"), std::string::npos) << format_solve(c);
 }
 
 }  // namespace

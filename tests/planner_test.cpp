@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "planner/reachability.hpp"
+#include "planner/task_planner.hpp"
 #include "tasks/goal.hpp"
 #include "tasks/vocabulary.hpp"
 
@@ -308,6 +309,59 @@ TEST(Planner, BehaviorHundredInOneKsTerms) {
   const Case c = solve(objects, init, "(and (not (dusty table.n.02_1)) (not (stained table.n.02_1)))", "igibson");
   EXPECT_TRUE(achievable(c, "dusty", {"table.n.02_1"}, true));
   EXPECT_FALSE(achievable(c, "stained", {"table.n.02_1"}, true));  // no water to soak the rag in
+}
+
+std::vector<std::string> names(const Plan& p) {
+  std::vector<std::string> out;
+  for (const PlanStep& s : p.steps) out.push_back(s.primitive ? s.name : "[" + s.name + "]");
+  return out;
+}
+
+// The planner's known answers: the shortest plan where the search finds it
+// directly, a cooking plan through the world's steps, and each way it ends
+// without one.
+TEST(TaskPlanner, PlansThroughThePrimitivesAndTheWorldsSteps) {
+  const Case floor = solve(kKitchen, kKitchenInit, "(and (ontop apple.n.01_1 floor.n.01_1))");
+  const Plan put = plan_task(floor.symbolic, ground_goal(floor.problem));
+  ASSERT_TRUE(put.found) << put.reason;
+  EXPECT_EQ(names(put), (std::vector<std::string>{"navigate(apple.n.01_1)", "pick(apple.n.01_1)",
+                                                  "navigate(floor.n.01_1)", "place(floor.n.01_1)"}));
+  EXPECT_EQ(put.primitives(), 4u);
+
+  // A steak cooks where it lies on a stove that is on: the world's steps
+  // (heated, then heat's cooked) follow the primitives that set it there.
+  const Case cook = solve(
+      "steak.n.01_1 - steak.n.01 stove.n.01_1 - stove.n.01 countertop.n.01_1 - countertop.n.01 "
+      "floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01",
+      "(ontop steak.n.01_1 countertop.n.01_1) (inroom stove.n.01_1 kitchen) (inroom countertop.n.01_1 kitchen) "
+      "(inroom floor.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)",
+      "(and (cooked steak.n.01_1))");
+  const Plan cooked = plan_task(cook.symbolic, ground_goal(cook.problem));
+  ASSERT_TRUE(cooked.found) << cooked.reason;
+  const std::vector<std::string> steps = names(cooked);
+  for (const char* step : {"pick(steak.n.01_1)", "toggle_on(stove.n.01_1)", "[heated(steak.n.01_1)]"})
+    EXPECT_NE(std::find(steps.begin(), steps.end(), step), steps.end()) << step;
+  EXPECT_EQ(steps.back(), "[heat(steak.n.01_1)]");  // what makes it cooked
+  EXPECT_LE(cooked.primitives(), 6u);
+
+  // The goal's options: either apple on the floor (or) is as good.
+  const Case either = solve(kKitchen + std::string(" apple.n.01_2 - apple.n.01"),
+                            kKitchenInit + std::string(" (ontop apple.n.01_2 countertop.n.01_1)"),
+                            "(and (or (inside apple.n.01_1 countertop.n.01_1) (ontop apple.n.01_2 floor.n.01_1)))");
+  const Plan one = plan_task(either.symbolic, ground_goal(either.problem));
+  ASSERT_TRUE(one.found) << one.reason;
+  EXPECT_EQ(names(one).back(), "place(floor.n.01_1)");
+
+  // Nothing puts an apple inside a countertop: no search at all.
+  const Case never = solve(kKitchen, kKitchenInit, "(and (inside apple.n.01_1 countertop.n.01_1))");
+  const Plan none = plan_task(never.symbolic, ground_goal(never.problem));
+  EXPECT_FALSE(none.found);
+  EXPECT_EQ(none.reason, "no sequence of the primitives and the world's steps reaches the goal");
+  EXPECT_LE(none.expansions, 1u);
+  // A budget is an outcome.
+  const Plan cut = plan_task(floor.symbolic, ground_goal(floor.problem), {.max_expansions = 2});
+  EXPECT_FALSE(cut.found);
+  EXPECT_EQ(cut.reason, "no plan within 2 expansions");
 }
 
 }  // namespace

@@ -1,0 +1,51 @@
+// A plan for an activity's goal: which primitives, on which objects, in
+// which order, over the primitives' symbolic models and the world's steps
+// (planner/symbolic_problem.hpp: the same models the primitives' files state
+// beside their execution). Greedy best-first search with deferred
+// evaluation and the additive heuristic (h_add, Bonet and Geffner 2001)
+// over the goal's options (tasks/goal.hpp: or, exists, forall, forn
+// expanded), bounded by a number of expansions: running out of it is an
+// outcome, never a hang.
+//
+//   const Plan p = plan_task(symbolic_problem(problem, kb, rules), ground_goal(problem));
+//   for (const PlanStep& s : p.steps) if (s.primitive) ... s.name ("pick(apple.n.01_1)")
+#pragma once
+
+#include <cstddef>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "planner/symbolic_problem.hpp"
+#include "tasks/goal.hpp"
+
+namespace chore {
+
+struct PlanStep {
+  // A primitive's: its action's name in the primitive action space
+  // ("pick(apple.n.01_1)"); the world's: what it makes happen by itself
+  // once its conditions hold (a transition rule's name, "heated(...)").
+  std::string name;
+  bool primitive = true;
+};
+
+struct Plan {
+  bool found = false;
+  std::vector<PlanStep> steps;
+  size_t option = 0;  // the goal option the plan makes hold
+  size_t expansions = 0;
+  double seconds = 0;
+  std::string reason;         // why there is none
+  size_t primitives() const;  // steps that are primitives
+};
+
+struct PlanOptions {
+  size_t max_expansions = 20000;
+  // The primitive steps it may use, by name (an env's primitive action
+  // space: to_string(PrimitiveAction)); all of them when empty.
+  std::set<std::string> actions;
+};
+
+Plan plan_task(const SymbolicProblem& problem, const GroundGoal& goal, const PlanOptions& options = {});
+
+}  // namespace chore
