@@ -177,25 +177,10 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
     throw Error("env config: unknown action space '" + config_.action_space + "' (known: low_level, primitives)");
   }
   if (activity_ && config_.robot) {
-    // What :init puts inside something, or on what is inside (bacon on a tray
-    // in the fridge), is reached once its container is opened.
-    std::map<std::string, std::pair<std::string, bool>> support;  // instance -> (support, inside)
-    for (const Literal& l : activity_->problem().init) {
-      if (!l.negated && l.args.size() == 2 && (l.predicate == "inside" || l.predicate == "ontop"))
-        support.emplace(l.args[0], std::pair(l.args[1], l.predicate == "inside"));
-    }
-    const auto placed_inside = [&](std::string instance) {
-      for (size_t depth = 0; depth <= support.size(); ++depth) {  // a cycle stops at the count
-        const auto it = support.find(instance);
-        if (it == support.end()) return false;
-        if (it->second.second) return true;
-        instance = it->second.first;
-      }
-      return false;
-    };
+    // (What lies inside a container is checked with the containers push
+    // opens pulled open: first_out_of_reach.)
     for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_, config_.primitive_mode)) {
-      if (primitive_touches(a.type) && !(a.type == PrimitiveType::pick && placed_inside(a.instance)))
-        reach_checks_.push_back(a);
+      if (primitive_touches(a.type)) reach_checks_.push_back(a);
     }
   }
   // A fixed order, whatever the config's: the layout of batched buffers.
