@@ -218,6 +218,9 @@ CommandLineParser::Impl::Impl() {
   expert_cmd->add_option("--threads", c.expert.threads, "Episodes in parallel")
       ->check(integer_in(1, 64))
       ->capture_default_str();
+  expert_cmd->add_flag("--planner", c.expert.planner,
+                       "The task planner's expert (any activity: plans over the primitives' symbolic models) in place "
+                       "of the scripted one (the paper's three activities)");
   expert_cmd->add_flag("--json", c.json, "Print the results as JSON");
 
   eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");

@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "policies/expert.hpp"
+#include "policies/planned_expert.hpp"
 
 namespace chore {
 namespace {
@@ -25,13 +26,18 @@ struct Episode {
   double seconds = 0;
 };
 
-Episode run_episode(Env& env, uint64_t seed) {
+// With `planned`, the planner's expert acts; else the scripted one.
+Episode run_episode(Env& env, uint64_t seed, PlannedExpert* planned) {
   const auto start = std::chrono::steady_clock::now();
   const ScriptedExpert expert(env);
   Episode e;
   env.reset(seed);
+  if (planned) planned->restart();
   for (bool done = false; !done;) {
-    const std::optional<int> a = expert.act(env);
+    const std::optional<int> a =
+        planned ? planned->act(env, e.steps > 0 ? env.last_primitive().status : PrimitiveStatus::success,
+                               env.last_primitive().reason)
+                : expert.act(env);
     if (!a) {
       e.stuck = true;
       break;
@@ -77,8 +83,13 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
   auto worker = [&] {
     try {
       Env env(config, assets);
+      std::optional<PlannedExpert> planned;  // planned once: the plan is :init's, the same every episode
       for (int i = next++; i < options.episodes; i = next++) {
-        episodes[i] = run_episode(env, options.seed + static_cast<uint64_t>(i));
+        if (options.planner && !planned) {
+          env.reset(options.seed + static_cast<uint64_t>(i));
+          planned.emplace(env);
+        }
+        episodes[i] = run_episode(env, options.seed + static_cast<uint64_t>(i), planned ? &*planned : nullptr);
         const std::lock_guard<std::mutex> lock(log_mutex);
         log << "episode " << i << " (seed " << options.seed + i
             << "): " << (episodes[i].success ? "success" : "failure") << ", " << episodes[i].steps << " steps, Q "
@@ -118,6 +129,7 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
   }
   const double n = options.episodes;
   return {{"activity", options.activity},
+          {"expert", options.planner ? "planner" : "scripted"},
           {"mode", to_string(options.mode)},
           {"episodes", options.episodes},
           {"seed", options.seed},

@@ -20,6 +20,9 @@ struct ExpertOptions {
   ExecutionMode mode = ExecutionMode::physical;
   int max_steps = 60;  // primitive steps per episode
   int threads = 1;     // episodes run in parallel; results do not depend on it
+  // The task planner's expert (policies/planned_expert.hpp: any activity)
+  // in place of the scripted one (policies/expert.hpp: the paper's three).
+  bool planner = false;
 };
 
 // Runs the episodes; progress goes to `log`. Throws chore::Error on bad options.

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <optional>
+
+#include "tasks/vocabulary.hpp"
 
 namespace chore {
 namespace {
@@ -68,11 +71,18 @@ SymbolicObject describe(const std::string& name, const std::string& synset, cons
   if (domain == Domain::omnigibson) {
     if (const auto text = kb.text_parameter(synset, "particleRemover", "conditions"))
       o.removes = remover_conditions(*text);
-  } else if (kb.is_cleaning_tool(synset) || kb.has_property(synset, "soakable")) {
-    // BEHAVIOR-100's cleaning tools, as chore's world treats them: dust as
-    // they are, stains soaked with water; what soaks is a remover too (dip).
-    o.properties["particleRemover"];
-    if (kb.is_cleaning_tool(synset)) o.removes = {{kDust, {}}, {kStain, {kWater}}};
+  } else {
+    if (kb.is_cleaning_tool(synset) || kb.has_property(synset, "soakable")) {
+      // BEHAVIOR-100's cleaning tools, as chore's world treats them: dust as
+      // they are, stains soaked with water; what soaks is a remover too (dip).
+      o.properties["particleRemover"];
+      if (kb.is_cleaning_tool(synset)) o.removes = {{kDust, {}}, {kStain, {kWater}}};
+    }
+    // BEHAVIOR-100's knowledge base names no container property; what
+    // BEHAVIOR-1K's calls fillable (a cabinet, an ashcan) holds what is
+    // placed in it in chore's world in either dialect.
+    static const std::shared_ptr<const KnowledgeBase> b1k = dialect_knowledge_base(Domain::omnigibson);
+    if (b1k->contains(synset) && b1k->has_property(synset, "fillable")) o.properties["fillable"];
   }
   return o;
 }

@@ -15,7 +15,15 @@ PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) {
   const Activity* activity = env.activity();
   if (!activity) throw Error("planned expert: the env has no activity");
   const auto kb = dialect_knowledge_base(activity->problem().domain);
-  const SymbolicProblem problem = symbolic_problem(activity->problem(), *kb, behavior_transition_rules());
+  SymbolicProblem problem = symbolic_problem(activity->problem(), *kb, behavior_transition_rules());
+  // What the knowledge base calls openable but the scene's object has no
+  // joint to open (a bin without a lid) is open as it stands.
+  for (int i = 0; i < problem.declared; ++i) {
+    SymbolicObject& o = problem.objects[i];
+    const Binding& b = activity->binding(o.name);
+    if (b.kind == Binding::Kind::object && env.world().scene().objects()[b.index].joints.empty())
+      o.properties.erase("openable");
+  }
   PlanOptions within = options;  // what the env's action space offers
   for (const PrimitiveAction& a : env.primitive_actions()) within.actions.insert(to_string(a));
   plan_ = plan_task(problem, activity->goal(), within);
