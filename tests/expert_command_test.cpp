@@ -46,5 +46,24 @@ TEST(Evaluate, TheExpertPolicyPlaysTheEpisodesOfChoreExpert) {
   EXPECT_GT(eval["success_rate"]["mean"].get<double>(), 0.5);  // the expert mostly succeeds (91%)
 }
 
+// `chore expert --planner`: the planner's expert stores both pumpkins as the
+// scripted one does (its ten primitives, less a navigate where the robot
+// reaches already), episode after episode.
+TEST(Expert, ThePlannersExpertStoresThePumpkins) {
+  std::ostringstream log;
+  ExpertOptions options;
+  options.activity = "store_decoration";
+  options.episodes = 3;
+  options.mode = ExecutionMode::symbolic;
+  options.planner = true;
+  const nlohmann::json r = run_expert(options, log);
+  EXPECT_EQ(r["expert"], "planner");
+  EXPECT_EQ(r["success_rate"], 1.0);
+  for (const nlohmann::json& e : r["per_episode"]) {
+    EXPECT_LE(e["steps"].get<int>(), 10);
+    EXPECT_GE(e["steps"].get<int>(), 8);  // push, two picks, two places, and the navigates to the pumpkins
+  }
+}
+
 }  // namespace
 }  // namespace chore
