@@ -22,7 +22,7 @@ nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mod
     return {{"found", false}, {"built", false}, {"solved", false}, {"planning_seconds", 0.0}, {"reason", e.what()}};
   }
   PlannedExpert expert(env);
-  const Plan& plan = expert.plan();
+  const Plan& plan = expert.initial_plan();
   nlohmann::json steps = nlohmann::json::array();
   for (const PlanStep& s : plan.steps) steps.push_back(s.primitive ? s.name : "[" + s.name + "]");
   nlohmann::json out = {{"found", plan.found},
@@ -47,6 +47,7 @@ nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mod
   out["solved"] = solved;
   out["q"] = info.q;
   out["steps_taken"] = taken;
+  out["replans"] = expert.replans();
   if (!solved) {
     out["reason"] = !expert.failure().empty() ? expert.failure()
                     : info.success            ? "success with Q " + std::to_string(info.q)

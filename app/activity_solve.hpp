@@ -19,7 +19,8 @@ namespace chore {
 // robot's reach, EnvConfig::reachable_instances), "found", "expansions",
 // "planning_seconds", "plan" (its steps; the world's in brackets),
 // "primitives" (the plan's), "solved", "q", "steps_taken" (actions the env
-// ran, retries included), "reason" (why not solved)}. The env is `config`
+// ran, retries included), "replans" (plans from the world after a failure),
+// "reason" (why not solved)}. The env is `config`
 // with the primitive action space in `mode`.
 nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mode);
 

@@ -32,7 +32,7 @@ Episode run_episode(Env& env, uint64_t seed, PlannedExpert* planned) {
   const ScriptedExpert expert(env);
   Episode e;
   env.reset(seed);
-  if (planned) planned->restart();
+  if (planned) planned->restart(env);
   for (bool done = false; !done;) {
     const std::optional<int> a =
         planned ? planned->act(env, e.steps > 0 ? env.last_primitive().status : PrimitiveStatus::success,

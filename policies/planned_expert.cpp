@@ -1,36 +1,107 @@
 #include "policies/planned_expert.hpp"
 
+#include <set>
+
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "planner/reachability.hpp"
 #include "planner/symbolic_problem.hpp"
 #include "primitives/primitive.hpp"
 #include "tasks/activity.hpp"
 #include "tasks/vocabulary.hpp"
 
 namespace chore {
+namespace {
 
-PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) {
+// A literal of the planner's read from the world: the robot's predicates,
+// and the activity's own checks for BDDL's; nullopt where the world cannot
+// say (a room, something the planner made up on the way), which keeps what
+// the planner had.
+std::optional<bool> observe(const EnvState& env, const SymbolicProblem& p, const SymbolicLiteral& l) {
+  const World& w = env.world();
+  const Activity& activity = *env.activity();
+  const auto object = [&](int i) -> int {
+    if (i >= p.declared) return -1;
+    const Binding& b = activity.binding(p.objects[i].name);
+    return b.kind == Binding::Kind::object ? b.index : -1;
+  };
+  if (l.predicate == kHandEmpty) return w.grasped_object() < 0;
+  if (l.predicate == kHeated || l.predicate == kChilled) return false;  // the world's steps derive them
+  if (l.predicate == "inroom") return std::nullopt;                     // never changes
+  const int first = l.args.empty() ? -1 : object(l.args[0]);
+  if (l.predicate == kWithinReach) return first >= 0 ? std::optional<bool>(within_reach(w, first)) : std::nullopt;
+  if (l.predicate == "real") return first >= 0 ? std::optional<bool>(w.real(first)) : std::nullopt;
+  if (l.predicate == "future") return first >= 0 ? std::optional<bool>(!w.real(first)) : std::nullopt;
+  if (l.predicate == "grasped" && l.args.size() == 2) {
+    const int held = object(l.args[1]);
+    return held >= 0 ? std::optional<bool>(w.grasped_object() == held) : std::nullopt;
+  }
+  // BDDL's: on the activity's instances; BEHAVIOR-100's dirt and soaking in
+  // its own words (the planner's covered / saturated with a substance).
+  GroundLiteral bddl{l.predicate, {}, false};
+  for (size_t k = 0; k < l.args.size(); ++k) {
+    const int a = l.args[k];
+    if (a >= p.declared) {
+      const std::string& s = p.objects[a].synset;
+      if (l.args.size() != 2 || k != 1) return std::nullopt;
+      if (l.predicate == "covered" && s == "stain.n.01")
+        bddl.predicate = "stained";
+      else if (l.predicate == "covered" && s == "dust.n.01")
+        bddl.predicate = "dusty";
+      else if (l.predicate == "saturated" && s == "water.n.06")
+        bddl.predicate = "soaked";
+      else
+        return std::nullopt;
+      continue;
+    }
+    bddl.args.push_back(p.objects[a].name);
+  }
+  try {
+    return activity.holds(w, bddl);
+  } catch (const Error&) {
+    return std::nullopt;  // a predicate or argument the checks do not take
+  }
+}
+
+}  // namespace
+
+PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) : options_(options) {
   if (env.config().action_space != "primitives")
     throw Error("planned expert: the env must use the primitive action space");
   const Activity* activity = env.activity();
   if (!activity) throw Error("planned expert: the env has no activity");
+  goal_ = &activity->goal();
   const auto kb = dialect_knowledge_base(activity->problem().domain);
-  SymbolicProblem problem = symbolic_problem(activity->problem(), *kb, behavior_transition_rules());
+  problem_ = symbolic_problem(activity->problem(), *kb, behavior_transition_rules());
   // What the knowledge base calls openable but the scene's object has no
   // joint to open (a bin without a lid) is open as it stands.
-  for (int i = 0; i < problem.declared; ++i) {
-    SymbolicObject& o = problem.objects[i];
+  for (int i = 0; i < problem_.declared; ++i) {
+    SymbolicObject& o = problem_.objects[i];
     const Binding& b = activity->binding(o.name);
     if (b.kind == Binding::Kind::object && env.world().scene().objects()[b.index].joints.empty())
       o.properties.erase("openable");
   }
-  PlanOptions within = options;  // what the env's action space offers
-  for (const PrimitiveAction& a : env.primitive_actions()) within.actions.insert(to_string(a));
-  plan_ = plan_task(problem, activity->goal(), within);
-  if (!plan_.found) {
-    unusable_ = "no plan: " + plan_.reason;
+  for (const PrimitiveAction& a : env.primitive_actions()) options_.actions.insert(to_string(a));
+  std::set<SymbolicLiteral> known(problem_.init.begin(), problem_.init.end());
+  for (const SymbolicStep& s : ground_steps(problem_).steps) {
+    for (const auto* list : {&s.needs, &s.needs_not, &s.adds, &s.deletes}) known.insert(list->begin(), list->end());
+  }
+  literals_.assign(known.begin(), known.end());
+  initial_ = plan_task(problem_, *goal_, options_);
+  if (!initial_.found) {
+    unusable_ = "no plan: " + initial_.reason;
+    plan_ = initial_;
     return;
   }
+  if (!follow(env, initial_)) unusable_ = failure_;
+}
+
+bool PlannedExpert::follow(const EnvState& env, Plan plan) {
+  plan_ = std::move(plan);
+  actions_.clear();
+  steps_.clear();
+  next_ = 0;
+  tries_ = 0;
   const std::vector<PrimitiveAction>& actions = env.primitive_actions();
   for (size_t i = 0; i < plan_.steps.size(); ++i) {
     const PlanStep& s = plan_.steps[i];
@@ -39,41 +110,68 @@ PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) {
       if (to_string(actions[a]) == s.name) index = static_cast<int>(a);
     }
     if (s.primitive && index < 0) {
-      unusable_ = "step " + std::to_string(i + 1) + ", " + s.name + ": not in the env's primitive action space";
-      return;
+      failure_ = "step " + std::to_string(i + 1) + ", " + s.name + ": not in the env's primitive action space";
+      return false;
     }
     actions_.push_back(index);
     if (s.primitive) steps_.push_back(i);
   }
+  return true;
 }
 
-void PlannedExpert::restart() {
-  next_ = 0;
-  tries_ = 0;
+bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
+  if (replans_ >= kReplans) {
+    failure_ = why + " (after " + std::to_string(replans_) + " plans from the world)";
+    return false;
+  }
+  ++replans_;
+  SymbolicProblem now = problem_;
+  now.init.clear();
+  for (const SymbolicLiteral& l : literals_) {
+    const std::optional<bool> holds = observe(env, problem_, l);
+    if (holds ? *holds : problem_.init.count(l) > 0) now.init.insert(l);
+  }
+  Plan plan = plan_task(now, *goal_, options_);
+  if (!plan.found) {
+    failure_ = why + "; from the world as it is, no plan: " + plan.reason;
+    return false;
+  }
+  return follow(env, std::move(plan));
+}
+
+void PlannedExpert::restart(const EnvState& env) {
   failure_.clear();
+  replans_ = 0;
+  if (unusable_.empty()) follow(env, initial_);
 }
 
 std::optional<int> PlannedExpert::act(const EnvState& env, PrimitiveStatus last, const std::string& last_reason) {
   if (!unusable_.empty() || !failure_.empty()) return std::nullopt;
+  if (env.activity()->score(env.world()).success) return std::nullopt;
   if (next_ > 0 && last != PrimitiveStatus::success) {
     const size_t step = steps_[next_ - 1];
     if (tries_ <= kRetries) {
       ++tries_;
       return actions_[step];
     }
-    failure_ = "step " + std::to_string(step + 1) + ", " + plan_.steps[step].name + ": " + to_string(last) + ": " +
-               last_reason;
-    return std::nullopt;
+    if (!replan(env, "step " + std::to_string(step + 1) + ", " + plan_.steps[step].name + ": " + to_string(last) +
+                         ": " + last_reason))
+      return std::nullopt;
   }
   const std::vector<PrimitiveAction>& actions = env.primitive_actions();
-  while (next_ < steps_.size()) {
-    const PrimitiveAction& a = actions[actions_[steps_[next_]]];
-    if (a.type != PrimitiveType::navigate || !within_reach(env.world(), a.object)) break;
-    ++next_;
+  for (;;) {
+    while (next_ < steps_.size()) {
+      const PrimitiveAction& a = actions[actions_[steps_[next_]]];
+      if (a.type != PrimitiveType::navigate || !within_reach(env.world(), a.object)) break;
+      ++next_;
+    }
+    if (next_ < steps_.size()) {
+      tries_ = 1;
+      return actions_[steps_[next_++]];
+    }
+    // The plan is done and the goal does not hold (bounded: replan counts).
+    if (!replan(env, "the plan ran to its end and the goal does not hold")) return std::nullopt;
   }
-  if (next_ >= steps_.size()) return std::nullopt;
-  tries_ = 1;
-  return actions_[steps_[next_++]];
 }
 
 }  // namespace chore

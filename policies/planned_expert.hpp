@@ -1,14 +1,18 @@
 // The task planner as an expert for any activity (planner/task_planner.hpp):
-// it plans once from the activity's :init over the symbolic models of the
+// it plans from the activity's :init over the symbolic models of the
 // primitives the env's action space offers and the world's steps, then gives
-// the plan's primitives in order as actions of the primitive action space. A primitive that fails is tried
-// again (up to kRetries times: the physical ones sample their base poses and
-// grasps anew) before the expert gives up, saying which step failed and why.
-// Open loop: it does not plan again from the world as it finds it.
+// the plan's primitives in order as actions of the primitive action space. A
+// primitive that fails is tried again (up to kRetries times: the physical
+// ones sample their base poses and grasps anew); when one still fails, or the
+// plan is done and the goal does not hold (a wipe left dirt behind), it plans
+// again from the world as it finds it (each literal the planner knows read
+// from the world: the activity's predicates, the hand, the arm's reach), up
+// to kReplans times an episode, then gives up saying which step failed and why.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "env/state.hpp"
 #include "planner/task_planner.hpp"
@@ -18,27 +22,42 @@ namespace chore {
 class PlannedExpert {
  public:
   static constexpr int kRetries = 2;
+  static constexpr int kReplans = 8;
   // `env` must use the primitive action space and have an activity;
   // chore::Error otherwise.
   explicit PlannedExpert(const EnvState& env, const PlanOptions& options = {});
-  const Plan& plan() const { return plan_; }
+  const Plan& initial_plan() const { return initial_; }  // from :init
+  const Plan& plan() const { return plan_; }             // the one it follows now
+  int replans() const { return replans_; }
 
-  // From the plan's first step again (after the env's reset).
-  void restart();
-  // The next action index; nullopt when the plan is done, there is none,
-  // or a step failed for good (failure() says which). `last` is the status of
-  // the primitive the previous action ran (ignored on the first call). A
+  // From :init's plan again (after the env's reset).
+  void restart(const EnvState& env);
+  // The next action index; nullopt when the goal holds, there is no plan,
+  // or it gave up (failure() says why). `last` is the status of the
+  // primitive the previous action ran (ignored on the first call). A
   // navigate to what is within reach already is passed over.
   std::optional<int> act(const EnvState& env, PrimitiveStatus last, const std::string& last_reason);
   const std::string& failure() const { return unusable_.empty() ? failure_ : unusable_; }
 
  private:
+  // Follows `plan` from its first step; false (failure_ set) where one of its
+  // primitives is not in the action space.
+  bool follow(const EnvState& env, Plan plan);
+  // Plans again from the world as it is; false (failure_ set) without a plan.
+  bool replan(const EnvState& env, const std::string& why);
+
+  SymbolicProblem problem_;
+  const GroundGoal* goal_ = nullptr;
+  PlanOptions options_;
+  std::vector<SymbolicLiteral> literals_;  // what the planner knows of: read from the world to plan again
+  Plan initial_;
   Plan plan_;
   std::vector<int> actions_;   // per plan step: its action index, -1 for the world's steps
   std::vector<size_t> steps_;  // the plan's primitive steps, in order
   size_t next_ = 0;            // into steps_
   int tries_ = 0;              // of steps_[next_ - 1]
-  std::string unusable_;       // why there is no plan to follow
+  int replans_ = 0;            // this episode
+  std::string unusable_;       // why there is no plan from :init
   std::string failure_;        // why this episode's stopped short
 };
 

@@ -414,6 +414,9 @@ bool Activity::holds(const World& w, const GroundLiteral& l) const {
     const Pose2 base = w.base_pose();
     value = room >= 0 && scene.room_at(base.x, base.y) == &scene.rooms()[room];
   } else if (p == "onfloor" || ((p == "ontop") && arg(1).kind == Binding::Kind::floor)) {
+    if (arg(1).kind != Binding::Kind::floor) {
+      throw Error("activity '" + name_ + "': " + to_bddl(l) + ": '" + l.args.at(1) + "' is not a floor");
+    }
     value = onfloor(w, object_arg(0), arg(1).index);
   } else if (p == "inroom") {
     const Room* r = nullptr;

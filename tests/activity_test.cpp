@@ -38,6 +38,14 @@ TEST(Activity, BaselinesBindToTheirScenesObjects) {
   EXPECT_EQ(restaurant->objects()[c->object("table.n.02_1")].name, "table_1");
   EXPECT_EQ(restaurant->objects()[c->object("bucket.n.01_1")].name, "bucket_1");
   EXPECT_EQ(c->binding("water.n.06_1").kind, Binding::Kind::substance);
+  // A literal no file can state (the planner asks such things of the world)
+  // is an error naming it, never read out of bounds.
+  World world(apartment);
+  a->configure(world);
+  EXPECT_EQ(test::error_of([&] {
+              a->holds(world, GroundLiteral{"onfloor", {"pumpkin.n.02_1", "cabinet.n.01_1"}});
+            }),
+            "activity 'store_decoration': (onfloor pumpkin.n.02_1 cabinet.n.01_1): 'cabinet.n.01_1' is not a floor");
 }
 
 // Every :init literal holds after instantiation, the goal is not yet met, and
