@@ -39,8 +39,8 @@ struct StateHash {
 
 class Search {
  public:
-  Search(const SymbolicProblem& problem, const GroundGoal& goal, const std::set<std::string>& actions) {
-    const GroundSteps ground = ground_steps(problem);
+  Search(const SymbolicProblem& problem, const GroundSteps& ground, const GroundGoal& goal,
+         const std::set<std::string>& actions) {
     primitives_ = ground.primitives;
     for (const SymbolicLiteral& l : problem.init) init_.push_back(id(l));
     for (size_t i = 0; i < ground.steps.size(); ++i) {
@@ -72,6 +72,7 @@ class Search {
     keep_relevant();
     for (size_t i = 0; i < relevant_.size(); ++i) {
       for (const int n : steps_[relevant_[i]].needs) needed_by_[n].push_back(i);
+      for (const int d : steps_[relevant_[i]].deletes) deleted_by_[d].push_back(i);
     }
   }
 
@@ -205,6 +206,7 @@ class Search {
       if (kept[i]) relevant_.push_back(i);
     }
     needed_by_.assign(literals_.size(), {});
+    deleted_by_.assign(literals_.size(), {});
   }
 
   // h_add to the cheapest option: each literal's cost is that of the
@@ -253,10 +255,7 @@ class Search {
           h += t.id >= 0 ? cost_[t.id] : kInfinity;
         } else if (present) {
           double remove = kInfinity;
-          for (size_t i = 0; i < relevant_.size(); ++i) {
-            const std::vector<int>& d = steps_[relevant_[i]].deletes;
-            if (std::find(d.begin(), d.end(), t.id) != d.end()) remove = std::min(remove, step_cost_[i]);
-          }
+          for (const size_t i : deleted_by_[t.id]) remove = std::min(remove, step_cost_[i]);
           h += remove;
         }
         if (h >= best) break;
@@ -275,6 +274,7 @@ class Search {
   std::vector<std::pair<size_t, std::vector<Target>>> options_;
   std::vector<size_t> relevant_;                // indices into steps_
   std::vector<std::vector<size_t>> needed_by_;  // literal -> indices into relevant_
+  std::vector<std::vector<size_t>> deleted_by_;  // literal -> indices into relevant_
   std::vector<double> cost_, step_cost_, sum_;  // the heuristic's
   std::vector<size_t> remaining_;
 };
@@ -286,8 +286,13 @@ size_t Plan::primitives() const {
 }
 
 Plan plan_task(const SymbolicProblem& problem, const GroundGoal& goal, const PlanOptions& options) {
+  return plan_task(problem, ground_steps(problem), goal, options);
+}
+
+Plan plan_task(const SymbolicProblem& problem, const GroundSteps& steps, const GroundGoal& goal,
+               const PlanOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  Search search(problem, goal, options.actions);
+  Search search(problem, steps, goal, options.actions);
   Plan plan = search.run(options);
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return plan;

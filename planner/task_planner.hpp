@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/reachability.hpp"
 #include "planner/symbolic_problem.hpp"
 #include "tasks/goal.hpp"
 
@@ -47,5 +48,10 @@ struct PlanOptions {
 };
 
 Plan plan_task(const SymbolicProblem& problem, const GroundGoal& goal, const PlanOptions& options = {});
+// The same over `steps`, ground_steps(problem) computed once: they depend on
+// the problem's objects and world steps, not on its :init, so a caller that
+// plans again from another state keeps them.
+Plan plan_task(const SymbolicProblem& problem, const GroundSteps& steps, const GroundGoal& goal,
+               const PlanOptions& options = {});
 
 }  // namespace chore

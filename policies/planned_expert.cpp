@@ -82,12 +82,13 @@ PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) : 
       o.properties.erase("openable");
   }
   for (const PrimitiveAction& a : env.primitive_actions()) options_.actions.insert(to_string(a));
+  steps_of_problem_ = ground_steps(problem_);
   std::set<SymbolicLiteral> known(problem_.init.begin(), problem_.init.end());
-  for (const SymbolicStep& s : ground_steps(problem_).steps) {
+  for (const SymbolicStep& s : steps_of_problem_.steps) {
     for (const auto* list : {&s.needs, &s.needs_not, &s.adds, &s.deletes}) known.insert(list->begin(), list->end());
   }
   literals_.assign(known.begin(), known.end());
-  initial_ = plan_task(problem_, *goal_, options_);
+  initial_ = plan_task(problem_, steps_of_problem_, *goal_, options_);
   if (!initial_.found) {
     unusable_ = "no plan: " + initial_.reason;
     plan_ = initial_;
@@ -131,7 +132,7 @@ bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
     const std::optional<bool> holds = observe(env, problem_, l);
     if (holds ? *holds : problem_.init.count(l) > 0) now.init.insert(l);
   }
-  Plan plan = plan_task(now, *goal_, options_);
+  Plan plan = plan_task(now, steps_of_problem_, *goal_, options_);
   if (!plan.found) {
     failure_ = why + "; from the world as it is, no plan: " + plan.reason;
     return false;

@@ -47,6 +47,7 @@ class PlannedExpert {
   bool replan(const EnvState& env, const std::string& why);
 
   SymbolicProblem problem_;
+  GroundSteps steps_of_problem_;  // its ground steps, the same whatever :init
   const GroundGoal* goal_ = nullptr;
   PlanOptions options_;
   std::vector<SymbolicLiteral> literals_;  // what the planner knows of: read from the world to plan again
