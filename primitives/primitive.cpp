@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 
@@ -406,11 +407,18 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
   return false;
 }
 
+std::string BasePoseTally::to_string() const {
+  const int draws = blocked + elsewhere + unreachable + cut_off;
+  return "of " + std::to_string(draws) + " base poses drawn round it: " + std::to_string(blocked) + " in collision, " +
+         std::to_string(elsewhere) + " in another room, " + std::to_string(unreachable) + " out of the arm's reach, " +
+         std::to_string(cut_off) + " cut off from the robot";
+}
+
 bool ReachSearch::sample(const std::vector<Approach>& around,
                          const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t sample_seed) {
   return sample_base_poses(w, ik, checker, footprint, type, object, around, targets, sample_seed, load,
                            options.base_pose_samples, tally, [&](const Pose2& p) {
-                             if (!drivable.free(p.x, p.y)) return false;
+                             if (!drivable.free(p.x, p.y)) return ++tally.cut_off, false;
                              kept.push_back(p);
                              return true;
                            });
@@ -585,8 +593,11 @@ std::string out_of_reach(const World& w, PrimitiveType type, int object, uint64_
   if (def.out_of_reach) return def.out_of_reach(search);
   const auto targets = [&](const Pose2& p) { return approaches(w, type, object, p); };
   if (search.sample(targets(w.base_pose()), targets, seed)) return "";
-  return "no base pose the robot can drive to brings '" + w.scene().objects().at(object).name + "' within reach to " +
-         to_string(type) + " it";
+  const Aabb box = object_aabb(w, object);
+  char height[64];
+  std::snprintf(height, sizeof height, "%.2f-%.2f m", std::max(0.0, box.lo.z()), std::max(0.0, box.hi.z()));
+  return "no base pose the robot can drive to brings '" + w.scene().objects().at(object).name + "' (at " + height +
+         " above the floor) within reach to " + to_string(type) + " it (" + search.tally.to_string() + ")";
 }
 
 ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& types, const std::vector<int>& objects,

@@ -97,6 +97,8 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
 // returning true, which is then returned.
 struct BasePoseTally {
   int blocked = 0, elsewhere = 0, unreachable = 0;
+  int cut_off = 0;  // within reach, but the base cannot drive there from where it stands (the reach checks)
+  std::string to_string() const;  // "of N draws: B blocked, ..." for a reason
 };
 bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checker, const Footprint& footprint,
                        PrimitiveType purpose, int object, const std::vector<Approach>& around,
