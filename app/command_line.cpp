@@ -219,8 +219,8 @@ CommandLineParser::Impl::Impl() {
       ->check(integer_in(1, 64))
       ->capture_default_str();
   expert_cmd->add_flag("--planner", c.expert.planner,
-                       "The task planner's expert (any activity: plans over the primitives' symbolic models) in place "
-                       "of the scripted one (the paper's three activities)");
+                       "The task planner's expert (plans over the primitives' symbolic models) also where the scripted "
+                       "one knows the goal (the paper's three activities); elsewhere the planner acts without it");
   expert_cmd->add_flag("--json", c.json, "Print the results as JSON");
 
   eval_cmd = app.add_subcommand("eval", "Evaluate a policy over seeds: success rate, Q, failures");

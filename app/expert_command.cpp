@@ -80,12 +80,15 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
   std::mutex log_mutex;
   const auto start = std::chrono::steady_clock::now();
   std::exception_ptr error;  // the first a worker met; it stops the others and is rethrown here
+  // The planner where asked, or where the script does not know the goal.
+  std::atomic<bool> planner{options.planner};
   auto worker = [&] {
     try {
       Env env(config, assets);
+      if (!ScriptedExpert::knows(*env.activity())) planner = true;
       std::optional<PlannedExpert> planned;  // planned once: the plan is :init's, the same every episode
       for (int i = next++; i < options.episodes; i = next++) {
-        if (options.planner && !planned) {
+        if (planner && !planned) {
           env.reset(options.seed + static_cast<uint64_t>(i));
           planned.emplace(env);
         }
@@ -129,7 +132,7 @@ nlohmann::json run_expert(const ExpertOptions& options, std::ostream& log) {
   }
   const double n = options.episodes;
   return {{"activity", options.activity},
-          {"expert", options.planner ? "planner" : "scripted"},
+          {"expert", planner ? "planner" : "scripted"},
           {"mode", to_string(options.mode)},
           {"episodes", options.episodes},
           {"seed", options.seed},

@@ -21,7 +21,9 @@ struct ExpertOptions {
   int max_steps = 60;  // primitive steps per episode
   int threads = 1;     // episodes run in parallel; results do not depend on it
   // The task planner's expert (policies/planned_expert.hpp: any activity)
-  // in place of the scripted one (policies/expert.hpp: the paper's three).
+  // in place of the scripted one (policies/expert.hpp) where the script
+  // knows the goal (the paper's three); where it does not, the planner acts
+  // whatever this says.
   bool planner = false;
 };
 

@@ -1,5 +1,7 @@
 #include "policies/expert.hpp"
 
+#include <algorithm>
+
 #include "base/error.hpp"
 #include "env/env.hpp"
 #include "world/predicates.hpp"
@@ -78,12 +80,44 @@ std::optional<int> ScriptedExpert::act(const EnvState& env) const {
   return std::nullopt;
 }
 
-ExpertPolicy::ExpertPolicy(const VectorEnv& envs) : envs_(envs), expert_(envs.state(0)) {}
+bool ScriptedExpert::knows(const Activity& activity) {
+  const GroundGoal& goal = activity.goal();
+  if (goal.options.empty()) return false;
+  return std::all_of(goal.options.front().begin(), goal.options.front().end(), [&](LiteralId id) {
+    const GroundLiteral& l = goal.literals[id];
+    return l.negated ? l.predicate == "stained" || l.predicate == "dusty"
+                     : l.predicate == "inside" || l.predicate == "ontop";
+  });
+}
+
+ExpertPolicy::ExpertPolicy(const VectorEnv& envs)
+    : envs_(envs),
+      expert_(envs.state(0)),
+      planned_(envs.state(0).activity() && !ScriptedExpert::knows(*envs.state(0).activity())),
+      planners_(envs.num_envs()) {}
+
+void ExpertPolicy::reset(std::span<const int> env_ids) {
+  if (!planned_) return;
+  for (const int id : env_ids) {
+    std::optional<PlannedExpert>& planner = planners_.at(id);
+    if (planner) {
+      planner->restart(envs_.state(id));
+    } else {
+      planner.emplace(envs_.state(id));  // :init's plan, the same every episode
+    }
+  }
+}
 
 void ExpertPolicy::act(const Batch& batch, std::span<float> actions) {
   for (int row = 0; row < batch.size(); ++row) {
-    const EnvState& env = envs_.state(batch.env_ids[row]);
-    std::optional<int> a = expert_.act(env);
+    const int id = batch.env_ids[row];
+    const EnvState& env = envs_.state(id);
+    // (A planner is made at reset; one made here serves a caller that does not reset the policy.)
+    if (planned_ && !planners_.at(id)) planners_[id].emplace(env);
+    const Info& info = batch.infos[row];
+    const PrimitiveStatus last =
+        info.primitive_status > 0 ? static_cast<PrimitiveStatus>(info.primitive_status) : PrimitiveStatus::success;
+    std::optional<int> a = planned_ ? planners_[id]->act(env, last, "") : expert_.act(env);
     for (size_t i = 0; !a && i < env.primitive_actions().size(); ++i) {
       const PrimitiveAction& p = env.primitive_actions()[i];
       if (!unmet_precondition(env.world(), p.type, p.object).empty()) a = static_cast<int>(i);

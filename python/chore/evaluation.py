@@ -43,7 +43,8 @@ def evaluate(policy, activity=None, *, seeds=(0, 0), episodes=10, threads=1, act
     """Evaluates `policy` on `activity` over seeds (A-B, a range, (A, B) or
     one seed), `episodes` per seed, on a vector env of `threads` envs; returns
     the report chore eval --json prints (a dict). The policy is "expert" (the
-    scripted expert), a checkpoint from load_policy (in the env it was trained
+    scripted expert where it knows the goal, the paper's three activities;
+    the task planner's expert on any other activity), a checkpoint from load_policy (in the env it was trained
     in; activity, mode and max_steps override it), or a callable
     policy(obs, info) -> actions for a batch of rows (obs and info as a
     VectorEnv returns them; optional policy.reset(env_ids) when envs start new
