@@ -211,7 +211,22 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
     }
     if (options.solve) {
       r.stage = "solve";
-      r.solve = solve_activity(config, options.seed, *options.solve);
+      // The first seed's result, with its plan; over a range, solved where
+      // every seed's was, and why not the first seed's that was not.
+      nlohmann::json seeds = nlohmann::json::array();
+      for (uint64_t seed = options.seed; seed <= std::max(options.seed, options.last_seed); ++seed) {
+        const nlohmann::json one = solve_activity(config, seed, *options.solve);
+        if (r.solve.is_null()) r.solve = one;
+        if (!one["solved"].get<bool>() && r.solve["solved"].get<bool>()) {
+          r.solve["solved"] = false;
+          r.solve["reason"] = "seed " + std::to_string(seed) + ": " + one.value("reason", std::string());
+        }
+        seeds.push_back({{"seed", seed},
+                         {"solved", one["solved"]},
+                         {"q", one.value("q", 0.0)},
+                         {"reason", one.value("reason", std::string())}});
+      }
+      if (seeds.size() > 1) r.solve["seeds"] = seeds;
       r.stage = "instantiated";
     }
   } catch (const Error& e) {
@@ -444,6 +459,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   };
   return {{"dir", options.dir},
           {"seed", options.seed},
+          {"last_seed", std::max(options.seed, options.last_seed)},
           {"goals_only", options.goals_only},
           {"activities", activities},
           {"total", files.size()},
@@ -527,8 +543,8 @@ std::string format_solve(const nlohmann::json& c) {
   out.precision(1);
   const double instantiated = std::max(1.0, c["instantiated"].get<double>());
   out << std::fixed << "solve of " << c["dir"].get<std::string>() << " (" << c["solve_mode"].get<std::string>()
-      << ", seed " << c["seed"] << "): " << c["total"] << " activities, " << c["instantiated"] << " instantiated, "
-      << c["built"] << " (" << 100 * c["built"].get<double>() / instantiated
+      << ", seeds " << c["seed"] << "-" << c["last_seed"] << "): " << c["total"] << " activities, " << c["instantiated"]
+      << " instantiated, " << c["built"] << " (" << 100 * c["built"].get<double>() / instantiated
       << "%) with an instance that has everything in reach; a plan found for " << c["planned"] << " ("
       << 100 * c["planned"].get<double>() / instantiated << "%), solved (executed to Q = 1) " << c["solved"] << " ("
       << 100 * c["solved"].get<double>() / instantiated << "%); planning median "
@@ -537,7 +553,14 @@ std::string format_solve(const nlohmann::json& c) {
   for (const auto& a : c["activities"]) {
     if (!a.contains("solve")) continue;
     const nlohmann::json& s = a["solve"];
-    out << "  " << a["name"].get<std::string>() << ": "
+    std::string seeds;  // "k of n seeds; " over a range
+    if (s.contains("seeds")) {
+      const auto& all = s["seeds"];
+      const auto k =
+          std::count_if(all.begin(), all.end(), [](const auto& x) { return x["solved"].template get<bool>(); });
+      seeds = std::to_string(k) + " of " + std::to_string(all.size()) + " seeds; ";
+    }
+    out << "  " << a["name"].get<std::string>() << ": " << seeds
         << (s["solved"].get<bool>() ? "solved, " + std::to_string(s["primitives"].get<size_t>()) + " primitives"
                                     : "not solved: " + s["reason"].get<std::string>())
         << "\n";

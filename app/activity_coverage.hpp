@@ -40,8 +40,10 @@ struct CoverageOptions {
   // A PNG of every instantiated activity's head camera and top-down view ("": none).
   std::string sheet;
   // Then plan and execute each in this mode (app/activity_solve.hpp): `chore
-  // activity solve`.
+  // activity solve`, from the instances of seeds `seed` to `last_seed`
+  // (solved: at every one of them).
   std::optional<ExecutionMode> solve;
+  uint64_t last_seed = 0;
 };
 
 // `options.dir` is a folder, or one .bddl file.

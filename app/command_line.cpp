@@ -18,6 +18,8 @@ namespace {
 
 // A table's training seeds at most (each is a run of every cell).
 constexpr uint64_t kMaxTableSeeds = 1000;
+// Instances an activity is solved from at most (each a plan executed).
+constexpr uint64_t kMaxSolveSeeds = 1000;
 
 // "A-B" (or "A") as a seed range, each seed in [0, kMaxSeed].
 std::pair<uint64_t, uint64_t> seed_range(const std::string& text, const std::string& option) {
@@ -90,7 +92,7 @@ struct CommandLineParser::Impl {
   struct Values {
     CommandLine c;
     std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119",
-                              solve_mode = "symbolic";
+                              solve_mode = "symbolic", solve_seeds = "0";
     std::vector<std::string> reproduce_seeds = {"0", "1", "2"}, reproduce_seeds_for, compare_methods;
     int64_t train_steps = 0;
     std::string model_cache = default_model_cache_dir();
@@ -179,8 +181,7 @@ CommandLineParser::Impl::Impl() {
   solve_cmd->add_option("--mode", values.solve_mode, "Primitive execution of the plans: symbolic or physical")
       ->check(CLI::IsMember({"physical", "symbolic"}))
       ->capture_default_str();
-  solve_cmd->add_option("--seed", c.coverage.seed, "Seed of each instance")
-      ->check(seed_number())
+  solve_cmd->add_option("--seeds", values.solve_seeds, "Seeds A-B (or A) of the instances: solved at every one")
       ->capture_default_str();
   solve_cmd->add_option("--threads", c.coverage.threads, "Files at once")
       ->check(integer_in(1, 64))
@@ -396,6 +397,11 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
     if (*solve_cmd) {
       c.command = Command::activity_solve;
       c.coverage.solve = parse_execution_mode(values.solve_mode);
+      const auto [first, last] = seed_range(values.solve_seeds, "--seeds");
+      if (last - first >= kMaxSolveSeeds) {
+        throw Error("--seeds: at most " + std::to_string(kMaxSolveSeeds) + " seeds per activity");
+      }
+      c.coverage.seed = first, c.coverage.last_seed = last;
     }
     if (*scene_list_cmd) c.command = Command::scene_list;
     if (*scene_build_cmd) {

@@ -165,6 +165,25 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_EQ(c["planned"], 1);
   EXPECT_EQ(c["solved"], 1);
   EXPECT_NE(format_solve(c).find("cook_a_steak: solved, 6 primitives"), std::string::npos) << format_solve(c);
+
+  // From three seeds' instances (--seeds 0-2): solved from the first two; at
+  // seed 2's the robot is boxed in on its way to the stove, so the activity
+  // is not solved, saying where.
+  std::filesystem::remove(dir / "make_espresso.bddl");
+  std::filesystem::remove(dir / "never.bddl");
+  const nlohmann::json range =
+      activity_coverage({.dir = dir.string(), .seed = 0, .solve = ExecutionMode::symbolic, .last_seed = 2}, log);
+  const nlohmann::json& steaks = range["activities"][0]["solve"];
+  ASSERT_EQ(steaks["seeds"].size(), 3u);
+  for (int s = 0; s < 3; ++s) {
+    EXPECT_EQ(steaks["seeds"][s]["seed"], s);
+    EXPECT_EQ(steaks["seeds"][s]["solved"].get<bool>(), s < 2) << steaks["seeds"][s].dump();
+  }
+  EXPECT_EQ(range["solved"], 0);
+  EXPECT_EQ(steaks["reason"].get<std::string>().rfind("seed 2: step 1, navigate(stove.n.01_1)", 0), 0u)
+      << steaks["reason"];
+  EXPECT_NE(format_solve(range).find("cook_a_steak: 2 of 3 seeds; not solved: seed 2"), std::string::npos)
+      << format_solve(range);
 }
 
 }  // namespace

@@ -78,6 +78,11 @@ out_png="$(mktemp -d)/sample.png"
 expect 0 "picture: $out_png" -- "$chore" activity sample store_decoration --seed 1 --out "$out_png"
 if [[ ! -s "$out_png" ]]; then echo "FAIL: $out_png was not written"; failures=$((failures + 1)); fi
 
+# activity solve: bad seeds exit 2; the steak cooked from seed 0's instance.
+expect 2 "--seeds '3-1': B is below A" -- "$chore" activity solve "$data/bddl/behavior-1k/cook_a_steak.bddl" --seeds 3-1
+expect 2 "at most 1000 seeds" -- "$chore" activity solve "$data/bddl/behavior-1k/cook_a_steak.bddl" --seeds 0-5000
+expect 0 "cook_a_steak: solved, 6 primitives" -- "$chore" activity solve "$data/bddl/behavior-1k/cook_a_steak.bddl" --seeds 0
+
 # The scripted expert: bad options exit 2; two symbolic episodes run and report.
 expect 2 "mode" -- "$chore" expert --activity store_decoration --mode teleport
 expect 2 "episodes" -- "$chore" expert --activity store_decoration --episodes 0
