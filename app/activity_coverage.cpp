@@ -36,7 +36,7 @@ namespace chore {
 std::string failure_cause(const std::string& error) {
   // std::regex recurses along a match: a bound first (an error may quote a
   // 40,000-character token), well past what a cause needs to be told apart.
-  std::string cause = error.substr(0, kMaxCauseChars);
+  std::string cause = error.substr(0, kMaxCauseReadChars);
   // A leading location ("path/file.bddl:12:3: ", "path/file.json: ") and the
   // activity and scene an Activity error starts with.
   cause = std::regex_replace(cause, std::regex(R"(^\S+\.(bddl|json):(\d+:\d+:)?\s*)"), "");
@@ -47,7 +47,7 @@ std::string failure_cause(const std::string& error) {
   cause = std::regex_replace(cause, std::regex(R"('[^'\s]*[./][^'\s]*')"), "'_'");
   cause = std::regex_replace(cause, std::regex(R"('[a-z][a-z_]*_\d+')"), "'_'");  // scene objects: 'sink_1'
   cause = std::regex_replace(cause, std::regex(R"(\b\d+(\.\d+)?\b)"), "N");
-  return cause;
+  return cause.substr(0, kMaxCauseChars);
 }
 
 namespace {

@@ -54,9 +54,12 @@ std::string format_solve(const nlohmann::json& coverage);
 
 // An error message with its location, synsets, names with a '.' or '/', and
 // numbers blanked, so that failures of one cause read alike:
-// "f.bddl:3:4: unknown synset 'x.n.01'" -> "unknown synset '_'". Only the
-// message's first kMaxCauseChars characters are read.
+// "f.bddl:3:4: unknown synset 'x.n.01'" -> "unknown synset '_'". The cause
+// is the blanked message's first kMaxCauseChars characters (blanked first:
+// names of other lengths would end it elsewhere); only the message's first
+// kMaxCauseReadChars are read.
 inline constexpr size_t kMaxCauseChars = 300;
+inline constexpr size_t kMaxCauseReadChars = 4 * kMaxCauseChars;
 std::string failure_cause(const std::string& error);
 
 }  // namespace chore

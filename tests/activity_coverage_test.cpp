@@ -27,6 +27,10 @@ TEST(ActivityCoverage, FailuresOfOneCauseReadAlike) {
             "pick(_): no base pose the robot can drive to brings '_' within reach");
   EXPECT_EQ(failure_cause("unsupported predicate 'insource' in (insource sink.n.01_1 water.n.06_1)"),
             "unsupported predicate 'insource' in (insource _ _)");
+  // Past kMaxCauseChars, names of other lengths still give one cause.
+  const std::string tail = std::string(kMaxCauseChars, 'x');
+  EXPECT_EQ(failure_cause("pick(apple.n.01_1): far; " + tail), failure_cause("pick(watermelon.n.02_12): far; " + tail));
+  EXPECT_EQ(failure_cause("pick(apple.n.01_1): far; " + tail).size(), kMaxCauseChars);
 }
 
 TEST(ActivityCoverage, EachFileReachesItsStageAndCausesAreCounted) {
