@@ -512,7 +512,8 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
     if (!s) continue;
     p.init.insert(*s);
     if (s->predicate == "filled") p.init.insert({"contains", s->args});
-    if (s->predicate == "insource") p.init.insert({"contains", s->args});
+    // (insource is what the object is, not what it holds: a source contains
+    // its substance once its conditions hold, by the world's step, sources().)
     if (s->predicate == "grasped") holding = true;
   }
   if (!holding) p.init.insert(literal(kHandEmpty, {}));

@@ -57,7 +57,9 @@ bool act(Executor& e) {
     Rng rng(m.next_seed());
     for (const auto& [name, level] : from.contents) sample_covered(w, target, name, true, rng);
   }
-  from.contents.clear();
+  // A source that is on (a sprayer, a watering can) gives on: it keeps what it gives.
+  const ObjectAbilities& from_ab = *w.states().abilities(held);
+  if (!(from.toggled && !from_ab.source.empty())) from.contents.clear();
   m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
   if (!e.tuck_where_possible()) return false;
   if (!contains(w, target, substance) && !covered(w, target, substance)) {

@@ -190,5 +190,24 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
       << format_solve(range);
 }
 
+// A source gives its substance once it is on (insource is what the object
+// is, not what it holds): the plan turns the watering can on before it pours,
+// the can gives on over three plants, and the hand that holds it by its top
+// does not turn it off.
+TEST(ActivitySolve, AWateringCanIsTurnedOnAndWatersEveryPlant) {
+  const auto dir = test::scratch_dir("solve_watering");
+  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/watering_indoor_flowers.bddl"),
+                             dir / "watering_indoor_flowers.bddl");
+  std::ostringstream log;
+  const nlohmann::json c = activity_coverage({.dir = dir.string(), .solve = ExecutionMode::symbolic}, log);
+  const nlohmann::json& s = c["activities"][0]["solve"];
+  ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
+  const std::vector<std::string> plan = s["plan"];
+  const auto on = std::find(plan.begin(), plan.end(), "toggle_on(watering_can.n.01_1)");
+  ASSERT_NE(on, plan.end());
+  EXPECT_EQ(std::count_if(on, plan.end(), [](const std::string& step) { return step.rfind("pour(pot_plant", 0) == 0; }),
+            3);
+}
+
 }  // namespace
 }  // namespace chore

@@ -146,11 +146,12 @@ void update_states_after_env_step(World& w, double dt) {
   std::map<int, ObjectState>& state_of = w.states().all_states();
   const std::map<int, ObjectAbilities>& abilities_of = w.states().all_abilities();
   if (state_of.empty()) return;
-  // Toggling: the hand held at the toggle point (top centre) for a few steps.
+  // Toggling: the hand held at the toggle point (top centre) for a few steps;
+  // not the hand that holds the object there (a sprayer grasped from above).
   if (const Robot* r = w.robot()) {
     const double* hand = w.data()->site_xpos + 3 * r->gripper_site;
     for (auto& [object, s] : state_of) {
-      if (!abilities_of.at(object).toggleable) continue;
+      if (!abilities_of.at(object).toggleable || object == w.grasped_object()) continue;
       const Eigen::Vector3d point = toggle_point(w, object);
       const bool near = (point - Eigen::Vector3d(hand[0], hand[1], hand[2])).norm() < ObjectStates::kToggleDistance;
       s.toggle_steps = near ? s.toggle_steps + 1 : 0;
