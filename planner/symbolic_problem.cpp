@@ -18,46 +18,6 @@ constexpr const char* kStain = "stain.n.01";
 constexpr const char* kDust = "dust.n.01";
 constexpr const char* kWater = "water.n.06";
 
-// One substance's condition list of particleRemover ([["saturated",
-// solvent], ...], read as alternatives: oil lists eleven, any one of them
-// cleans it), or nothing where it is null (rust: the remover cannot).
-std::optional<std::vector<std::string>> solvents_of(const nlohmann::json& conditions) {
-  if (!conditions.is_array()) return std::nullopt;
-  std::vector<std::string> solvents;
-  for (const nlohmann::json& c : conditions) {
-    if (c.is_array() && c.size() == 2 && c[0] == "saturated" && c[1].is_string()) {
-      solvents.push_back(c[1].get<std::string>());
-    }
-  }
-  return solvents;
-}
-
-// particleRemover's conditions (a JSON text parameter): each substance it
-// names and removes, with its solvents.
-std::map<std::string, std::vector<std::string>> remover_conditions(const std::string& text) {
-  std::map<std::string, std::vector<std::string>> out;
-  const nlohmann::json conditions = nlohmann::json::parse(text, nullptr, false);
-  if (!conditions.is_object()) return out;
-  for (const auto& item : conditions.items()) {
-    if (auto solvents = solvents_of(item.value())) out[item.key()] = std::move(*solvents);
-  }
-  return out;
-}
-
-// What a remover does with a substance its conditions do not name:
-// OmniGibson's default_visual_conditions, default_fluid_conditions or
-// default_non_fluid_conditions by the substance's kind (a list: removed, with
-// those solvents; null: not removed).
-std::optional<std::vector<std::string>> remover_default(const KnowledgeBase& kb, const std::string& remover,
-                                                        const SymbolicObject& substance) {
-  const char* which = substance.has("liquid")            ? "default_fluid_conditions"
-                      : substance.has("visualSubstance") ? "default_visual_conditions"
-                                                         : "default_non_fluid_conditions";
-  const auto text = kb.text_parameter(remover, "particleRemover", which);
-  if (!text) return std::nullopt;
-  return solvents_of(nlohmann::json::parse(*text, nullptr, false));
-}
-
 SymbolicObject describe(const std::string& name, const std::string& synset, const KnowledgeBase& kb, Domain domain) {
   SymbolicObject o{name, synset};
   if (synset == "agent.n.01") o.kind = Kind::agent;
@@ -68,10 +28,7 @@ SymbolicObject describe(const std::string& name, const std::string& synset, cons
   for (const auto& [property, parameters] : kb.properties(synset)) o.properties[property] = parameters;
   if (o.kind == Kind::object && kb.is_substance(synset)) o.kind = Kind::substance;
   if (kb.is_liquid(synset)) o.properties["liquid"];
-  if (domain == Domain::omnigibson) {
-    if (const auto text = kb.text_parameter(synset, "particleRemover", "conditions"))
-      o.removes = remover_conditions(*text);
-  } else {
+  if (domain == Domain::igibson) {
     if (kb.is_cleaning_tool(synset) || kb.has_property(synset, "soakable")) {
       // BEHAVIOR-100's cleaning tools, as chore's world treats them: dust as
       // they are, stains soaked with water; what soaks is a remover too (dip).
@@ -485,17 +442,15 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
     }
   }
   if (agent_index(p.objects) < 0) p.objects.push_back(describe("agent.n.01", "agent.n.01", kb, problem.domain));
-  // The substances of the activity a remover's conditions do not name, by
-  // its defaults (sand is visual: a towel takes it off as it is).
+  // What each remover does with each substance of the activity
+  // (KnowledgeBase::remover_solvents: its conditions, else its defaults;
+  // sand is visual: a towel takes it off as it is).
   if (problem.domain == Domain::omnigibson) {
     for (SymbolicObject& remover : p.objects) {
-      const auto text = kb.text_parameter(remover.synset, "particleRemover", "conditions");
-      if (!text) continue;
-      const nlohmann::json named = nlohmann::json::parse(*text, nullptr, false);
+      if (!remover.has("particleRemover")) continue;
       for (const SymbolicObject& substance : p.objects) {
-        // Named with null: not removed.
-        if (substance.kind != Kind::substance || (named.is_object() && named.contains(substance.synset))) continue;
-        if (auto solvents = remover_default(kb, remover.synset, substance))
+        if (substance.kind != Kind::substance) continue;
+        if (auto solvents = kb.remover_solvents(remover.synset, substance.synset))
           remover.removes[substance.synset] = std::move(*solvents);
       }
     }

@@ -326,7 +326,8 @@ bool Motion::follow(const std::function<IkTarget(double)>& target_at, double len
     const double dt = kLineSpacing / speed;
     const int held = world_.carried_object();
     const ObjectAbilities* load = held >= 0 ? world_.states().abilities(held) : nullptr;
-    const bool rules_along = world_.state_updates() && load && (load->soakable || load->cleaning_tool);
+    const bool rules_along =
+        world_.state_updates() && load && (load->soakable || load->cleaning_tool || !load->removes.empty());
     std::optional<ArmCollisionChecker> checker;
     if (until_contact || rules_along) checker.emplace(world_);
     std::vector<mjContact> contacts;

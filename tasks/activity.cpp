@@ -284,12 +284,26 @@ void Activity::configure(World& world) const {
     if (!l.negated) holder(l);
   }
   for (const GroundLiteral& l : goal_.literals) holder(l);
+  // The activity's substances, for what BEHAVIOR-1K's removers do with them.
+  std::set<std::string> substances;
+  for (const ObjectDecl& d : problem_.objects) {
+    if (kb_of(d.type).contains(d.type) && kb_of(d.type).is_substance(d.type)) substances.insert(d.type);
+  }
   for (const auto& [instance, b] : bindings_) {
     const int index = b.state_object();
     if (index < 0) continue;
     const std::string& s = scene.objects()[index].synset;
-    ObjectAbilities ab = synset_abilities(kb_of(s), s);
+    const KnowledgeBase& kb = kb_of(s);
+    ObjectAbilities ab = synset_abilities(kb, s);
     ab.holds_liquid = ab.holds_liquid || liquid_holders.count(index);
+    if (problem_.domain == Domain::omnigibson && kb.contains(s) && kb.has_property(s, "particleRemover")) {
+      for (const std::string& substance : substances) {
+        const auto solvents = kb.remover_solvents(s, substance);
+        if (!solvents) continue;
+        std::vector<std::string>& lemmas = ab.removes[synset_lemma(substance)];
+        for (const std::string& solvent : *solvents) lemmas.push_back(synset_lemma(solvent));
+      }
+    }
     world.states().configure(index, ab);
   }
   // Stains need a soaked cleaning tool, dust any (iGibson's rules).

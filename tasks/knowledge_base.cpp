@@ -361,6 +361,35 @@ bool KnowledgeBase::is_openable(const std::string& synset) const {
   return has_any(synset, {"openable"});
 }
 
+std::optional<std::vector<std::string>> KnowledgeBase::remover_solvents(const std::string& remover,
+                                                                        const std::string& substance) const {
+  // A condition list ([["saturated", solvent], ...], read as alternatives:
+  // oil lists eleven, any one of them cleans it), or nothing where it is null
+  // (rust: the remover cannot).
+  const auto solvents_of = [](const nlohmann::json& conditions) -> std::optional<std::vector<std::string>> {
+    if (!conditions.is_array()) return std::nullopt;
+    std::vector<std::string> solvents;
+    for (const nlohmann::json& c : conditions) {
+      if (c.is_array() && c.size() == 2 && c[0] == "saturated" && c[1].is_string()) {
+        solvents.push_back(c[1].get<std::string>());
+      }
+    }
+    return solvents;
+  };
+  if (!contains(remover)) return std::nullopt;
+  if (const auto text = text_parameter(remover, "particleRemover", "conditions")) {
+    const nlohmann::json named = nlohmann::json::parse(*text, nullptr, false);
+    if (named.is_object() && named.contains(substance)) return solvents_of(named[substance]);
+  }
+  const char* which = is_liquid(substance) ? "default_fluid_conditions"
+                      : contains(substance) && has_property(substance, "visualSubstance")
+                          ? "default_visual_conditions"
+                          : "default_non_fluid_conditions";
+  const auto text = text_parameter(remover, "particleRemover", which);
+  if (!text) return std::nullopt;
+  return solvents_of(nlohmann::json::parse(*text, nullptr, false));
+}
+
 bool KnowledgeBase::is_source_of(const std::string& synset, const std::string& substance) const {
   if (!contains(synset)) return false;
   // A source gives its substance out (a sink's water), an applier holds it to

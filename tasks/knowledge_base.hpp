@@ -98,6 +98,17 @@ class KnowledgeBase {
   // or particleApplier with the substance among its conditions' systems, or BEHAVIOR-100's
   // waterSource for water. False for synsets it does not know.
   bool is_source_of(const std::string& synset, const std::string& substance) const;
+  // What a particle remover (BEHAVIOR-1K's particleRemover: a rag, a sponge)
+  // does with `substance` (synsets): nullopt where it cannot remove it (its
+  // conditions name it with null, or name nothing for its kind); else the
+  // solvents it must be saturated with one of (none: as it is). OmniGibson's
+  // rule: the substance's own conditions, else the remover's default for the
+  // substance's kind (default_fluid_conditions for a liquid,
+  // default_visual_conditions for a visual substance, else
+  // default_non_fluid_conditions). The planner's wipe and the world's
+  // cleaning both read it.
+  std::optional<std::vector<std::string>> remover_solvents(const std::string& remover,
+                                                           const std::string& substance) const;
 
  private:
   struct Synset {

@@ -209,5 +209,25 @@ TEST(ActivitySolve, AWateringCanIsTurnedOnAndWatersEveryPlant) {
             3);
 }
 
+// BEHAVIOR-1K's removers clean as the knowledge base says, in the plan and
+// in the world alike (KnowledgeBase::remover_solvents): ink comes off a doll
+// under a sponge saturated with rubbing alcohol from the atomizer turned on,
+// and the wipe leaves the doll clean.
+TEST(ActivitySolve, ASpongeSaturatedWithRubbingAlcoholWipesTheMarkerOff) {
+  const auto dir = test::scratch_dir("solve_marker");
+  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/clean_marker_off_a_doll.bddl"),
+                             dir / "clean_marker_off_a_doll.bddl");
+  std::ostringstream log;
+  const nlohmann::json c = activity_coverage({.dir = dir.string(), .solve = ExecutionMode::symbolic}, log);
+  const nlohmann::json& s = c["activities"][0]["solve"];
+  ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
+  const std::vector<std::string> plan = s["plan"];
+  const auto dip =
+      std::find_if(plan.begin(), plan.end(), [](const std::string& step) { return step.rfind("dip(", 0) == 0; });
+  const auto wipe = std::find(plan.begin(), plan.end(), "wipe(doll.n.01_1)");
+  ASSERT_NE(dip, plan.end());
+  EXPECT_LT(dip, wipe);
+}
+
 }  // namespace
 }  // namespace chore

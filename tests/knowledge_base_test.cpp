@@ -159,6 +159,26 @@ TEST(KnowledgeBase, ParametersAreRealNumbers) {
   EXPECT_DOUBLE_EQ(kb.parameter("pome.n.01", "cookable", "cook_temperature").value(), 100.0);
 }
 
+// OmniGibson's particleRemover rule, from BEHAVIOR-1K's data: a sponge takes
+// ink off saturated with any of eleven solvents, mud saturated with water,
+// dust as it is; emery paper takes incisions off as it is and cannot take
+// dust (null); a rag cannot take rust (null); sand, which no condition names,
+// by the rag's default for visual substances (as it is).
+TEST(KnowledgeBase, ARemoverTakesASubstanceOffAsItsConditionsSay) {
+  const auto b1k = dialect_knowledge_base(Domain::omnigibson);
+  const auto ink = b1k->remover_solvents("sponge.n.01", "ink.n.01");
+  ASSERT_TRUE(ink.has_value());
+  EXPECT_EQ(ink->size(), 11u);
+  EXPECT_NE(std::find(ink->begin(), ink->end(), "rubbing_alcohol.n.01"), ink->end());
+  EXPECT_EQ(b1k->remover_solvents("sponge.n.01", "mud.n.03"), std::vector<std::string>{"water.n.06"});
+  EXPECT_EQ(b1k->remover_solvents("sponge.n.01", "dust.n.01"), std::vector<std::string>{});
+  EXPECT_EQ(b1k->remover_solvents("emery_paper.n.01", "incision.n.01"), std::vector<std::string>{});
+  EXPECT_EQ(b1k->remover_solvents("emery_paper.n.01", "dust.n.01"), std::nullopt);
+  EXPECT_EQ(b1k->remover_solvents("rag.n.01", "rust.n.01"), std::nullopt);
+  EXPECT_EQ(b1k->remover_solvents("rag.n.01", "sand.n.04"), std::vector<std::string>{});
+  EXPECT_EQ(b1k->remover_solvents("apple.n.01", "dust.n.01"), std::nullopt);  // no particleRemover
+}
+
 TEST(KnowledgeBase, PredicateHelpersReadTheData) {
   const KnowledgeBase& kb = real_kb();
   EXPECT_TRUE(kb.is_liquid("water.n.06"));

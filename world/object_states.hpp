@@ -36,7 +36,11 @@ struct ObjectAbilities {
   double cook_temperature = 70, burn_temperature = 200, freeze_temperature = 0;
   double hot_temperature = 40, ignition_temperature = std::numeric_limits<double>::infinity();
   bool soakable = false;
-  bool cleaning_tool = false;
+  bool cleaning_tool = false;  // iGibson's: dust as it is, stains soaked in water
+  // BEHAVIOR-1K's particle removers (a rag, a sponge): per substance of the
+  // activity it removes, the solvents it must be saturated with one of (none:
+  // as it is), KnowledgeBase::remover_solvents as the activity binds it.
+  std::map<std::string, std::vector<std::string>> removes;
   bool covered = false;  // dirt (dustyable, stainable) can lie on it
   bool toggleable = false;
   bool sliceable = false, slicer = false;
@@ -92,6 +96,7 @@ class ObjectStates {
   static constexpr double kDirtyFraction =
       0.5;  // stained/dusty (iGibson) while more than this share of the sampled remain
   static constexpr double kSoakedLevel = 0.5;
+  static constexpr double kSaturatedLevel = 1.0;
   // filled from a fifth of the inner height up (OmniGibson's VOLUME_FILL_PROPORTION);
   // contains from any amount.
   static constexpr double kFilledLevel = 0.2;

@@ -261,7 +261,7 @@ bool soaked(const World& w, int a, const std::string& liquid) {
   return absorbed(w, a, liquid) >= ObjectStates::kSoakedLevel;
 }
 bool saturated(const World& w, int a, const std::string& liquid) {
-  return absorbed(w, a, liquid) >= 1.0;
+  return absorbed(w, a, liquid) >= ObjectStates::kSaturatedLevel;
 }
 bool covered(const World& w, int a, const std::string& substance) {
   return dirt_test(w, a, substance, [](int left, int) { return left >= ObjectStates::kCoveredParticles; });

@@ -59,6 +59,25 @@ bool acts_on(const ObjectStates& states, const World& w, const mjContact& con) {
   return (o1 >= 0 && states.abilities(o1)) || (o2 >= 0 && states.abilities(o2));
 }
 
+// Whether a tool in state `s` removes the substance `name` now: by the
+// knowledge base's conditions where the activity bound them (saturated with
+// one of the solvents they list, or as it is), else iGibson's rule (stains
+// need the tool soaked in water, dust not).
+bool removes_now(const ObjectAbilities& tool, const ObjectState& s, const std::string& name, const Substance* sub) {
+  const auto absorbed = [&](const std::string& liquid) {
+    const auto it = s.soaked.find(liquid);
+    return it == s.soaked.end() ? 0.0 : it->second;
+  };
+  if (!tool.removes.empty()) {
+    const auto it = tool.removes.find(name);
+    if (it == tool.removes.end()) return false;
+    return it->second.empty() || std::any_of(it->second.begin(), it->second.end(), [&](const std::string& solvent) {
+             return absorbed(solvent) >= ObjectStates::kSaturatedLevel;
+           });
+  }
+  return !(sub && sub->needs_soaked_tool) || absorbed("water") >= ObjectStates::kSoakedLevel;
+}
+
 // Cleaning, breaking, slicing: what one contact does to the objects it joins;
 // `normal_force` is the force between those two objects.
 void touch(ObjectStates& states, const World& w, const mjContact& con, double normal_force) {
@@ -72,14 +91,10 @@ void touch(ObjectStates& states, const World& w, const mjContact& con, double no
     ObjectState& s = state_of[self];
     if (mine->breakable && normal_force > mine->break_force) s.broken = true;
     if (mine->sliceable && theirs && theirs->slicer && normal_force > mine->slice_force) s.sliced = true;
-    if (mine->cleaning_tool && other >= 0 && theirs && theirs->covered) {
+    if ((mine->cleaning_tool || !mine->removes.empty()) && other >= 0 && theirs && theirs->covered) {
       const Eigen::Vector3d p(con.pos[0], con.pos[1], con.pos[2]);
       for (auto& [name, particles] : state_of[other].dirt) {
-        const Substance* sub = states.substance(name);
-        if (sub && sub->needs_soaked_tool &&
-            !(s.soaked.count("water") && s.soaked.at("water") >= ObjectStates::kSoakedLevel)) {
-          continue;
-        }
+        if (!removes_now(*mine, s, name, states.substance(name))) continue;
         const Frame frame = object_frame(w, other);
         std::erase_if(particles, [&](const Eigen::Vector3d& local) {
           return (frame.to_world(local) - p).head<2>().norm() < ObjectStates::kCleaningRadius;
