@@ -288,7 +288,7 @@ BasePath plan_base_path(const World& world, const Footprint& footprint, const Po
   const Pose2 at = world.base_pose();
   const std::optional<Pose2> escape = free_pose_near(footprint, at);
   if (!escape) {
-    out.reason = "the robot is boxed in: no free space within " + std::to_string(kMaxEscape) + " m";
+    out.reason = "the robot is boxed in: no free space within " + std::to_string(std::lround(kMaxEscape * 100)) + " cm";
     return out;
   }
   const Pose2 start = *escape;

@@ -171,7 +171,7 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_NE(format_solve(c).find("cook_a_steak: solved, 6 primitives"), std::string::npos) << format_solve(c);
 
   // From three seeds' instances (--seeds 0-2): solved from the first two; at
-  // seed 2's the robot is boxed in on its way to the stove, so the activity
+  // seed 2's the robot is boxed in on its way to the stove ("no free space within 40 cm"), so the activity
   // is not solved, saying where.
   std::filesystem::remove(dir / "make_espresso.bddl");
   std::filesystem::remove(dir / "never.bddl");
@@ -186,6 +186,7 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_EQ(range["solved"], 0);
   EXPECT_EQ(steaks["reason"].get<std::string>().rfind("seed 2: step 1, navigate(stove.n.01_1)", 0), 0u)
       << steaks["reason"];
+  EXPECT_NE(steaks["reason"].get<std::string>().find("no free space within 40 cm"), std::string::npos);
   EXPECT_NE(format_solve(range).find("cook_a_steak: 2 of 3 seeds; not solved: seed 2"), std::string::npos)
       << format_solve(range);
 }
