@@ -191,17 +191,21 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
       << format_solve(range);
 }
 
+// `chore activity solve` of tests/data/bddl/behavior-1k/NAME.bddl, symbolic,
+// seed 0: its "solve" entry.
+nlohmann::json solve_test_activity(const std::string& name) {
+  const auto dir = test::scratch_dir("solve_" + name);
+  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/" + name + ".bddl"), dir / (name + ".bddl"));
+  std::ostringstream log;
+  return activity_coverage({.dir = dir.string(), .solve = ExecutionMode::symbolic}, log)["activities"][0]["solve"];
+}
+
 // A source gives its substance once it is on (insource is what the object
 // is, not what it holds): the plan turns the watering can on before it pours,
 // the can gives on over three plants, and the hand that holds it by its top
 // does not turn it off.
 TEST(ActivitySolve, AWateringCanIsTurnedOnAndWatersEveryPlant) {
-  const auto dir = test::scratch_dir("solve_watering");
-  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/watering_indoor_flowers.bddl"),
-                             dir / "watering_indoor_flowers.bddl");
-  std::ostringstream log;
-  const nlohmann::json c = activity_coverage({.dir = dir.string(), .solve = ExecutionMode::symbolic}, log);
-  const nlohmann::json& s = c["activities"][0]["solve"];
+  const nlohmann::json s = solve_test_activity("watering_indoor_flowers");
   ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
   const std::vector<std::string> plan = s["plan"];
   const auto on = std::find(plan.begin(), plan.end(), "toggle_on(watering_can.n.01_1)");
@@ -215,12 +219,7 @@ TEST(ActivitySolve, AWateringCanIsTurnedOnAndWatersEveryPlant) {
 // under a sponge saturated with rubbing alcohol from the atomizer turned on,
 // and the wipe leaves the doll clean.
 TEST(ActivitySolve, ASpongeSaturatedWithRubbingAlcoholWipesTheMarkerOff) {
-  const auto dir = test::scratch_dir("solve_marker");
-  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/clean_marker_off_a_doll.bddl"),
-                             dir / "clean_marker_off_a_doll.bddl");
-  std::ostringstream log;
-  const nlohmann::json c = activity_coverage({.dir = dir.string(), .solve = ExecutionMode::symbolic}, log);
-  const nlohmann::json& s = c["activities"][0]["solve"];
+  const nlohmann::json s = solve_test_activity("clean_marker_off_a_doll");
   ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
   const std::vector<std::string> plan = s["plan"];
   const auto dip =
