@@ -154,8 +154,8 @@ std::string format_expert(const nlohmann::json& r) {
   char line[256];
   std::string out;
   std::snprintf(line, sizeof line, ", %s mode, the %s expert, %d episodes from seed %llu\n",
-                r["mode"].get<std::string>().c_str(), r["expert"].get<std::string>().c_str(), r["episodes"].get<int>(),
-                static_cast<unsigned long long>(r["seed"].get<uint64_t>()));
+                r["mode"].get<std::string>().c_str(), r["expert"] == "planner" ? "planner's" : "scripted",
+                r["episodes"].get<int>(), static_cast<unsigned long long>(r["seed"].get<uint64_t>()));
   out += r["activity"].get<std::string>() + line;
   std::snprintf(line, sizeof line,
                 "  success rate         %.1f%%\n  mean Q               %.3f\n"
