@@ -30,6 +30,14 @@ constexpr double kDoorway = 1.2;     // width of a doorway: the base passes with
 constexpr double kDoorClear = 1.0;   // kept free before a doorway, on each side
 constexpr double kGap = 0.05;        // between neighbouring pieces of furniture
 constexpr double kRobotClear = 0.5;  // around the robot's start
+// Floor kept clear where the robot stands to reach a piece of furniture (its
+// base is 0.6 m across; 0.7 leaves room to turn), and how deep into a top
+// the arm reaches from there (1 m from the base's centre at table height,
+// which stands 0.3 m off the edge).
+constexpr double kAisle = 0.7;
+constexpr double kReachDepth = 0.6;
+constexpr double kHeadroom = 0.5;    // m kept between furniture's top and a wall item above it
+constexpr double kFlat = 0.02;       // m: what is this thin (a rug) the base drives over: it may lie in an aisle
 constexpr int kTries = 60;           // random placements tried per object
 constexpr int kAttachments = 64;     // weld pairs per pair of synsets an activity attaches
 
@@ -119,6 +127,8 @@ struct RoomLayout {
   Rect rect;
   std::vector<Rect> keep_clear;  // before doorways
   std::vector<Rect> taken;       // footprints of what stands on the floor
+  std::vector<double> heights;   // and its heights
+  std::vector<Rect> aisles;      // floor the robot reaches furniture from (may overlap each other)
   struct Surface {
     Rect top;
     double height;
@@ -128,14 +138,22 @@ struct RoomLayout {
   // Stretches of wall free for wall items: per side (0 bottom, 1 right, 2 top, 3 left), intervals used.
   std::vector<std::pair<double, double>> wall_used[4];
 
-  bool free(const Rect& r) const {
+  bool free(const Rect& r, bool flat = false) const {
     const Rect inner = rect.grown(-kWall / 2);
     if (r.x0 < inner.x0 || r.y0 < inner.y0 || r.x1 > inner.x1 || r.y1 > inner.y1) return false;
     for (const Rect& o : keep_clear)
       if (o.overlaps(r)) return false;
     for (const Rect& o : taken)
       if (o.grown(kGap).overlaps(r)) return false;
+    for (const Rect& o : aisles)
+      if (!flat && o.overlaps(r)) return false;
     return true;
+  }
+  // Whether an aisle can be kept: inside the room, on no furniture.
+  bool can_keep(const Rect& aisle) const {
+    const Rect inner = rect.grown(-kWall / 2);
+    if (aisle.x0 < inner.x0 || aisle.y0 < inner.y0 || aisle.x1 > inner.x1 || aisle.y1 > inner.y1) return false;
+    return std::none_of(taken.begin(), taken.end(), [&](const Rect& o) { return o.grown(kGap).overlaps(aisle); });
   }
 };
 
@@ -162,10 +180,10 @@ std::vector<RoomLayout> lay_out_rooms(const SceneInventory& inventory, const std
   double total = 0;
   for (size_t r = 0; r < inventory.rooms.size(); ++r) {
     const RoomInventory& room = inventory.rooms[r];
-    double footprint_area = 0;
+    double footprint_area = 0;  // of each piece and the aisle along its long side
     auto add_footprint = [&](const std::string& synset, int count) {
       const Eigen::Vector3d s = models.size(synset);
-      footprint_area += count * (s.x() + kGap) * (s.y() + kGap);
+      footprint_area += count * ((s.x() + kGap) * (s.y() + kGap) + kAisle * std::max(s.x(), s.y()));
     };
     for (const auto& [synset, count] : room.objects) {
       if (stands_on_floor(kind_of(models, synset))) add_footprint(synset, count);
@@ -316,11 +334,16 @@ int facing_in(int side) {
   return turns[side];
 }
 
-// Furniture against a wall, else free-standing; false when nowhere fits.
-bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen::Vector2d& at, int& turns) {
+// Furniture against a wall with an aisle before its front, else
+// free-standing with aisles along both long sides (a table: the arm reaches
+// its middle from either); false when nowhere fits. `top`: the part of its
+// top the arm reaches from its aisles. What is flat needs no aisle and may lie
+// in one.
+bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, bool free_standing_first, Rng& rng,
+                     Eigen::Vector2d& at, int& turns, Rect* top = nullptr) {
   const Rect inner = room.rect.grown(-kWall / 2);
   for (int t = 0; t < 2 * kTries; ++t) {
-    const bool against_wall = t < kTries;
+    const bool against_wall = (t < kTries) != free_standing_first;
     const int side = uniform_index(rng, 4);
     turns = against_wall ? facing_in(side) : uniform_index(rng, 4);
     const Eigen::Vector2d half = half_footprint(size, turns);
@@ -334,16 +357,39 @@ bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Ei
       if (side == 3) c.x() = inner.x0 + half.x();
     }
     const Rect r = footprint(c, half);
-    if (!room.free(r)) continue;
+    const bool flat = size.z() <= kFlat;
+    std::vector<Rect> aisles;
+    Rect reached = r;
+    if (!flat && against_wall) {
+      // The front faces the room's middle, away from wall `side`.
+      if (side == 0) aisles = {{r.x0, r.y1, r.x1, r.y1 + kAisle}}, reached.y0 = std::max(r.y0, r.y1 - kReachDepth);
+      if (side == 1) aisles = {{r.x0 - kAisle, r.y0, r.x0, r.y1}}, reached.x1 = std::min(r.x1, r.x0 + kReachDepth);
+      if (side == 2) aisles = {{r.x0, r.y0 - kAisle, r.x1, r.y0}}, reached.y1 = std::min(r.y1, r.y0 + kReachDepth);
+      if (side == 3) aisles = {{r.x1, r.y0, r.x1 + kAisle, r.y1}}, reached.x0 = std::max(r.x0, r.x1 - kReachDepth);
+    } else if (!flat && r.width() >= r.depth()) {
+      aisles = {{r.x0, r.y0 - kAisle, r.x1, r.y0}, {r.x0, r.y1, r.x1, r.y1 + kAisle}};
+    } else if (!flat) {
+      aisles = {{r.x0 - kAisle, r.y0, r.x0, r.y1}, {r.x1, r.y0, r.x1 + kAisle, r.y1}};
+    }
+    if (!room.free(r, flat) ||
+        !std::all_of(aisles.begin(), aisles.end(), [&](const Rect& a) { return room.can_keep(a); })) {
+      continue;
+    }
     room.taken.push_back(r);
+    room.heights.push_back(size.z());
+    room.aisles.insert(room.aisles.end(), aisles.begin(), aisles.end());
     at = c;
+    if (top) *top = reached;
     return true;
   }
   return false;
 }
 
-// On a wall at the item's height, not over a doorway nor another wall item;
-// `on_floor` (doors): standing on the floor, clear of the furniture too.
+// On a wall at the item's height, not over a doorway, another wall item nor
+// furniture that reaches up to it, with room for what stands on that (a rod
+// on a nail would lie on a bookcase, a window's frame knock a lamp off a
+// counter); `on_floor` (doors): standing on the floor, clear of the furniture
+// too.
 bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor, Rng& rng, Eigen::Vector3d& at,
                    int& turns) {
   const Rect inner = room.rect.grown(-kWall / 2 - 0.01);  // not touching the wall: a door's leaf swings free
@@ -362,12 +408,15 @@ bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor,
                             ? Eigen::Vector2d(inner.x0 + along, side == 0 ? inner.y0 + half.y() : inner.y1 - half.y())
                             : Eigen::Vector2d(side == 1 ? inner.x1 - half.x() : inner.x0 + half.x(), inner.y0 + along);
     const Rect r = footprint(c, half);
+    const double bottom = on_floor ? 0 : size.z() > 1.4 ? 0.3 : std::max(0.9, 1.4 - size.z() / 2);
     for (const Rect& o : room.keep_clear) free &= !o.overlaps(r);
+    for (size_t i = 0; i < room.taken.size() && !on_floor; ++i) {
+      free &= room.heights[i] + kHeadroom <= bottom || !room.taken[i].grown(kGap).overlaps(r);
+    }
     if (on_floor) free &= room.free(r);
     if (!free) continue;
     room.wall_used[side].push_back(span);
-    if (on_floor) room.taken.push_back(r);
-    const double bottom = on_floor ? 0 : size.z() > 1.4 ? 0.3 : std::max(0.9, 1.4 - size.z() / 2);
+    if (on_floor) room.taken.push_back(r), room.heights.push_back(size.z());
     at = {c.x(), c.y(), bottom};
     return true;
   }
@@ -391,7 +440,7 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
     return true;
   }
   Eigen::Vector2d c;
-  if (!place_furniture(room, size, rng, c, turns)) return false;
+  if (!place_furniture(room, size, false, rng, c, turns)) return false;
   at = {c.x(), c.y(), 0.002};
   return true;
 }
@@ -401,17 +450,18 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
 bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
              const std::vector<std::string>& clear_tops, Rng& rng, Builder& builder) {
   const Eigen::Vector3d size = models.size(synset);
+  const Archetype archetype = models.archetype(synset);
   Eigen::Vector2d at;
   int turns = 0;
-  if (!place_furniture(room, size, rng, at, turns)) return false;
+  Rect top;
+  if (!place_furniture(room, size, archetype == Archetype::table, rng, at, turns, &top)) return false;
   builder.add(synset, {at.x(), at.y(), 0}, turns, true);
-  const Archetype archetype = models.archetype(synset);
   const bool flat_top = archetype == Archetype::table || archetype == Archetype::cabinet ||
                         archetype == Archetype::shelf || archetype == Archetype::block;
   const bool clear =
       std::any_of(clear_tops.begin(), clear_tops.end(), [&](const std::string& s) { return models.is_a(synset, s); });
   if (flat_top && !clear && size.z() > 0.3 && size.z() < 1.6) {
-    room.surfaces.push_back({footprint(at, half_footprint(size, turns)), size.z(), {}});
+    room.surfaces.push_back({top, size.z(), {}});
   }
   return true;
 }
@@ -555,7 +605,13 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
       Eigen::Vector3d at;
       int turns = 0;
       if (!e.loose && kind_of(models, e.synset) == Kind::on_wall) {  // a window the room lacks: on its wall
-        if (place_on_wall(room, models.size(e.synset), false, rng, at, turns)) {
+        // With the wall to either side kept for what hangs on it (a rod on
+        // its nail, clear of the next wall item and of furniture below).
+        Eigen::Vector3d size = models.size(e.synset);
+        for (const auto& [object, to] : extras.attachments) {
+          if (models.is_a(e.synset, to)) size.x() = std::max(size.x(), models.size(object).head<2>().maxCoeff());
+        }
+        if (place_on_wall(room, size, false, rng, at, turns)) {
           builder.add(e.synset, at, turns, true);
         } else {
           ++analog.left_out;

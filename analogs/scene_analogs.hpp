@@ -7,18 +7,24 @@
 //
 // The generation, seeded (the same seed gives the same scene):
 //   rooms          each sized for its floor-standing furniture (3x their
-//                  footprint plus 4 m2, at least 6 m2, 1:1 to 1.5:1), laid out
-//                  in rows of one width, so the house is a rectangle of rooms;
+//                  footprints and aisles plus 4 m2, at least 6 m2, 1:1 to
+//                  1.5:1), laid out in rows of one width, so the house is a
+//                  rectangle of rooms;
 //                  a doorway between neighbours in a row and one from each row
 //                  to the row before, so every room is reachable
 //   doors          the doorways stay open; the inventory's doors stand closed
 //                  against walls (openable, as BDDL may ask)
 //   furniture      scene objects (fixed): against a wall facing into the room,
-//                  else free-standing; never overlapping each other, the walls
-//                  or the 1 m before a doorway
-//   on the walls   windows, pictures, mirrors, switches: at their height
-//   small objects  (free) on the top of a table, counter, cabinet or shelf of
-//                  their room, else on its floor
+//                  else free-standing (tables first); never overlapping each
+//                  other, the walls or the 1 m before a doorway; an aisle of
+//                  0.7 m kept clear before the front (along both long sides
+//                  of what stands free) for the robot to stand in
+//   on the walls   windows, pictures, mirrors, switches: at their height,
+//                  not over furniture reaching within 0.5 m of them; the wall
+//                  either side kept for what an activity attaches to them
+//   small objects  (free) on the part of a table's, counter's, cabinet's or
+//                  shelf's top the arm reaches from an aisle, else on the
+//                  floor out of the aisles
 //   floors         the rooms' own; an object (a slab 2 mm high) where asked
 //   the robot      starts in the first room with floor 0.5 m clear of everything
 // What does not fit is left out and counted (SceneAnalog::left_out).

@@ -71,6 +71,13 @@ void hold_arm(World& world, const ArmConfiguration& q) {
 const ArmConfiguration kTuckedConfiguration = {Robot::kHomeTorso, 0.12, -1.45, -1.06, 2.13, 1.23, -1.26, -1.00};
 const ArmConfiguration kUntuckedConfiguration = {0.15, 0.74, -0.61, -0.28, 2.06, -0.63, -1.29, -0.07};
 const ArmConfiguration kCarryConfiguration = {0.35, 0.85, 0.20, -0.08, 2.19, 1.69, -1.39, -0.07};
+// The low and high starts: solutions for the hand pointing down 0.5 m ahead
+// at 0.12 m and 0.7 m ahead at 1.15 m, found from random starts.
+const std::array<ArmConfiguration, 3> kReachStarts = {
+    kUntuckedConfiguration,
+    ArmConfiguration{0.03, 1.63, -0.95, 1.50, -0.28, 0.08, -0.34, -2.07},
+    ArmConfiguration{0.35, 1.24, 0.75, -0.71, 1.17, -0.60, 1.39, 0.76},
+};
 
 Motion::Motion(World& world, const PrimitiveOptions& options, uint64_t seed, int look_at, PrimitiveResult& result)
     : world_(world), options_(options), seeds_(seed), result_(result), ik_(world), look_at_(look_at) {}

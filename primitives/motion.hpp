@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <functional>
 #include <random>
 
@@ -105,5 +106,11 @@ class Motion {
 extern const ArmConfiguration kTuckedConfiguration;
 extern const ArmConfiguration kUntuckedConfiguration;
 extern const ArmConfiguration kCarryConfiguration;
+// Where reach() starts the IK, in turn: damped least squares converges to a
+// solution near its start, and from the untucked pose alone the hand points
+// down no lower than 0.2 m and no higher than 1.0 m above the floor, where
+// the arm reaches 0.1 to 1.2 m (Ik.ThreeStartsReachFromTheFloorToAboveACounter):
+// untucked, then the arm reaching down in front of the base, then up over it.
+extern const std::array<ArmConfiguration, 3> kReachStarts;
 
 }  // namespace chore

@@ -27,12 +27,13 @@ PrimitiveType purpose_of_navigation(const World& w, int object) {
   return PrimitiveType::place;
 }
 
-bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object) {
+bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object,
+                    size_t starts = kReachStarts.size()) {
   const PrimitiveType purpose = purpose_of_navigation(w, object);
   const std::vector<Approach> a = approaches(w, purpose, object, w.base_pose());
   const Scene& scene = w.scene();
   return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a[0].point.x(), a[0].point.y()) &&
-         reach(ik, checker, w, object, a, w.base_pose(), purpose, load_below_hand(w)).has_value();
+         reach(ik, checker, w, object, a, w.base_pose(), purpose, load_below_hand(w), starts).has_value();
 }
 
 bool applies(const World&, int) {
@@ -68,13 +69,14 @@ bool act(Executor& e) {
   bool arrived = false;
   Clock::time_point planning = t;
   sample_base_poses(w, m.ik(), checker, footprint, purpose, object, here, targets, m.next_seed(), load_below_hand(w),
-                    e.options().base_pose_samples, tally, [&](const Pose2& p) {
+                    e.options().base_pose_samples, tally, [&](const Pose2& p, size_t starts) {
                       // Reachable with the arm; now the base must get there.
                       result.planning_seconds += since(planning);
                       // Where the base stops (physically, millimetres off p)
-                      // the arm must still reach: at the edge of its reach it
-                      // may not, and the next candidate is tried.
-                      arrived = m.base_to(p, footprint) && reachable_here(w, m.ik(), checker, object);
+                      // the arm must still reach, as it did there: at the
+                      // edge of its reach it may not, and the next candidate
+                      // is tried.
+                      arrived = m.base_to(p, footprint) && reachable_here(w, m.ik(), checker, object, starts);
                       planning = Clock::now();
                       if (arrived || result.diverged || ++path_failures == 3) return true;
                       result.status = PrimitiveStatus::success;  // try the next candidate

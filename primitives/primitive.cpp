@@ -189,7 +189,7 @@ Aabb carried_aabb_at(const World& w, const Pose2& base) {
 }
 }  // namespace
 
-Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
+std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& base) {
   Eigen::Vector3d centre, along, across;  // the region: centre +- along +- across
   double top = 0;
   if (const auto a = articulation(w, object); a && !a->hinge && open_fraction(*a) > 0.3) {
@@ -220,7 +220,7 @@ Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
   const double fa = std::max(0.0, 1 - margin / std::max(along.norm(), 1e-9));
   const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));
   const auto& objects = w.scene().objects();
-  if (held < 0) return {centre.x(), centre.y(), top};  // nothing to set down
+  if (held < 0) return {{centre.x(), centre.y(), top}};  // nothing to set down
   // A spot is flat when rays down through the load's footprint all land on
   // the target at one height: not half on a bin's rim or off a table's edge.
   const double half_x = (load.hi.x() - load.lo.x()) / 2, half_y = (load.hi.y() - load.lo.y()) / 2;
@@ -235,12 +235,14 @@ Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
     }
     return highest - lowest < kFlatTolerance;
   };
-  Eigen::Vector3d best = centre;
-  double best_clearance = -1;
+  Eigen::Vector3d best = centre, nearest = centre;
+  double best_clearance = -1, nearest_distance = 1e9;
   for (int i = -2; i <= 2; ++i) {
     for (int j = -2; j <= 2; ++j) {
       const Eigen::Vector3d p = centre + along * (fa * i / 2.0) + across * (fc * j / 2.0);
       if (!flat(p)) continue;
+      const double distance = std::hypot(p.x() - base.x, p.y() - base.y);
+      if (distance < nearest_distance - 1e-9) nearest = p, nearest_distance = distance;
       double clearance = 1e9;
       for (size_t o = 0; o < objects.size(); ++o) {
         if (objects[o].fixed || static_cast<int>(o) == held || static_cast<int>(o) == object) continue;
@@ -254,8 +256,13 @@ Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
       if (clearance > best_clearance + 1e-9) best = p, best_clearance = clearance;
     }
   }
-  best.z() = top;
-  return best;
+  best.z() = nearest.z() = top;
+  if ((nearest - best).norm() < 1e-9) return {best};
+  return {best, nearest};
+}
+
+Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
+  return top_spots(w, object, base).front();
 }
 
 // Where the dirt on an object lies (world frame).
@@ -273,7 +280,9 @@ std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object) {
 std::vector<Approach> approaches(const World& w, PrimitiveType type, int object, const Pose2& base) {
   const PrimitiveDef& def = primitive_def(type);
   if (def.approaches) return def.approaches(w, object, base);
-  return {{top_centre(w, object, base), kDown, std::nullopt}};
+  std::vector<Approach> out;
+  for (const Eigen::Vector3d& spot : top_spots(w, object, base)) out.push_back({spot, kDown, std::nullopt});
+  return out;
 }
 
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -305,32 +314,34 @@ Eigen::Vector3d contact_point(const World& w, int object, const Approach& a) {
 }
 
 std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w, int object,
-                           const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type,
-                           double load) {
+                           const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type, double load,
+                           size_t starts) {
   for (const Approach& a : candidates) {
     if (std::hypot(a.point.x() - base.x, a.point.y() - base.y) > kArmReachBound) continue;
-    IkOptions options;
-    options.base = base;
-    options.start = kUntuckedConfiguration;
-    options.iterations = 100;
     const IkTarget pre = pre_pose(a, load, primitive_def(type).clearance);
-    const IkResult r = ik.solve(pre, options);
-    if (!r.success || checker.collides(r.joints.data(), &base)) continue;
-    bool clear = true;
-    if (primitive_def(type).touches) {
-      options.start = r.joints;
-      // As Motion::line follows it: the approach axis held, the roll free.
-      IkTarget along{pre.position, pre.approach, std::nullopt};
-      const Eigen::Vector3d end = line_end(w, primitive_def(type), object, a, base, load);
-      const int steps = std::max(1, static_cast<int>(std::ceil((end - pre.position).norm() / kCorridorStep)));
-      for (int i = 1; i <= steps && clear; ++i) {
-        along.position = pre.position + (end - pre.position) * (static_cast<double>(i) / steps);
-        const IkResult c = ik.solve(along, options);
-        clear = c.success && !checker.hand_touches(c.joints, &base, object);
-        options.start = c.joints;
+    for (size_t k = 0; k < std::min(starts, kReachStarts.size()); ++k) {
+      IkOptions options;
+      options.base = base;
+      options.start = kReachStarts[k];
+      options.iterations = 100;
+      const IkResult r = ik.solve(pre, options);
+      if (!r.success || checker.collides(r.joints.data(), &base)) continue;
+      bool clear = true;
+      if (primitive_def(type).touches) {
+        options.start = r.joints;
+        // As Motion::line follows it: the approach axis held, the roll free.
+        IkTarget along{pre.position, pre.approach, std::nullopt};
+        const Eigen::Vector3d end = line_end(w, primitive_def(type), object, a, base, load);
+        const int steps = std::max(1, static_cast<int>(std::ceil((end - pre.position).norm() / kCorridorStep)));
+        for (int i = 1; i <= steps && clear; ++i) {
+          along.position = pre.position + (end - pre.position) * (static_cast<double>(i) / steps);
+          const IkResult c = ik.solve(along, options);
+          clear = c.success && !checker.hand_touches(c.joints, &base, object);
+          options.start = c.joints;
+        }
       }
+      if (clear) return Reach{r.joints, a};
     }
-    if (clear) return Reach{r.joints, a};
   }
   return std::nullopt;
 }
@@ -353,9 +364,7 @@ bool room_to_pull(const Footprint& footprint, const Pose2& p, const Articulation
 bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checker, const Footprint& footprint,
                        PrimitiveType purpose, int object, const std::vector<Approach>& around,
                        const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t seed, double load,
-                       int samples, BasePoseTally& tally, const std::function<bool(const Pose2&)>& use) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+                       int samples, BasePoseTally& tally, const std::function<bool(const Pose2&, size_t)>& use) {
   const Aabb box = object_aabb(w, object);
   const PrimitiveDef& def = primitive_def(purpose);
   // (A lid opens upwards: the robot may stand anywhere around it.)
@@ -363,45 +372,54 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
   if (articulated && std::abs(articulated->pull.z()) > 0.7) articulated.reset();
   const Room* room = w.scene().room_at(around[0].point.x(), around[0].point.y());
   const ArmConfiguration& travel = w.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration;
-  for (int i = 0; i < kDrawsPerSample * samples && i - tally.blocked < samples; ++i) {
-    const Approach& a = around[i % around.size()];
-    Pose2 p;
-    if (articulated) {
-      // In front of the handle, facing it, far enough to pull it open.
-      const Eigen::Vector3d& pull = articulated->pull;
-      const Eigen::Vector3d side = kUp.cross(pull);
-      const Eigen::Vector3d at = a.point + pull * (0.5 + 0.4 * unit(rng)) + side * (0.7 * unit(rng) - 0.35);
-      p = {at.x(), at.y(), std::atan2(-pull.y(), -pull.x()) + 0.8 * unit(rng) - 0.4};
-    } else {
-      // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
-      const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
-      // Leave the object's box along (c, s) from the target point, then stand off.
-      double exit = 1e9;
-      for (const auto& [d, from, lo, hi] :
-           {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()}, std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
-        if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
+  // Poses from which the arm reaches from the untucked start first, over the
+  // whole budget: the configurations the physical primitives were tuned on
+  // (from the low or high start the hand reaches farther, and closes a door
+  // less surely). Then from any of kReachStarts; the tally is that pass's.
+  for (const size_t starts : {size_t{1}, kReachStarts.size()}) {
+    tally = {};
+    std::mt19937_64 rng(seed + starts - 1);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < kDrawsPerSample * samples && i - tally.blocked < samples; ++i) {
+      const Approach& a = around[i % around.size()];
+      Pose2 p;
+      if (articulated) {
+        // In front of the handle, facing it, far enough to pull it open.
+        const Eigen::Vector3d& pull = articulated->pull;
+        const Eigen::Vector3d side = kUp.cross(pull);
+        const Eigen::Vector3d at = a.point + pull * (0.5 + 0.4 * unit(rng)) + side * (0.7 * unit(rng) - 0.35);
+        p = {at.x(), at.y(), std::atan2(-pull.y(), -pull.x()) + 0.8 * unit(rng) - 0.4};
+      } else {
+        // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
+        const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
+        // Leave the object's box along (c, s) from the target point, then stand off.
+        double exit = 1e9;
+        for (const auto& [d, from, lo, hi] :
+             {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()}, std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
+          if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
+        }
+        // Within the arm's reach of the point (0.6 m at the floor, 1 m at
+        // table height) and clear of the object's box by the body's radius.
+        const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
+        // Biased towards the object: at arm's length, tracking is fragile.
+        const double u = unit(rng), distance = near + (far - near) * u * u;
+        p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
+        // (Wipe strokes run across the robot's front: it faces the dirt.)
+        p.yaw = std::atan2(-s, -c) + def.yaw_spread * (unit(rng) - 0.5);
       }
-      // Within the arm's reach of the point (0.6 m at the floor, 1 m at
-      // table height) and clear of the object's box by the body's radius.
-      const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
-      // Biased towards the object: at arm's length, tracking is fragile.
-      const double u = unit(rng), distance = near + (far - near) * u * u;
-      p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};
-      // (Wipe strokes run across the robot's front: it faces the dirt.)
-      p.yaw = std::atan2(-s, -c) + def.yaw_spread * (unit(rng) - 0.5);
-    }
-    // The arm arrives as it drives (tucked, or carrying): where that pose
-    // already touches a wall, the footprint's disks missed the elbow, and the
-    // arm has no room to swing to its work (a dip beside the wall).
-    if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated)) ||
-        checker.collides(travel.data(), &p)) {
-      ++tally.blocked;
-    } else if (w.scene().room_at(p.x, p.y) != room) {
-      ++tally.elsewhere;
-    } else if (!reach(ik, checker, w, object, targets(p), p, purpose, load)) {
-      ++tally.unreachable;
-    } else if (use(p)) {
-      return true;
+      // The arm arrives as it drives (tucked, or carrying): where that pose
+      // already touches a wall, the footprint's disks missed the elbow, and the
+      // arm has no room to swing to its work (a dip beside the wall).
+      if (!footprint.free(p) || (articulated && !room_to_pull(footprint, p, *articulated)) ||
+          checker.collides(travel.data(), &p)) {
+        ++tally.blocked;
+      } else if (w.scene().room_at(p.x, p.y) != room) {
+        ++tally.elsewhere;
+      } else if (!reach(ik, checker, w, object, targets(p), p, purpose, load, starts)) {
+        ++tally.unreachable;
+      } else if (use(p, starts)) {
+        return true;
+      }
     }
   }
   return false;
@@ -417,7 +435,7 @@ std::string BasePoseTally::to_string() const {
 bool ReachSearch::sample(const std::vector<Approach>& around,
                          const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t sample_seed) {
   return sample_base_poses(w, ik, checker, footprint, type, object, around, targets, sample_seed, load,
-                           options.base_pose_samples, tally, [&](const Pose2& p) {
+                           options.base_pose_samples, tally, [&](const Pose2& p, size_t) {
                              if (!drivable.free(p.x, p.y)) return ++tally.cut_off, false;
                              kept.push_back(p);
                              return true;

@@ -66,6 +66,9 @@ struct Approach {
 // the robot standing at `base`: the carried load's footprint turns with the
 // base.
 Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base);
+// top_centre(), then, with a load, the flat spot of the top nearest the base
+// (a deep counter's near side: the arm reaches less far with a load).
+std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& base);
 // Where the dirt on an object lies (world frame).
 std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object);
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -82,19 +85,23 @@ std::vector<Approach> approaches(const World& w, PrimitiveType type, int object,
 // A collision-free IK solution for the pre-pose of the first of `candidates`
 // that works with the base at `base`, from which, when the primitive touches
 // the object, the hand can follow the approach to its line end touching
-// nothing but the object itself.
+// nothing but the object itself; the IK starts from each of the first
+// `starts` of kReachStarts in turn.
 struct Reach {
   ArmConfiguration joints;
   Approach approach;
 };
 std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w, int object,
-                           const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type, double load);
+                           const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type, double load,
+                           size_t starts = kReachStarts.size());
 
 // OmniGibson's base-pose sampler (primitive.cpp): candidate poses near the
-// object, kept when in the same room, collision-free and within reach. Draws
+// object, kept when in the same room, collision-free and within reach (from
+// the untucked start alone first, then from any of kReachStarts). Draws
 // go round the points of `around`; a pose is within reach when reach() finds
-// one of `targets(pose)`. `use` gets each pose kept and ends the search by
-// returning true, which is then returned.
+// one of `targets(pose)`. `use` gets each pose kept, with how many of
+// kReachStarts reached from it, and ends the search by returning true, which
+// is then returned.
 struct BasePoseTally {
   int blocked = 0, elsewhere = 0, unreachable = 0;
   int cut_off = 0;  // within reach, but the base cannot drive there from where it stands (the reach checks)
@@ -103,7 +110,7 @@ struct BasePoseTally {
 bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checker, const Footprint& footprint,
                        PrimitiveType purpose, int object, const std::vector<Approach>& around,
                        const std::function<std::vector<Approach>(const Pose2&)>& targets, uint64_t seed, double load,
-                       int samples, BasePoseTally& tally, const std::function<bool(const Pose2&)>& use);
+                       int samples, BasePoseTally& tally, const std::function<bool(const Pose2&, size_t)>& use);
 
 // out_of_reach()'s search: base poses the robot can drive to from where it
 // stands, and those found within reach so far.
@@ -184,7 +191,7 @@ struct PrimitiveDef {
   // on these objects (alternatives, e.g. one per solvent a stain needs), none
   // where it cannot act on them.
   std::vector<SymbolicStep> (*model)(const std::vector<SymbolicObject>& objects, const SymbolicArgs& args);
-  // Where the hand acts: null for the default, from above onto top_centre().
+  // Where the hand acts: null for the default, from above onto top_spots().
   std::vector<Approach> (*approaches)(const World& w, int object, const Pose2& base) = nullptr;
   // Where the hand's centre ends the line along approach `a` from a base at
   // `base`, with `load` hanging below the hand: null for at contact,

@@ -11,8 +11,13 @@
 namespace chore {
 namespace {
 
-// The env steps (1/30 s) the rule counts at the toggle point, and one more.
-constexpr double kPressSeconds = (ObjectStates::kToggleSteps + 1) / 30.0;
+// The env steps (1/30 s) the rule counts the hand held at the toggle point,
+// and three more: the hand settles after its approach (physically 2-3 steps
+// above ObjectStates::kToggleSpeed).
+constexpr double kPressSeconds = (ObjectStates::kToggleSteps + 3) / 30.0;
+// m from the toggle point towards the base a press may aim: within
+// ObjectStates::kToggleDistance with the hand up to 7 cm above or below it.
+constexpr double kNearer = 0.07;
 
 bool applies(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
@@ -27,8 +32,14 @@ std::string unmet(const World& w, int object, bool on) {
   return "";
 }
 
-std::vector<Approach> approaches(const World& w, int object, const Pose2&) {
-  return {{toggle_point(w, object), kDown, std::nullopt}};
+// On the toggle point; else as far towards the base as the rule still
+// counts the hand there once it presses down (a stove's centre on a deep
+// counter lies beyond the arm's reach from above).
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
+  const Eigen::Vector3d point = toggle_point(w, object);
+  const Eigen::Vector3d towards(base.x - point.x(), base.y - point.y(), 0);
+  if (towards.norm() < kNearer) return {{point, kDown, std::nullopt}};
+  return {{point, kDown, std::nullopt}, {point + towards.normalized() * kNearer, kDown, std::nullopt}};
 }
 
 bool press(Executor& e, bool on) {

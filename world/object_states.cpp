@@ -61,6 +61,7 @@ void ObjectStates::add_transition(Transition transition) {
 void ObjectStates::reset() {
   for (auto& [object, state] : states_) state = ObjectState{};
   progress_.assign(transitions_.size(), 0);
+  last_hand_.reset();
 }
 
 }  // namespace chore

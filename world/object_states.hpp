@@ -104,6 +104,9 @@ class ObjectStates {
   static constexpr double kSourceLevel = 0.8;
   static constexpr double kToggleDistance = 0.1;  // m from the toggle point
   static constexpr int kToggleSteps = 5;
+  // m/s: a hand faster than this passes the toggle point, it does not press
+  // it (a tuck sweeping back past a tap just turned on).
+  static constexpr double kToggleSpeed = 0.05;
   static constexpr double kCleaningRadius = 0.06;  // m around a tool's contact
 
   void configure(int object, const ObjectAbilities& abilities);
@@ -125,6 +128,9 @@ class ObjectStates {
   const std::vector<Washer>& washers() const { return washers_; }
   // Per transition, the env steps its condition has held in a row.
   std::vector<int>& transition_progress() { return progress_; }
+  // Where the hand was at the last env step (none after a reset): how fast
+  // it moves at a toggle point.
+  std::optional<Eigen::Vector3d>& last_hand() { return last_hand_; }
 
   // Back to room temperature, dry, clean, off, whole; no transition under way.
   void reset();
@@ -139,6 +145,7 @@ class ObjectStates {
   std::map<std::string, Substance> substances_;
   std::vector<Transition> transitions_;
   std::vector<int> progress_;
+  std::optional<Eigen::Vector3d> last_hand_;
   std::set<int> machines_;
   std::vector<Washer> washers_;
 };

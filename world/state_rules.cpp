@@ -164,11 +164,14 @@ void update_states_after_env_step(World& w, double dt) {
   // Toggling: the hand held at the toggle point (top centre) for a few steps;
   // not the hand that holds the object there (a sprayer grasped from above).
   if (const Robot* r = w.robot()) {
-    const double* hand = w.data()->site_xpos + 3 * r->gripper_site;
+    const Eigen::Vector3d hand(w.data()->site_xpos + 3 * r->gripper_site);
+    std::optional<Eigen::Vector3d>& last = w.states().last_hand();
+    const bool held = !last || (hand - *last).norm() < ObjectStates::kToggleSpeed * dt;
+    last = hand;
     for (auto& [object, s] : state_of) {
       if (!abilities_of.at(object).toggleable || object == w.grasped_object()) continue;
       const Eigen::Vector3d point = toggle_point(w, object);
-      const bool near = (point - Eigen::Vector3d(hand[0], hand[1], hand[2])).norm() < ObjectStates::kToggleDistance;
+      const bool near = held && (point - hand).norm() < ObjectStates::kToggleDistance;
       s.toggle_steps = near ? s.toggle_steps + 1 : 0;
       if (s.toggle_steps == ObjectStates::kToggleSteps) s.toggled = !s.toggled;
     }

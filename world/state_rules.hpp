@@ -25,7 +25,8 @@ void update_states_at_motion_waypoint(World& world, double dt, int moved, const 
                                       const std::vector<mjContact_>& moved_contacts);
 // Where the hand presses to toggle an object: the top centre of its box. The
 // rule toggles it after ObjectStates::kToggleSteps consecutive env steps with
-// the hand within ObjectStates::kToggleDistance of it.
+// the hand held within ObjectStates::kToggleDistance of it (slower than
+// ObjectStates::kToggleSpeed).
 Eigen::Vector3d toggle_point(const World& world, int object);
 // Whether heat or cold source `source` (its ThermalSource `t`) acts on
 // `object` now: on, closed, near or inside, as it requires.
