@@ -192,7 +192,9 @@ Aabb carried_aabb_at(const World& w, const Pose2& base) {
 std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& base) {
   Eigen::Vector3d centre, along, across;  // the region: centre +- along +- across
   double top = 0;
-  if (const auto a = articulation(w, object); a && !a->hinge && open_fraction(*a) > 0.3) {
+  const auto a = articulation(w, object);
+  const bool drawer = a && !a->hinge && open_fraction(*a) > 0.3;
+  if (drawer) {
     Aabb link;
     for (int g = 0; g < w.model()->ngeom; ++g) {
       if (w.model()->geom_bodyid[g] == a->link) link.grow(geom_aabb(w, g));
@@ -257,7 +259,9 @@ std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& 
     }
   }
   best.z() = nearest.z() = top;
-  if ((nearest - best).norm() < 1e-9) return {best};
+  // (An open drawer's exposed part is all within reach of its front: its
+  // nearest spot is its edge, where a load settles on the rim.)
+  if (drawer || (nearest - best).norm() < 1e-9) return {best};
   return {best, nearest};
 }
 

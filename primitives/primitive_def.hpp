@@ -67,7 +67,8 @@ struct Approach {
 // base.
 Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base);
 // top_centre(), then, with a load, the flat spot of the top nearest the base
-// (a deep counter's near side: the arm reaches less far with a load).
+// (a deep counter's near side: the arm reaches less far with a load; not in
+// an open drawer).
 std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& base);
 // Where the dirt on an object lies (world frame).
 std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object);
