@@ -245,10 +245,11 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   last_primitive_status_ = last_invalid_action_ = -1;
   invalid_repeats_ = 0;
   if (!activity_) return make_info();
+  if (!sample_options_.prefer && world_->robot()) sample_options_.prefer = arm_reach_preference(*world_);
   std::string out_of_reach;
   for (int attempt = 0; attempt < kInstanceAttempts; ++attempt) {
     if (attempt > 0) world_->reset(start);
-    activity_->instantiate(*world_, instance_rng);
+    activity_->instantiate(*world_, instance_rng, sample_options_);
     if (!config_.reachable_instances) break;
     out_of_reach = first_out_of_reach(instance_rng());
     if (out_of_reach.empty()) break;

@@ -13,6 +13,7 @@
 #include "base/random.hpp"
 #include "env/env.hpp"
 #include "world/renderer.hpp"
+#include "world/sampling.hpp"
 #include "world/sensors.hpp"
 
 namespace chore {
@@ -66,6 +67,9 @@ struct Env::Impl {
   Rng rng_;
   std::vector<PrimitiveAction> primitive_actions_;
   std::vector<PrimitiveAction> reach_checks_;  // what must be within reach (reset checks it when asked)
+  // Where the instance samplers put objects first (arm_reach_preference()),
+  // from the scene as reset leaves it: made at the first reset, the same at every one.
+  SampleOptions sample_options_;
   PrimitiveResult last_primitive_;
   std::array<int, kPrimitiveStatuses> primitive_counts_{};
   int last_primitive_status_ = -1, last_invalid_action_ = -1, invalid_repeats_ = 0;

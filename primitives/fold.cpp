@@ -72,6 +72,13 @@ bool act(Executor& e, bool fold) {
   return true;
 }
 
+// Where pick takes the cloth (its top centre): within reach for one, within
+// reach for the other, as navigate (which aims for a pick) and the planner's
+// model have it.
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
+  return pick_primitive().approaches(w, object, base);
+}
+
 // Symbolically: the cloth is folded (unfolded) by an empty hand within reach.
 std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a, bool fold) {
   const SymbolicObject& o = objects[a.target];
@@ -91,6 +98,7 @@ const PrimitiveDef& fold_primitive() {
                                 .act = [](Executor& e) { return act(e, true); },
                                 .model = [](const std::vector<SymbolicObject>& objects,
                                             const SymbolicArgs& a) { return model(objects, a, true); },
+                                .approaches = approaches,
                                 .touches = false,
                                 .symbolic_only = true};
   return def;
@@ -103,6 +111,7 @@ const PrimitiveDef& unfold_primitive() {
       .act = [](Executor& e) { return act(e, false); },
       .model = [](const std::vector<SymbolicObject>& objects,
                   const SymbolicArgs& a) { return model(objects, a, false); },
+      .approaches = approaches,
       .touches = false,
       .symbolic_only = true};
   return def;

@@ -409,7 +409,6 @@ bool Motion::base_arc(const Eigen::Vector3d& pivot, double angle, int moving, do
 
 bool Motion::base_path(const std::function<Pose2(double)>& pose_at, double length, double speed, double min_fraction,
                        const char* blocked, int moving) {
-  const Pose2 from = world_.base_pose();
   // As far along as the body's map is free.
   double reached = 1.0;
   {

@@ -10,7 +10,8 @@
 namespace chore {
 namespace {
 
-constexpr double kSlim = 0.08;  // m: objects this narrow fit between the open fingers
+constexpr double kSlim = 0.08;     // m: objects this narrow fit between the open fingers
+constexpr double kUpright = 0.08;  // m: objects this tall are taken from the side too
 
 bool applies(const World& w, int object) {
   const SceneObject& o = w.scene().objects().at(object);
@@ -23,17 +24,26 @@ std::string unmet_precondition(const World& w, int object) {
   return w.scene().objects()[object].fixed ? "'" + w.scene().objects()[object].name + "' cannot be picked up" : "";
 }
 
-// From above, or for slim upright objects (a bottle on a high counter, out
-// of reach from above) from the side, the fingers closing horizontally.
+// From above, or for upright objects from the side, the fingers closing
+// horizontally: the arm reaches 0.3-1.0 m out from the side at counter
+// height, 0.3-0.75 m pointing down (Ik.SideReachesFartherThanFromAbove): a
+// pot at the back of a counter. A slim one sits between the fingers; on a
+// wider one both fingertips touch its side, which the assistive grasp holds
+// as it holds a wide object touched from above.
 std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
   std::vector<Approach> out = {{top_centre(w, object, base), kDown, std::nullopt}};
   const Aabb box = object_aabb(w, object);
   const Eigen::Vector3d size = box.hi - box.lo;
   Eigen::Vector3d towards(box.center().x() - base.x, box.center().y() - base.y, 0);
-  if (std::max(size.x(), size.y()) <= kSlim && size.z() >= kSlim && towards.norm() > 1e-6) {
+  // (A wider one only where nothing from above reaches: a container held
+  // by its side dips and pours lower. Not a cloth: the assistive grasp holds
+  // it by its centre, which is reached from above.)
+  const bool slim = std::max(size.x(), size.y()) <= kSlim;
+  const bool cloth = !w.scene().objects()[object].keypoints.empty();
+  if (size.z() >= kUpright && !cloth && towards.norm() > 1e-6) {
     towards.normalize();
     const Eigen::Vector3d point(box.center().x(), box.center().y(), box.lo.z() + 0.6 * size.z());
-    out.push_back({point - towards * std::max(size.x(), size.y()) / 2, towards, kUp.cross(towards)});
+    out.push_back({point - towards * std::max(size.x(), size.y()) / 2, towards, kUp.cross(towards), !slim});
   }
   return out;
 }

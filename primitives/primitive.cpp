@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <random>
 
 #include "base/error.hpp"
@@ -321,6 +322,7 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
                            const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type, double load,
                            size_t starts) {
   for (const Approach& a : candidates) {
+    if (a.last_resort && starts < kReachStarts.size()) continue;
     if (std::hypot(a.point.x() - base.x, a.point.y() - base.y) > kArmReachBound) continue;
     const IkTarget pre = pre_pose(a, load, primitive_def(type).clearance);
     for (size_t k = 0; k < std::min(starts, kReachStarts.size()); ++k) {
@@ -620,6 +622,25 @@ std::string out_of_reach(const World& w, PrimitiveType type, int object, uint64_
   std::snprintf(height, sizeof height, "%.2f-%.2f m", std::max(0.0, box.lo.z()), std::max(0.0, box.hi.z()));
   return "no base pose the robot can drive to brings '" + w.scene().objects().at(object).name + "' (at " + height +
          " above the floor) within reach to " + to_string(type) + " it (" + search.tally.to_string() + ")";
+}
+
+std::function<bool(const Eigen::Vector3d&, double, bool)> arm_reach_preference(const World& w) {
+  constexpr double kHighestTop = 1.15, kLowestCovered = 0.3, kHighTop = 1.0;
+  constexpr double kNearest = 0.35, kFarthest = 0.55, kFarthestHigh = 0.45, kRing = 0.05;
+  constexpr int kDirections = 16;
+  auto map = std::make_shared<const OccupancyMap>(Footprint(w).body_map());
+  return [map](const Eigen::Vector3d& p, double height, bool covered) {
+    const double top = p.z() + height;
+    if (top > kHighestTop || (covered && p.z() < kLowestCovered)) return false;
+    const double farthest = top > kHighTop ? kFarthestHigh : kFarthest;
+    for (double r = kNearest; r <= farthest + 1e-9; r += kRing) {
+      for (int k = 0; k < kDirections; ++k) {
+        const double angle = 2 * M_PI * k / kDirections;
+        if (map->free(p.x() + r * std::cos(angle), p.y() + r * std::sin(angle))) return true;
+      }
+    }
+    return false;
+  };
 }
 
 ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& types, const std::vector<int>& objects,

@@ -14,7 +14,10 @@
 // never exceptions.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -66,6 +69,17 @@ bool within_reach(const World& world, int object);
 // sampling uses it to refuse activities the robot could not complete.
 std::string out_of_reach(const World& world, PrimitiveType type, int object, uint64_t seed,
                          const PrimitiveOptions& options = {});
+
+// Supports from which an object is likely within the arm's reach, for the
+// instance samplers (SampleOptions::prefer): its top not above 1.15 m (the
+// hand points down at most 1.2 m high), inside or under something not below
+// 0.3 m (the hand points down into a cavity from above), and floor the base
+// stands on (the occupancy map of the world as it is now) 0.35-0.55 m away,
+// 0.45 m for a top above 1 m (the envelope narrows: Ik tests; nearer than
+// the empty hand needs, since a load narrows it too). A preference, cheap to
+// test: out_of_reach() decides.
+std::function<bool(const Eigen::Vector3d& support, double height, bool covered)> arm_reach_preference(
+    const World& world);
 
 // out_of_reach() of (types[i], objects[i]) for each i, as an activity would
 // be done: pushes first, from the world as it is, then the others with what

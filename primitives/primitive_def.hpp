@@ -59,6 +59,9 @@ struct Approach {
   Eigen::Vector3d point;      // on the object: top centre, handle, dirt, ...
   Eigen::Vector3d direction;  // the hand's approach axis there
   std::optional<Eigen::Vector3d> closing;
+  // Tried only with every start (the base-pose search's second pass): where
+  // nothing else reaches from any pose (a pick from the side).
+  bool last_resort = false;
 };
 
 // Where a place or dip aims (an open drawer's exposed part, else the
@@ -87,7 +90,7 @@ std::vector<Approach> approaches(const World& w, PrimitiveType type, int object,
 // that works with the base at `base`, from which, when the primitive touches
 // the object, the hand can follow the approach to its line end touching
 // nothing but the object itself; the IK starts from each of the first
-// `starts` of kReachStarts in turn.
+// `starts` of kReachStarts in turn (last-resort approaches only with all of them).
 struct Reach {
   ArmConfiguration joints;
   Approach approach;

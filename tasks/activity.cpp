@@ -312,7 +312,7 @@ void Activity::configure(World& world) const {
   configure_transitions(world);
 }
 
-bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
+bool Activity::sample_literal(World& w, const Literal& l, Rng& rng, const SampleOptions& options) const {
   const Binding& first = binding(l.args.at(0));
   if (first.kind == Binding::Kind::future) return holds(w, l);
   if (l.predicate == "future" && !l.negated && first.kind == Binding::Kind::object) {
@@ -349,14 +349,14 @@ bool Activity::sample_literal(World& w, const Literal& l, Rng& rng) const {
       return holds(w, l);
     }
     const Binding& second = binding(l.args.at(1));
-    if (second.kind == Binding::Kind::floor) return sample_onfloor(w, a, second.index, rng);
+    if (second.kind == Binding::Kind::floor) return sample_onfloor(w, a, second.index, rng, options);
     // On, in or under the agent or a substance: nothing to place it by; holds() names why.
     if (second.kind != Binding::Kind::object) return holds(w, l);
     // A cloth laid over b settles into overlaid or draped (the checks say which).
     if (l.predicate == "ontop" || l.predicate == "overlaid" || l.predicate == "draped")
-      return sample_ontop(w, a, second.index, rng);
-    if (l.predicate == "inside") return sample_inside(w, a, second.index, rng);
-    return sample_under(w, a, second.index, rng);
+      return sample_ontop(w, a, second.index, rng, options);
+    if (l.predicate == "inside") return sample_inside(w, a, second.index, rng, options);
+    return sample_under(w, a, second.index, rng, options);
   }
   if (l.predicate == "attached" && value && binding(l.args.at(1)).kind == Binding::Kind::object) {
     return sample_attached(w, a, binding(l.args[1]).index, rng);
@@ -489,7 +489,7 @@ Activity::Evaluation Activity::evaluate(const World& w) const {
   return e;
 }
 
-void Activity::instantiate(World& w, Rng& rng) const {
+void Activity::instantiate(World& w, Rng& rng, const SampleOptions& options) const {
   const Pose2 start = w.base_pose();
   // The samplers' settling steps leave the states alone: what :init sets is
   // what the instance starts with (a stove :init turns on heats nothing yet),
@@ -506,7 +506,7 @@ void Activity::instantiate(World& w, Rng& rng) const {
     if (attempt > 0) w.reset(start);
     failure.clear();
     for (const Literal& l : init_order_) {
-      if (!sample_literal(w, l, rng)) {
+      if (!sample_literal(w, l, rng, options)) {
         failure = to_bddl(l) + " could not be sampled";
         break;
       }

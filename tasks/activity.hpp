@@ -25,6 +25,7 @@
 #include "tasks/goal.hpp"
 #include "tasks/knowledge_base.hpp"
 #include "tasks/vocabulary.hpp"
+#include "world/sampling.hpp"
 #include "world/world.hpp"
 
 namespace chore {
@@ -70,9 +71,10 @@ class Activity {
   // Configures the world's extended states for the bound objects (Table A.5,
   // from the knowledge base). Call once per world.
   void configure(World& world) const;
-  // Samples :init in the world, which must be freshly reset. Retries whole
+  // Samples :init in the world, which must be freshly reset, with the
+  // samplers' `options` (where the robot reaches). Retries whole
   // instantiations; the last failure throws chore::Error naming the literal.
-  void instantiate(World& world, Rng& rng) const;
+  void instantiate(World& world, Rng& rng, const SampleOptions& options = {}) const;
 
   bool holds(const World& world, const GroundLiteral& literal) const;
   // The goal against the world: success and Q, and BEHAVIOR's potential (the
@@ -87,7 +89,7 @@ class Activity {
 
  private:
   Activity() = default;
-  bool sample_literal(World& world, const Literal& literal, Rng& rng) const;
+  bool sample_literal(World& world, const Literal& literal, Rng& rng, const SampleOptions& options) const;
   std::string type_of(const std::string& instance) const;
   std::string liquid_of(const Literal& literal) const;
   int agent_room(const World& world, const Binding& where) const;

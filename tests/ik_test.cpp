@@ -82,6 +82,26 @@ TEST(Ik, ThreeStartsReachFromTheFloorToAboveACounter) {
   EXPECT_FALSE(from_any({0.45, 0, 0.0})) << "the hand's centre on the floor";
 }
 
+// Why pick also approaches from the side: the hand pointing forward reaches
+// farther out at counter height than pointing down.
+TEST(Ik, SideReachesFartherThanFromAbove) {
+  World world(Scene::load(test::box_room()));
+  const auto from_any = [&](const Eigen::Vector3d& at, const Eigen::Vector3d& approach) {
+    return std::any_of(kReachStarts.begin(), kReachStarts.end(), [&](const ArmConfiguration& s) {
+      IkOptions options;
+      options.start = s;
+      options.iterations = 100;  // as reach() solves
+      return solve_ik(world, {at, approach}, options).success;
+    });
+  };
+  const Eigen::Vector3d down(0, 0, -1), forward(1, 0, 0);
+  EXPECT_TRUE(from_any({0.6, 0, 1.0}, down));
+  EXPECT_FALSE(from_any({0.9, 0, 1.0}, down));
+  EXPECT_TRUE(from_any({0.9, 0, 1.0}, forward));
+  EXPECT_TRUE(from_any({0.9, 0, 0.7}, forward));
+  EXPECT_FALSE(from_any({1.2, 0, 1.0}, forward)) << "beyond the arm's length";
+}
+
 TEST(Ik, UnreachableTargetsFailWithAReason) {
   World world(Scene::load(test::box_room()));
   const IkResult r = solve_ik(world, {Eigen::Vector3d(2.5, 0, 0.8), std::nullopt});

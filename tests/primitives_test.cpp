@@ -409,7 +409,7 @@ TEST(Primitives, TogglePressesTheRadioOnAndOff) {
               "'" + w.scene().objects()[radio].name + "' is already off");
     EXPECT_EQ(act(env, "navigate(radio_receiver.n.01_1)").info.primitive_status, 0);
     const Env::Impl::Outcome on = act(env, "toggle_on(radio_receiver.n.01_1)");
-    EXPECT_EQ(on.info.primitive_status, 0);
+    EXPECT_EQ(on.info.primitive_status, 0) << env.last_primitive().reason;
     EXPECT_TRUE(toggled_on(w, radio));
     EXPECT_GT(save_robot_view(w, std::string("toggle_on_") + to_string(mode) + ".png"), 8);
     EXPECT_TRUE(on.info.success);
@@ -562,7 +562,9 @@ TEST(Primitives, FoldFoldsTheTowelAndUnfoldSpreadsIt) {
   // folded, the towel lies elsewhere, and the robot may need to come nearer.)
   const PrimitiveResult nearer =
       execute_primitive(w, PrimitiveType::navigate, towel, 0, {.mode = ExecutionMode::symbolic});
-  if (!nearer.ok()) ASSERT_EQ(nearer.reason, "already within reach of '" + w.scene().objects()[towel].name + "'");
+  if (!nearer.ok()) {
+    ASSERT_EQ(nearer.reason, "already within reach of '" + w.scene().objects()[towel].name + "'");
+  }
   const PrimitiveResult unfold =
       execute_primitive(w, PrimitiveType::unfold, towel, 0, {.mode = ExecutionMode::symbolic});
   ASSERT_TRUE(unfold.ok()) << unfold.reason;
@@ -582,12 +584,14 @@ TEST(Primitives, FoldFoldsTheTowelAndUnfoldSpreadsIt) {
 // The hand towel taken from the counter and laid over the bowl on
 // the table (tests/data/bddl/behavior-1k/drape_a_towel_over_the_bowl.bddl),
 // symbolically: it hangs down the bowl's sides. Physically it is not offered.
+// Seed 2: with the towel hanging from the hand the robot reaches the bowl
+// from few base poses (navigate(bowl) finds one at 4 of seeds 0-9).
 TEST(Primitives, DrapeLaysTheTowelOverTheBowl) {
   const std::string bddl = test::data_path("bddl/behavior-1k/drape_a_towel_over_the_bowl.bddl");
   const Env physical(primitive_config(bddl, ExecutionMode::physical));
   for (const std::string& name : action_names(physical)) EXPECT_FALSE(name.starts_with("drape")) << name;
   Env env(primitive_config(bddl, ExecutionMode::symbolic));
-  env.reset(0);
+  env.reset(2);
   World& w = env.impl().world();
   const int towel = env.activity()->object("hand_towel.n.01_1"), bowl = env.activity()->object("bowl.n.01_1");
   EXPECT_EQ(unmet_precondition(w, PrimitiveType::drape, bowl), "the hand holds nothing");
@@ -893,21 +897,21 @@ TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) 
   EXPECT_TRUE(both.ok()) << both.reason;
 }
 
-// wipe presses the tool in before its strokes: at seed 77, from the base
-// pose navigate chose there (before it turned the carried rag's footprint
-// with the candidate base), the second wipe, from where the first left the
-// robot, cannot follow its first stroke far (the arm's reach); when that
-// stroke carried the 1 cm press, the tool moved along the table without
-// touching it and the wipe, repeated, removed nothing to the step limit.
+// wipe presses the tool in before its strokes: from this base pose (where
+// navigate had left the robot for a second wipe at seed 77's instance of an
+// earlier sampler) wipe cannot follow its first stroke far (the arm's
+// reach); when that stroke carried the 1 cm press, the tool moved along the
+// table without touching it and the wipe, repeated, removed nothing to the
+// step limit. At seed 81's instance, without the press first, the wipe from
+// here removes none of the 20 stains; with it, 4.
 TEST(Primitives, AWipeWhoseFirstStrokeIsCutShortStillPresses) {
   Env env(primitive_config("clean_table", ExecutionMode::symbolic));
-  env.reset(77);
+  env.reset(81);
   for (const char* a : {"navigate(rag.n.01_1)", "pick(rag.n.01_1)", "navigate(bucket.n.01_1)", "dip(bucket.n.01_1)"}) {
     ASSERT_EQ(act(env, a).info.primitive_status, 0) << a << ": " << env.last_primitive().reason;
   }
   World& w = env.impl().world();
   w.set_robot_configuration({16.0142, 0.812356, 2.37204}, arm_configuration(w).data());
-  ASSERT_EQ(act(env, "wipe(table.n.02_1)").info.primitive_status, 0) << env.last_primitive().reason;
   const int table = env.activity()->object("table.n.02_1");
   const size_t before = env.world().states().state(table).dirt.at("stain").size();
   ASSERT_EQ(act(env, "wipe(table.n.02_1)").info.primitive_status, 0) << env.last_primitive().reason;
@@ -942,8 +946,8 @@ TEST(Primitives, OutOfReachNamesWhatNoDrivableBasePoseReaches) {
   World& w = sd.impl().world();
   EXPECT_EQ(out_of_reach(w, PrimitiveType::pick, sd.activity()->object("pumpkin.n.02_1"), 1),
             "no base pose the robot can drive to brings 'pumpkin_1' (at 0.00-0.23 m above the floor) within reach to "
-            "pick it (of 2000 base poses drawn round it: 1952 in collision, 0 in another room, 11 out of the arm's "
-            "reach, 37 cut off from the robot)");
+            "pick it (of 2000 base poses drawn round it: 1961 in collision, 0 in another room, 7 out of the arm's "
+            "reach, 32 cut off from the robot)");
   EXPECT_EQ(out_of_reach(w, PrimitiveType::pick, sd.activity()->object("pumpkin.n.02_2"), 1), "");
   // navigate agrees: its base poses are all in the pocket.
   const float navigate_to_pumpkin_1 = 0;

@@ -106,10 +106,26 @@ Eigen::Vector2d point_in(const Aabb& box, double r, Rng& rng) {
   return p;
 }
 
+// Whether b's walls, along both horizontal axes, stand clear of an object of
+// horizontal radius r at `centre` by the fingers' width: what a hand takes
+// from above or the side closes its fingers round it.
+bool hand_room(const World& w, int b, const Eigen::Vector3d& centre, double r) {
+  constexpr double kHandRoom = 0.06;
+  for (const Eigen::Vector3d dir : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}) {
+    for (const double sign : {1.0, -1.0}) {
+      const double to_wall = ray_to_object(w, b, centre, sign * dir, r + kHandRoom);
+      if (to_wall >= 0) return false;
+    }
+  }
+  return true;
+}
+
+// Candidates until one is placed; `candidate(strict)` with strict in the
+// first half of the attempts when a preference is set.
 template <class Candidate>
 bool search(World& w, const SampleOptions& options, Candidate candidate) {
   for (int attempt = 0; attempt < options.attempts; ++attempt) {
-    if (candidate()) {
+    if (candidate(options.prefer && attempt < options.attempts / 2)) {
       settle(w, options);
       return true;
     }
@@ -126,12 +142,15 @@ bool sample_ontop(World& w, int a, int b, Rng& rng, const SampleOptions& options
   // A cloth is laid over all of b from above it and settles onto b (a towel
   // over a sink's rim), as BEHAVIOR drops cloth onto rigid objects.
   const bool cloth = !w.scene().objects()[a].keypoints.empty();
-  return search(w, cloth ? SampleOptions{options.attempts, 4 * options.settle_seconds} : options, [&] {
+  SampleOptions search_options = options;
+  if (cloth) search_options.settle_seconds *= 4;
+  return search(w, search_options, [&](bool strict) {
     const Eigen::Vector2d p = point_in(box, cloth ? 0 : f.radius, rng);
     const Eigen::Vector3d start(p.x(), p.y(), box.hi.z() + 0.01);
     // The first surface below must be b's: nothing else lies there.
     const double to_b = ray_to_object(w, b, start, kDown, 10);
     if (to_b < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_b - 1e-9) return false;
+    if (strict && !options.prefer({p.x(), p.y(), start.z() - to_b}, f.height, false)) return false;
     // Where a rim stands above the surface (a plate onto a plate of its
     // size), on top of b's box: it settles onto the rim.
     return (!cloth && try_place(w, a, f, p.x(), p.y(), start.z() - to_b, rng)) ||
@@ -143,7 +162,7 @@ bool sample_inside(World& w, int a, int b, Rng& rng, const SampleOptions& option
   const Footprint f = footprint(w, a);
   const Aabb box = object_aabb(w, b);
   const std::vector<int> others = geoms_except(w, a);
-  return search(w, options, [&] {
+  return search(w, options, [&](bool strict) {
     const Eigen::Vector2d p = point_in(box, f.radius + 0.01, rng);
     // A height inside b's box from which a support of b lies below.
     const double top = box.hi.z() - kClearance - f.height;
@@ -153,6 +172,10 @@ bool sample_inside(World& w, int a, int b, Rng& rng, const SampleOptions& option
     if (to_b < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_b - 1e-9) return false;
     const double support = start.z() - to_b;
     if (support + kDropHeight + f.height > box.hi.z() - kClearance) return false;
+    if (strict && (!options.prefer({p.x(), p.y(), support}, f.height, true) ||
+                   !hand_room(w, b, {p.x(), p.y(), support + f.height / 2}, f.radius))) {
+      return false;
+    }
     return try_place(w, a, f, p.x(), p.y(), support, rng);
   });
 }
@@ -161,7 +184,7 @@ bool sample_under(World& w, int a, int b, Rng& rng, const SampleOptions& options
   const Footprint f = footprint(w, a);
   const Aabb box = object_aabb(w, b);
   const std::vector<int> others = geoms_except(w, a, b);
-  return search(w, options, [&] {
+  return search(w, options, [&](bool strict) {
     const Eigen::Vector2d p = point_in(box, 0, rng);
     // The underside of b above this point, then the support below it.
     const Eigen::Vector3d low(p.x(), p.y(), 0.001);
@@ -172,6 +195,7 @@ bool sample_under(World& w, int a, int b, Rng& rng, const SampleOptions& options
     if (to_support < 0) return false;
     const double support = start.z() - to_support;
     if (support + kDropHeight + f.height > start.z() - kClearance) return false;
+    if (strict && !options.prefer({p.x(), p.y(), support}, f.height, true)) return false;
     return try_place(w, a, f, p.x(), p.y(), support, rng);
   });
 }
@@ -181,7 +205,7 @@ bool sample_onfloor(World& w, int a, int room, Rng& rng, const SampleOptions& op
   const Room& r = w.scene().rooms()[room];
   const std::vector<int>& floors = w.scene().floor_geoms(room);
   const std::vector<int> others = geoms_except(w, a);
-  return search(w, options, [&] {
+  return search(w, options, [&](bool strict) {
     const auto& rect = r.rects[uniform_index(rng, static_cast<int>(r.rects.size()))];
     Aabb area;
     area.lo = Eigen::Vector3d(rect[0], rect[1], 0);
@@ -191,6 +215,7 @@ bool sample_onfloor(World& w, int a, int room, Rng& rng, const SampleOptions& op
     const Eigen::Vector3d start(p.x(), p.y(), 2.0);
     const double to_floor = ray_to_geoms(w, floors, start, kDown, 10);
     if (to_floor < 0 || ray_to_geoms(w, others, start, kDown, 10) < to_floor - 1e-9) return false;
+    if (strict && !options.prefer({p.x(), p.y(), start.z() - to_floor}, f.height, false)) return false;
     return try_place(w, a, f, p.x(), p.y(), start.z() - to_floor, rng);
   });
 }

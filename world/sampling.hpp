@@ -5,6 +5,9 @@
 // (predicates.hpp): the tests measure how often the checkers agree.
 #pragma once
 
+#include <Eigen/Core>
+
+#include <functional>
 #include <string>
 
 #include "base/random.hpp"
@@ -15,6 +18,17 @@ namespace chore {
 struct SampleOptions {
   int attempts = 100;            // candidate poses before giving up
   double settle_seconds = 0.25;  // physics after placing (objects drop from 5 mm)
+  // Where the robot can act: when set, the first half of the attempts keep
+  // only candidates whose support point (x, y and the height the object
+  // would stand at) it accepts for an object `height` tall, `covered` when
+  // something of the support lies above (inside, under), and inside keeps
+  // room for fingers (kHandRoom) between the object and the container's
+  // walls; the rest take any. BEHAVIOR samples uniformly over scenes whose
+  // shelves and counters a person's arm reaches; chore's generated analogs
+  // are not tuned so, and this keeps an instance's objects where the
+  // robot's arm reaches them when the predicate allows (Env: the
+  // primitives' arm_reach_preference()).
+  std::function<bool(const Eigen::Vector3d& support, double height, bool covered)> prefer;
 };
 
 // Each returns false when no valid pose was found in options.attempts tries;
