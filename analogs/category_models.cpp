@@ -324,10 +324,11 @@ Archetype CategoryModels::archetype(const std::string& synset) const {
   const bool openable = kb.is_openable(synset), fillable = kb.has_property(synset, "fillable");
   if (kb.has_property(synset, "sceneObject")) {
     if (openable) return Archetype::cabinet;
+    // (A bookcase holds things on shelves, not in a basin 1.8 m deep.)
+    if (is("shelf.n.01") || is("bookcase.n.01")) return Archetype::shelf;
     if (fillable) return Archetype::basin;
     if (is("seat.n.03")) return Archetype::seat;
     if (is("bed.n.01")) return Archetype::bed;
-    if (is("shelf.n.01") || is("bookcase.n.01")) return Archetype::shelf;
     if (is("table.n.02") || is("desk.n.01")) return Archetype::table;
     return Archetype::block;
   }

@@ -1,6 +1,10 @@
 // place(object): the carried object over a flat spot on (or in) the object,
-// released, and the hand back: on or in it, or a place failure.
+// or through the open side of a container closed on top, released, and the
+// hand back: on or in it, or a place failure.
+#include <algorithm>
+
 #include "primitives/primitive_def.hpp"
+#include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 
 namespace chore {
@@ -13,6 +17,100 @@ bool applies(const World&, int) {
 std::string unmet_precondition(const World& w, int object) {
   if (w.carried_object() < 0) return "the hand holds nothing";
   return w.grasped_object() == object ? "cannot place an object on itself" : "";
+}
+
+constexpr double kRoofDepth = 0.1;   // m: a top this close below the box's is closed (a bookcase, a fridge)
+constexpr double kLevelStep = 0.05;  // m between the heights rays look down for a level from
+constexpr double kInset = 0.05;      // m from the opening to the load's near side
+constexpr double kHandRoom = 0.1;    // m above a load for the hand and wrist
+constexpr double kComfortableHeight = 0.9;  // m: a level's hand height nearest this is tried first
+constexpr double kSlant = 0.7;              // rad: the most the hand's way in turns from straight in
+
+// Into a container closed on top (a bookcase, a shelf, a fridge or cabinet
+// with its door open), as a person puts things away: through its open side,
+// horizontally, over a level (its floor or a shelf) with room for the load
+// and the hand above it, the load just inside the opening (where the hand
+// gets it out again). Levels nearest a hand's comfortable height first.
+// None with an empty hand, or into what is open on top: place lowers the
+// load into that from above (top_spots).
+std::vector<Approach> through_open_side(const World& w, int object, const Pose2& base) {
+  const int held = w.carried_object();
+  if (held < 0) return {};
+  // The carcass: an open door swung out is not where things go.
+  const auto door = articulation(w, object);
+  Aabb box;
+  for (const int g : w.scene().objects()[object].geoms) {
+    if (!door || w.model()->geom_bodyid[g] != door->link) box.grow(geom_aabb(w, g));
+  }
+  const Eigen::Vector3d c = box.center();
+  const double roof = ray_to_object(w, object, {c.x(), c.y(), box.hi.z() + 0.05}, kDown, box.extent().z() + 0.05);
+  if (roof < 0 || roof > kRoofDepth + 0.05) return {};
+  const double under_roof = box.hi.z() + 0.05 - roof;  // (a shallow bowl's roof is its floor: no room under it)
+  // The load's largest side, every way: held horizontally it turns with the hand.
+  const double size = object_aabb(w, held).extent().maxCoeff();
+  const double hand = size / 2 + 0.04;  // the hand's height over the level, the load below it clear of it
+  const double room = hand + kHandRoom;
+  std::vector<std::pair<double, Approach>> found;  // (preference, approach)
+  for (const auto& out : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                    Eigen::Vector3d(0, -1, 0)}) {
+    const double depth = std::abs(out.dot(box.extent()));
+    if (depth < 2 * kInset) continue;
+    const Eigen::Vector3d across = kUp.cross(out);
+    const double width = std::abs(across.dot(box.extent()));
+    if (width < 2 * kInset) continue;
+    // The load's centre just inside the opening (a large one over the
+    // middle, sticking out); of three places across, the one farthest from
+    // what already stands there (the nearest the base if none is near).
+    const Eigen::Vector3d inner = c + out * std::max(0.0, depth / 2 - kInset - size / 2);
+    std::vector<double> levels;
+    for (double z = box.hi.z() - 0.02; z > box.lo.z(); z -= kLevelStep) {
+      const double down = ray_to_object(w, object, {inner.x(), inner.y(), z}, kDown, z - box.lo.z() + 0.01);
+      if (down < 0) continue;
+      const double level = z - down;
+      if (std::any_of(levels.begin(), levels.end(), [&](double l) { return std::abs(l - level) < 0.02; })) continue;
+      levels.push_back(level);
+      // (A level found from inside a shelf's board has no room above it.)
+      const double up = ray_to_object(w, object, {inner.x(), inner.y(), level + 0.01}, kUp, room);
+      if (up >= 0 || level + room > under_roof) continue;
+      // Open on this side: nothing of the object (a panel, a closed door) before the opening.
+      const Eigen::Vector3d middle(inner.x(), inner.y(), level + room / 2);
+      if (ray_to_object(w, object, middle, out, depth / 2 + 0.3) >= 0) continue;
+      double best_clearance = -1;
+      Eigen::Vector3d spot = inner;
+      for (const double f : {0.0, -0.3, 0.3}) {
+        const Eigen::Vector3d p = inner + across * (f * std::max(0.0, width - size - 2 * kInset));
+        double clearance = 1e9;
+        for (size_t o = 0; o < w.scene().objects().size(); ++o) {
+          if (w.scene().objects()[o].fixed || static_cast<int>(o) == held || static_cast<int>(o) == object) continue;
+          const Aabb other = object_aabb(w, static_cast<int>(o));
+          if (other.hi.z() < level || other.lo.z() > level + room) continue;
+          clearance = std::min(clearance, (other.center() - p).head<2>().norm());
+        }
+        clearance = std::min(clearance, 1.0) - 1e-3 * std::hypot(p.x() - base.x, p.y() - base.y);
+        if (clearance > best_clearance + 1e-9) best_clearance = clearance, spot = p;
+      }
+      spot.z() = level + hand;
+      // The hand stops at the pre-pose, a clearance short of the approach
+      // point (Executor::go_to_pre_pose_with_load): the arm's planner takes
+      // the load in through the opening, and reach() checks it there.
+      // In at a slant from where the base stands (a door swung open beside
+      // the opening keeps it off the middle), at most kSlant off straight in.
+      Eigen::Vector3d in(spot.x() - base.x, spot.y() - base.y, 0);
+      in = in.norm() > 1e-6 && in.normalized().dot(-out) > std::cos(kSlant) ? in.normalized() : Eigen::Vector3d(-out);
+      const Eigen::Vector3d point = spot + in * (kClearance + kFingerReach);
+      found.push_back({std::abs(spot.z() - kComfortableHeight), {point, in, std::nullopt}});
+    }
+  }
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Approach> out;
+  for (const auto& [preference, a] : found) out.push_back(a);
+  return out;
+}
+
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
+  std::vector<Approach> out = through_open_side(w, object, base);
+  for (const Eigen::Vector3d& spot : top_spots(w, object, base)) out.push_back({spot, kDown, std::nullopt});
+  return out;
 }
 
 bool act(Executor& e) {
@@ -50,8 +148,12 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
 }  // namespace
 
 const PrimitiveDef& place_primitive() {
-  static const PrimitiveDef def{
-      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .model = model, .touches = false};
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = unmet_precondition,
+                                .act = act,
+                                .model = model,
+                                .approaches = approaches,
+                                .touches = false};
   return def;
 }
 

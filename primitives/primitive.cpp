@@ -571,12 +571,16 @@ bool Executor::release() {
     result_.execution_seconds += since(t);
   }
   motion_.wait(0.3);
-  motion_.line(kUp * kLift, false, kRetreatSpeed, 0.0);
+  // Up, or out of a shelf the way the hand came in.
+  const bool from_above = approach_.direction.z() < -0.5;
+  motion_.line(from_above ? Eigen::Vector3d(kUp * kLift) : Eigen::Vector3d(-approach_.direction * kLift), false,
+               kRetreatSpeed, 0.0);
   return tuck_where_possible();
 }
 
 bool Executor::go_to_pre_pose_with_load() {
   if (!go_to_pre_pose()) return false;
+  if (approach_.direction.z() > -0.5) return true;  // into a shelf: the pre-pose is the place
   const Eigen::Vector3d spot = approach_.point;
   Eigen::Vector3d shift = spot - object_aabb(w_, w_.carried_object()).center();
   shift.z() = 0;

@@ -234,5 +234,19 @@ TEST(ActivitySolve, ASpongeSaturatedWithRubbingAlcoholWipesTheMarkerOff) {
   EXPECT_LT(dip, wipe);
 }
 
+// A fridge, closed on top, is filled through its open door: each bottle
+// is put on a shelf from the front (place's through_open_side), not on top,
+// 1.8 m up, where the arm reaches nothing, as before.
+TEST(ActivitySolve, BottlesGoIntoTheFridgeThroughItsOpenDoor) {
+  const nlohmann::json s = solve_test_activity("store_beer");
+  ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
+  const std::vector<std::string> plan = s["plan"];
+  EXPECT_EQ(std::count(plan.begin(), plan.end(), "place(electric_refrigerator.n.01_1)"), 4);
+  const auto open = std::find(plan.begin(), plan.end(), "push(electric_refrigerator.n.01_1)");
+  const auto first_place = std::find(plan.begin(), plan.end(), "place(electric_refrigerator.n.01_1)");
+  ASSERT_NE(open, plan.end());
+  EXPECT_LT(open, first_place);
+}
+
 }  // namespace
 }  // namespace chore
