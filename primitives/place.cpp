@@ -19,10 +19,10 @@ std::string unmet_precondition(const World& w, int object) {
   return w.grasped_object() == object ? "cannot place an object on itself" : "";
 }
 
-constexpr double kRoofDepth = 0.1;   // m: a top this close below the box's is closed (a bookcase, a fridge)
-constexpr double kLevelStep = 0.05;  // m between the heights rays look down for a level from
-constexpr double kInset = 0.05;      // m from the opening to the load's near side
-constexpr double kHandRoom = 0.1;    // m above a load for the hand and wrist
+constexpr double kRoofDepth = 0.1;          // m: a top this close below the box's is closed (a bookcase, a fridge)
+constexpr double kLevelStep = 0.05;         // m between the heights rays look down for a level from
+constexpr double kInset = 0.05;             // m from the opening to the load's near side
+constexpr double kHandRoom = 0.1;           // m above a load for the hand and wrist
 constexpr double kComfortableHeight = 0.9;  // m: a level's hand height nearest this is tried first
 constexpr double kSlant = 0.7;              // rad: the most the hand's way in turns from straight in
 
@@ -51,8 +51,8 @@ std::vector<Approach> through_open_side(const World& w, int object, const Pose2&
   const double hand = size / 2 + 0.04;  // the hand's height over the level, the load below it clear of it
   const double room = hand + kHandRoom;
   std::vector<std::pair<double, Approach>> found;  // (preference, approach)
-  for (const auto& out : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 1, 0),
-                                    Eigen::Vector3d(0, -1, 0)}) {
+  for (const auto& out :
+       {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
     const double depth = std::abs(out.dot(box.extent()));
     if (depth < 2 * kInset) continue;
     const Eigen::Vector3d across = kUp.cross(out);
