@@ -11,6 +11,10 @@ namespace chore {
 namespace {
 
 constexpr double kSoakDepth = 0.04;  // m under a liquid's surface that dip lowers the held object
+// m above the rim the held object's bottom starts down from: close, as a
+// person dips. (With place's 10 cm the hand, pointing down, would start
+// above a pot on a counter higher than the arm reaches, 1.2 m.)
+constexpr double kDipClearance = 0.03;
 
 bool applies(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
@@ -41,6 +45,20 @@ Eigen::Vector3d line_end(const World& w, int object, const Approach& a, const Po
   if (ab && !ab->source.empty()) level = std::max(level, ObjectStates::kSourceLevel);
   const double surface = box.lo.z() + level * (box.hi.z() - box.lo.z());
   return {a.point.x(), a.point.y(), surface - kSoakDepth + load};
+}
+
+// From above; where that is too high (a bottle on a counter, its top at
+// 1.16 m, the tool hanging below the hand: pointing down the hand reaches
+// 1.2 m at most), the hand tilted 45 degrees towards it (Ik: up to 1.4 m).
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
+  std::vector<Approach> out;
+  const std::vector<Eigen::Vector3d> spots = top_spots(w, object, base);
+  for (const Eigen::Vector3d& spot : spots) out.push_back({spot, kDown, std::nullopt});
+  for (const Eigen::Vector3d& spot : spots) {
+    const Eigen::Vector3d towards(spot.x() - base.x, spot.y() - base.y, 0);
+    if (towards.norm() > 1e-6) out.push_back({spot, (towards.normalized() + kDown).normalized(), std::nullopt});
+  }
+  return out;
 }
 
 bool act(Executor& e) {
@@ -100,9 +118,11 @@ const PrimitiveDef& dip_primitive() {
                                 .unmet_precondition = unmet_precondition,
                                 .act = act,
                                 .model = model,
+                                .approaches = approaches,
                                 .line_end = line_end,
                                 .about_substance = true,
-                                .with_tool = true};
+                                .with_tool = true,
+                                .clearance = kDipClearance};
   return def;
 }
 
