@@ -83,9 +83,27 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   const bool heating = !heated.empty() || std::any_of(transitions.begin(), transitions.end(), [](const Transition& t) {
     return t.trigger == TransitionTrigger::heated;
   });
+  // What heats or cools only what is inside it, and only closed (an oven, a
+  // microwave, a freezer): where the activity heats, it is put into, opened
+  // and closed.
+  const auto heats_inside = [&](int object) {
+    const ObjectAbilities* ab = world.states().abilities(object);
+    return heating && ab &&
+           ((ab->heat_source && ab->heat_source->requires_inside) ||
+            (ab->cold_source && ab->cold_source->requires_inside));
+  };
+  // Setting down on something serves goals that it touch it too.
+  std::set<std::string> touched;
+  arguments_of(problem.goal, {"touching"}, 0, touched, scope);
+  arguments_of(problem.goal, {"touching"}, 1, touched, scope);
   const std::set<std::string> folds = arguments_of(problem, {"folded", "unfolded"}, 0);
+  // Opening serves goals that put things in, and getting out what is in
+  // (a bottle in the fridge).
   std::set<std::string> openable = arguments_of(problem, {"open"}, 0);
   openable.insert(goal_supports.begin(), goal_supports.end());
+  for (const Literal& l : problem.init) {
+    if (!l.negated && l.predicate == "inside" && l.args.size() == 2) openable.insert(l.args[1]);
+  }
   // Dipping goes into what :init fills (a bucket of water) or under a source
   // (a sink): every container may hold a liquid, but an empty mug is no place
   // to dip into.
@@ -119,9 +137,11 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
     for (int t = 0; t < kPrimitiveTypes; ++t) {
       const auto type = static_cast<PrimitiveType>(t);
       bool applies = primitive_applies(world, type, b.index);
-      if (type == PrimitiveType::place) applies = !goal_supports.empty() && named(supports);
-      if (type == PrimitiveType::push) applies = applies && named(openable);
-      if (type == PrimitiveType::close) applies = applies && named(closable);
+      if (type == PrimitiveType::place) {
+        applies = (!goal_supports.empty() && named(supports)) || named(touched) || heats_inside(b.index);
+      }
+      if (type == PrimitiveType::push) applies = applies && (named(openable) || heats_inside(b.index));
+      if (type == PrimitiveType::close) applies = applies && (named(closable) || heats_inside(b.index));
       if (type == PrimitiveType::drape) applies = named(covered_by_cloth);
       if (type == PrimitiveType::place_under) applies = named(above);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
