@@ -101,9 +101,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   // (a bottle in the fridge).
   std::set<std::string> openable = arguments_of(problem, {"open"}, 0);
   openable.insert(goal_supports.begin(), goal_supports.end());
-  for (const Literal& l : problem.init) {
-    if (!l.negated && l.predicate == "inside" && l.args.size() == 2) openable.insert(l.args[1]);
-  }
+  const std::set<std::string> holders = arguments_of(problem, {"inside"}, 1);
+  openable.insert(holders.begin(), holders.end());
   // Dipping goes into what :init fills (a bucket of water) or under a source
   // (a sink): every container may hold a liquid, but an empty mug is no place
   // to dip into.

@@ -79,14 +79,8 @@ std::vector<Approach> through_open_side(const World& w, int object, const Pose2&
       Eigen::Vector3d spot = inner;
       for (const double f : {0.0, -0.3, 0.3}) {
         const Eigen::Vector3d p = inner + across * (f * std::max(0.0, width - size - 2 * kInset));
-        double clearance = 1e9;
-        for (size_t o = 0; o < w.scene().objects().size(); ++o) {
-          if (w.scene().objects()[o].fixed || static_cast<int>(o) == held || static_cast<int>(o) == object) continue;
-          const Aabb other = object_aabb(w, static_cast<int>(o));
-          if (other.hi.z() < level || other.lo.z() > level + room) continue;
-          clearance = std::min(clearance, (other.center() - p).head<2>().norm());
-        }
-        clearance = std::min(clearance, 1.0) - 1e-3 * std::hypot(p.x() - base.x, p.y() - base.y);
+        const double clearance = std::min(room_among_loose(w, p, object, level, level + room), 1.0) -
+                                 1e-3 * std::hypot(p.x() - base.x, p.y() - base.y);
         if (clearance > best_clearance + 1e-9) best_clearance = clearance, spot = p;
       }
       spot.z() = level + hand;

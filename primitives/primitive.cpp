@@ -222,7 +222,6 @@ std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& 
   if (held >= 0) margin += std::max(load.hi.x() - load.lo.x(), load.hi.y() - load.lo.y()) / 2;
   const double fa = std::max(0.0, 1 - margin / std::max(along.norm(), 1e-9));
   const double fc = std::max(0.0, 1 - margin / std::max(across.norm(), 1e-9));
-  const auto& objects = w.scene().objects();
   if (held < 0) return {{centre.x(), centre.y(), top}};  // nothing to set down
   // A spot is flat when rays down through the load's footprint all land on
   // the target at one height: not half on a bin's rim or off a table's edge.
@@ -246,13 +245,7 @@ std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& 
       if (!flat(p)) continue;
       const double distance = std::hypot(p.x() - base.x, p.y() - base.y);
       if (distance < nearest_distance - 1e-9) nearest = p, nearest_distance = distance;
-      double clearance = 1e9;
-      for (size_t o = 0; o < objects.size(); ++o) {
-        if (objects[o].fixed || static_cast<int>(o) == held || static_cast<int>(o) == object) continue;
-        const Eigen::Vector3d c = object_aabb(w, static_cast<int>(o)).center();
-        if (c.z() < top - 0.4 || c.z() > top + 0.4) continue;
-        clearance = std::min(clearance, (c - p).head<2>().norm());
-      }
+      double clearance = room_among_loose(w, p, object, top - 0.4, top + 0.4);
       // Ties (nothing near): a spot at one side, centred along, so the next
       // object fits beside this one.
       clearance = std::min(clearance, 1.0) + 1e-3 * (std::abs(j) - std::abs(i));
@@ -264,6 +257,17 @@ std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& 
   // nearest spot is its edge, where a load settles on the rim.)
   if (drawer || (nearest - best).norm() < 1e-9) return {best};
   return {best, nearest};
+}
+
+double room_among_loose(const World& w, const Eigen::Vector3d& p, int object, double lo, double hi) {
+  const auto& objects = w.scene().objects();
+  double room = 1e9;
+  for (size_t o = 0; o < objects.size(); ++o) {
+    if (objects[o].fixed || static_cast<int>(o) == w.carried_object() || static_cast<int>(o) == object) continue;
+    const Eigen::Vector3d c = object_aabb(w, static_cast<int>(o)).center();
+    if (c.z() >= lo && c.z() <= hi) room = std::min(room, (c - p).head<2>().norm());
+  }
+  return room;
 }
 
 Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base) {
@@ -302,7 +306,7 @@ namespace {
 // The hand's pre-pose: `clearance` before the approach point, fingertips (or
 // a load hanging `load` below the hand) first.
 IkTarget pre_pose(const Approach& a, double load, double clearance) {
-  const double standoff = clearance + (a.direction.z() < -0.5 ? std::max(kFingerReach, load) : kFingerReach);
+  const double standoff = clearance + (from_above(a) ? std::max(kFingerReach, load) : kFingerReach);
   return {a.point - a.direction * standoff, a.direction, a.closing};
 }
 }  // namespace
@@ -572,15 +576,14 @@ bool Executor::release() {
   }
   motion_.wait(0.3);
   // Up, or out of a shelf the way the hand came in.
-  const bool from_above = approach_.direction.z() < -0.5;
-  motion_.line(from_above ? Eigen::Vector3d(kUp * kLift) : Eigen::Vector3d(-approach_.direction * kLift), false,
-               kRetreatSpeed, 0.0);
+  motion_.line(from_above(approach_) ? Eigen::Vector3d(kUp * kLift) : Eigen::Vector3d(-approach_.direction * kLift),
+               false, kRetreatSpeed, 0.0);
   return tuck_where_possible();
 }
 
 bool Executor::go_to_pre_pose_with_load() {
   if (!go_to_pre_pose()) return false;
-  if (approach_.direction.z() > -0.5) return true;  // into a shelf: the pre-pose is the place
+  if (!from_above(approach_)) return true;  // into a shelf: the pre-pose is the place
   const Eigen::Vector3d spot = approach_.point;
   Eigen::Vector3d shift = spot - object_aabb(w_, w_.carried_object()).center();
   shift.z() = 0;

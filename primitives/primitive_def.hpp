@@ -64,6 +64,12 @@ struct Approach {
   bool last_resort = false;
 };
 
+// Whether the hand comes down onto the approach point (a load hanging below
+// it first), rather than in from the side (a shelf, an upright object).
+inline bool from_above(const Approach& a) {
+  return a.direction.z() < -0.5;
+}
+
 // Where a place or dip aims (an open drawer's exposed part, else the
 // object's top, at the spot farthest from what lies there already), with
 // the robot standing at `base`: the carried load's footprint turns with the
@@ -73,6 +79,10 @@ Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base);
 // (a deep counter's near side: the arm reaches less far with a load; not in
 // an open drawer).
 std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& base);
+// How far, in the plane, p lies from the nearest loose object (not fixed,
+// not carried, not `object`) whose centre is between heights lo and hi; 1e9
+// with none: where a load set down leaves the most room.
+double room_among_loose(const World& w, const Eigen::Vector3d& p, int object, double lo, double hi);
 // Where the dirt on an object lies (world frame).
 std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object);
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -204,13 +214,13 @@ struct PrimitiveDef {
   // Why out_of_reach() fails: null for the default, no base pose reaching
   // one of approaches().
   std::string (*out_of_reach)(ReachSearch& search) = nullptr;
-  bool about_substance = false;  // the model takes a substance (dip: the liquid; wipe: the dirt)
-  bool touches = true;           // the hand follows the approach into contact with the object
-  bool with_tool = false;        // acts with a tool in hand (reach checks count one hanging below it)
-  bool opens = false;            // opens an articulated object: the base stands in front of it, room to pull
-  bool drives = false;           // moves the base: checks its own precondition, no tuck after failing
-  bool symbolic_only = false;    // no physical execution (act fails it); offered in symbolic action spaces only
-  double yaw_spread = M_PI;      // rad: base poses face the target within +-half this (side-on: pi)
+  bool about_substance = false;   // the model takes a substance (dip: the liquid; wipe: the dirt)
+  bool touches = true;            // the hand follows the approach into contact with the object
+  bool with_tool = false;         // acts with a tool in hand (reach checks count one hanging below it)
+  bool opens = false;             // opens an articulated object: the base stands in front of it, room to pull
+  bool drives = false;            // moves the base: checks its own precondition, no tuck after failing
+  bool symbolic_only = false;     // no physical execution (act fails it); offered in symbolic action spaces only
+  double yaw_spread = M_PI;       // rad: base poses face the target within +-half this (side-on: pi)
   double clearance = kClearance;  // m the pre-pose keeps above the approach point (fingertips or load first)
 };
 
