@@ -83,8 +83,7 @@ void add_tray(std::vector<GeomSpec>& geoms, const Eigen::Vector3d& s, double z0,
   }
 }
 
-constexpr double kShelfPitch = 0.6;     // m between shelves behind a cabinet's door
-constexpr double kShelvedHeight = 1.2;  // m: cabinets this tall have shelves
+constexpr double kShelfPitch = 0.6;  // m between shelves behind a cabinet's door
 
 LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb) {
   const double t = 0.02;
@@ -98,10 +97,11 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb) {
   for (double side : {-1.0, 1.0}) {
     g.push_back(box({t / 2, s.y() / 2 - t / 2, s.z() / 2 - t}, {side * (s.x() - t) / 2, t / 2, s.z() / 2}, rgb));
   }
-  if (s.x() <= s.z() && s.z() >= kShelvedHeight) {
-    // Behind a tall door, shelves about 0.6 m apart (a fridge's): what is
-    // inside need not lie on the bottom, where no arm reaching in from above
-    // gets to it. (A lower cabinet keeps one space: a sack of flour stands in it.)
+  if (s.x() <= s.z()) {
+    // Behind a door, shelves about 0.6 m apart (a fridge's; a kitchen's base
+    // cabinet has one halfway up): what is inside need not lie on the bottom,
+    // where an arm reaching in through the door does not get. (A cabinet under
+    // 0.9 m keeps one space; what is too tall for a level stands on the bottom.)
     const int levels = static_cast<int>(std::lround(s.z() / kShelfPitch));
     for (int k = 1; k < levels; ++k) {
       g.push_back(box({s.x() / 2 - t, s.y() / 2 - 1.5 * t, t / 2}, {0, t / 2, k * s.z() / levels}, shade(rgb, 1.1)));

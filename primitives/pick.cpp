@@ -40,11 +40,15 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   // it by its centre, which is reached from above.)
   const bool slim = std::max(size.x(), size.y()) <= kSlim;
   const bool cloth = !w.scene().objects()[object].keypoints.empty();
-  if (size.z() >= kUpright && !cloth && towards.norm() > 1e-6) {
-    towards.normalize();
+  if (towards.norm() < 1e-6) return out;
+  towards.normalize();
+  if (size.z() >= kUpright && !cloth) {
     const Eigen::Vector3d point(box.center().x(), box.center().y(), box.lo.z() + 0.6 * size.z());
     out.push_back({point - towards * std::max(size.x(), size.y()) / 2, towards, kUp.cross(towards), !slim});
   }
+  // Tilted 45 degrees towards it where no pose has room above to point
+  // down (a shelf over it, a cabinet's top): the fingers close across.
+  out.push_back({out.front().point, (towards + kDown).normalized(), kUp.cross(towards), true});
   return out;
 }
 

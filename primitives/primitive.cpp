@@ -168,6 +168,33 @@ double open_fraction(const Articulation& a) {
   return (a.value - a.low) / (a.high - a.low);
 }
 
+void set_articulation(World& w, const Articulation& a, double value) {
+  const mjModel* m = w.model();
+  mjData* d = w.data();
+  const double to = std::clamp(value, a.low, a.high);
+  if (!a.hinge) {
+    // What lies in the drawer: free objects whose boxes are centred in the link's.
+    Aabb link;
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (m->geom_bodyid[g] == a.link) link.grow(geom_aabb(w, g));
+    }
+    const Eigen::Vector3d shift = a.axis * (to - d->qpos[m->jnt_qposadr[a.joint]]);
+    const auto& objects = w.scene().objects();
+    for (int o = 0; o < static_cast<int>(objects.size()); ++o) {
+      const int body = objects[o].body;
+      if (objects[o].fixed || body < 0 || !w.real(o) || o == w.grasped_object()) continue;
+      if (m->body_jntnum[body] < 1 || m->jnt_type[m->body_jntadr[body]] != mjJNT_FREE) continue;
+      const Aabb box = object_aabb(w, o);
+      const Eigen::Vector3d centre = (box.lo + box.hi) / 2;
+      if ((centre.array() < link.lo.array()).any() || (centre.array() > link.hi.array()).any()) continue;
+      double* qpos = d->qpos + m->jnt_qposadr[m->body_jntadr[body]];
+      for (int k = 0; k < 3; ++k) qpos[k] += shift[k];
+    }
+  }
+  d->qpos[m->jnt_qposadr[a.joint]] = to;
+  mj_forward(m, d);
+}
+
 // Where a place or dip aims: over an open drawer's exposed part, else over
 // the object's box, at the spot farthest from the free objects already there
 // (the second pumpkin goes beside the first), on top.
@@ -668,22 +695,22 @@ ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& type
     const PrimitiveDef& def = primitive_def(types[i]);
     if (def.opens && def.unmet_precondition(w, objects[i]).empty() && !check(i)) return problem;
   }
-  // The rest with the drawers pulled open as push leaves them.
-  std::vector<std::pair<int, double>> saved;  // qpos address, value
+  // The rest with the drawers pulled open as push leaves them, what is in them along.
+  const std::vector<double> saved(w.data()->qpos, w.data()->qpos + w.model()->nq);
+  bool pulled = false;
   for (size_t i = 0; i < types.size(); ++i) {
     const auto a = primitive_def(types[i]).opens ? articulation(w, objects[i]) : std::nullopt;
-    if (!a) continue;
-    const int adr = w.model()->jnt_qposadr[a->joint];
-    saved.push_back({adr, w.data()->qpos[adr]});
-    w.data()->qpos[adr] = a->low + (a->high - a->low) * kPullFraction;
+    if (!a || open_fraction(*a) >= kPullFraction) continue;
+    set_articulation(w, *a, a->low + (a->high - a->low) * kPullFraction);
+    pulled = true;
   }
-  if (!saved.empty()) mj_forward(w.model(), w.data());
   for (size_t i = 0; i < types.size(); ++i) {
     if (!primitive_def(types[i]).opens && !check(i)) break;
   }
-  // In reverse: push and close of one drawer saved it twice, the second time pulled.
-  for (auto it = saved.rbegin(); it != saved.rend(); ++it) w.data()->qpos[it->first] = it->second;
-  if (!saved.empty()) mj_forward(w.model(), w.data());
+  if (pulled) {
+    std::copy(saved.begin(), saved.end(), w.data()->qpos);
+    mj_forward(w.model(), w.data());
+  }
   return problem;
 }
 

@@ -53,6 +53,10 @@ struct Articulation {
 };
 std::optional<Articulation> articulation(const World& w, int object);
 double open_fraction(const Articulation& a);
+// Sets the link's joint to `value` (clamped to its range), without physics:
+// a drawer carries what lies in it along, as its floor does when pulled (set
+// alone, the joint would leave the contents standing in the carcass).
+void set_articulation(World& w, const Articulation& a, double value);
 
 // Where a primitive acts on an object: the hand's target and approach.
 struct Approach {

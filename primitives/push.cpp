@@ -43,12 +43,6 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   return {{top_centre(w, object, base), kDown, std::nullopt}};
 }
 
-// Symbolically the link follows the hand: sets its joint (clamped to its range).
-void set_joint(World& w, const Articulation& a, double value) {
-  w.data()->qpos[w.model()->jnt_qposadr[a.joint]] = std::clamp(value, a.low, a.high);
-  mj_forward(w.model(), w.data());
-}
-
 // The angle (rad) the hand turned about a hinge from `from` to `to`.
 double turned(const Articulation& a, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   const Eigen::Vector3d r0 = from - a.pivot, r1 = to - a.pivot;
@@ -86,11 +80,11 @@ bool pull_open(Executor& e) {
   const Eigen::Vector3d before = m.hand_position();
   if (a->hinge) {
     if (!turn(m, *a, pull)) return false;
-    if (!m.physical()) set_joint(w, *a, a->value + turned(*a, before, m.hand_position()));
+    if (!m.physical()) set_articulation(w, *a, a->value + turned(*a, before, m.hand_position()));
   } else {
     // Most of the way open by backing the base away, the arm held.
     if (!m.base_line(a->axis * pull)) return false;
-    if (!m.physical()) set_joint(w, *a, a->value + a->axis.dot(m.hand_position() - before));
+    if (!m.physical()) set_articulation(w, *a, a->value + a->axis.dot(m.hand_position() - before));
   }
   m.gripper(true);
   // Back off as far as the arm goes.
@@ -123,7 +117,7 @@ bool push_shut(Executor& e) {
     m.line(-a->pull * (kClearance + 0.02), true, kApproachSpeed, 0.0);
     const Eigen::Vector3d before = m.hand_position();
     turn(m, *a, -(a->value - a->low) - 0.05);
-    if (!m.physical()) set_joint(w, *a, a->value + turned(*a, before, m.hand_position()));
+    if (!m.physical()) set_articulation(w, *a, a->value + turned(*a, before, m.hand_position()));
     m.line(-m.hand_axis(0) * 0.08, false, kRetreatSpeed, 0.0);
   } else {
     // On through where the front is to where it is when shut (and 2 cm on):
@@ -131,7 +125,7 @@ bool push_shut(Executor& e) {
     // drawer follows the hand past where it met the front.
     const Eigen::Vector3d before = m.hand_position();
     m.line(-a->axis * (kClearance + (a->value - a->low) + 0.02), false, kApproachSpeed, 0.0);  // as far as the arm goes
-    if (!m.physical()) set_joint(w, *a, a->value - (-a->axis.dot(m.hand_position() - before) - kClearance));
+    if (!m.physical()) set_articulation(w, *a, a->value - (-a->axis.dot(m.hand_position() - before) - kClearance));
     m.line(a->axis * 0.08, false, kRetreatSpeed, 0.0);
   }
   m.gripper(true);
