@@ -87,8 +87,10 @@ bool ArmCollisionChecker::for_each_contact(const std::vector<int>& mine, int ign
     if ((other.lo.array() > hi.array()).any() || (other.hi.array() < lo.array()).any()) continue;
     const int o = other.geom;
     if (ignored_object >= 0 && world_.scene().object_of_geom(o) == ignored_object) continue;
+    const bool driven_over = other.hi.z() < Robot::kDrivesOver;  // as the base planner's map takes it
     for (int g : mine) {
       if (!((m->geom_contype[g] & m->geom_conaffinity[o]) || (m->geom_contype[o] & m->geom_conaffinity[g]))) continue;
+      if (driven_over && !moved_by_arm_[g]) continue;
       const double extra = moved_by_arm_[g] ? clearance : 0.0;
       const double r = m->geom_rbound[g] + extra;
       const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);

@@ -12,7 +12,6 @@
 namespace chore {
 namespace {
 
-constexpr double kFloorClearance = 0.02;  // geoms below this are floors
 constexpr double kRobotHeight = 1.5;      // m: what the base, torso and tucked arm sweep
 constexpr double kMaxEscape = 0.4;        // m the base may move straight out of inflated space
 
@@ -52,7 +51,7 @@ OccupancyMap::OccupancyMap(const World& world, double inflation, double above, i
     const int root = m->body_rootid[m->geom_bodyid[g]];
     if (root == robot || root == held || m->geom_bodyid[g] == moving) continue;  // they move along
     const Aabb box = geom_aabb(world, g);
-    if (box.hi.z() < std::max(kFloorClearance, above) || box.lo.z() > kRobotHeight) continue;
+    if (box.hi.z() < std::max(Robot::kDrivesOver, above) || box.lo.z() > kRobotHeight) continue;
     const int i0 = std::max(0, static_cast<int>(std::floor((box.lo.x() - x0_) / kResolution)));
     const int i1 = std::min(width_ - 1, static_cast<int>(std::floor((box.hi.x() - x0_) / kResolution)));
     const int j0 = std::max(0, static_cast<int>(std::floor((box.lo.y() - y0_) / kResolution)));

@@ -40,9 +40,9 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   // it by its centre, which is reached from above.)
   const bool slim = std::max(size.x(), size.y()) <= kSlim;
   const bool cloth = !w.scene().objects()[object].keypoints.empty();
-  if (towards.norm() < 1e-6) return out;
+  if (cloth || towards.norm() < 1e-6) return out;
   towards.normalize();
-  if (size.z() >= kUpright && !cloth) {
+  if (size.z() >= kUpright) {
     const Eigen::Vector3d point(box.center().x(), box.center().y(), box.lo.z() + 0.6 * size.z());
     out.push_back({point - towards * std::max(size.x(), size.y()) / 2, towards, kUp.cross(towards), !slim});
   }

@@ -140,7 +140,14 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
 TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   const auto dir = test::scratch_dir("solve");
   std::filesystem::copy_file(test::data_path("bddl/behavior-1k/cook_a_steak.bddl"), dir / "cook_a_steak.bddl");
-  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/make_espresso.bddl"), dir / "make_espresso.bddl");
+  // An apple on top of a fridge (1.8 m): no arm reaches it.
+  test::write_file(dir / "high_apple.bddl",
+                   "(define (problem high_apple) (:domain omnigibson) (:objects apple.n.01_1 - apple.n.01 "
+                   "electric_refrigerator.n.01_1 - electric_refrigerator.n.01 countertop.n.01_1 - countertop.n.01 "
+                   "floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01) (:init (ontop apple.n.01_1 "
+                   "electric_refrigerator.n.01_1) (inroom electric_refrigerator.n.01_1 kitchen) (inroom "
+                   "countertop.n.01_1 kitchen) (inroom floor.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)) "
+                   "(:goal (and (ontop apple.n.01_1 countertop.n.01_1))))");
   // Nothing puts an apple inside the countertop.
   test::write_file(dir / "never.bddl",
                    "(define (problem never) (:domain omnigibson) (:objects apple.n.01_1 - apple.n.01 countertop.n.01_1 "
@@ -158,9 +165,12 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_NE(std::find(plan.begin(), plan.end(), "place_near_heating_element(stove.n.01_1)"), plan.end());
   EXPECT_NE(std::find(plan.begin(), plan.end(), "toggle_on(stove.n.01_1)"), plan.end());
   EXPECT_EQ(plan.back(), "[heat(steak.n.01_1)]");
-  const nlohmann::json& espresso = c["activities"][1]["solve"];
-  EXPECT_FALSE(espresso["built"].get<bool>());
-  EXPECT_NE(espresso["reason"].get<std::string>().find("had everything within the robot's reach"), std::string::npos);
+  const nlohmann::json& high = c["activities"][1]["solve"];
+  EXPECT_FALSE(high["built"].get<bool>());
+  EXPECT_NE(high["reason"].get<std::string>().find("had everything within the robot's reach; the last: "
+                                                   "pick(apple.n.01_1)"),
+            std::string::npos)
+      << high["reason"];
   const nlohmann::json& never = c["activities"][2]["solve"];
   EXPECT_TRUE(never["built"].get<bool>());
   EXPECT_FALSE(never["found"].get<bool>());
@@ -170,28 +180,28 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_EQ(c["solved"], 1);
   EXPECT_NE(format_solve(c).find("cook_a_steak: solved, 6 primitives"), std::string::npos) << format_solve(c);
 
-  // From three seeds' instances (--seeds 3-5) of draping a towel over a
-  // bowl: solved from seeds 3 and 5; at seed 4's the robot, carrying the
+  // From three seeds' instances (--seeds 6-8) of draping a towel over a
+  // bowl: solved from seeds 6 and 8; at seed 7's the robot, carrying the
   // towel, finds no base pose from which to drape it, so the activity is not
-  // solved, saying where. (With the towel hanging from the hand fewer base
-  // poses reach the bowl: 25 of seeds 0-29 are solved.)
+  // solved, saying where. (With the towel hanging from the hand few base
+  // poses reach the bowl: 12 of seeds 0-29 are solved.)
   const auto drape_dir = test::scratch_dir("solve_seeds");
   std::filesystem::copy_file(test::data_path("bddl/behavior-1k/drape_a_towel_over_the_bowl.bddl"),
                              drape_dir / "drape_a_towel_over_the_bowl.bddl");
   const nlohmann::json range =
-      activity_coverage({.dir = drape_dir.string(), .seed = 3, .solve = ExecutionMode::symbolic, .last_seed = 5}, log);
+      activity_coverage({.dir = drape_dir.string(), .seed = 6, .solve = ExecutionMode::symbolic, .last_seed = 8}, log);
   const nlohmann::json& drapes = range["activities"][0]["solve"];
   ASSERT_EQ(drapes["seeds"].size(), 3u);
   for (int s = 0; s < 3; ++s) {
-    EXPECT_EQ(drapes["seeds"][s]["seed"], 3 + s);
+    EXPECT_EQ(drapes["seeds"][s]["seed"], 6 + s);
     EXPECT_EQ(drapes["seeds"][s]["solved"].get<bool>(), s != 1) << drapes["seeds"][s].dump();
   }
   EXPECT_EQ(range["solved"], 0);
-  EXPECT_EQ(drapes["reason"].get<std::string>().rfind("seed 4: step 1, navigate(bowl.n.01_1)", 0), 0u)
+  EXPECT_EQ(drapes["reason"].get<std::string>().rfind("seed 7: step 1, navigate(bowl.n.01_1)", 0), 0u)
       << drapes["reason"];
   EXPECT_NE(drapes["reason"].get<std::string>().find("no collision-free base pose within reach of 'bowl_1'"),
             std::string::npos);
-  EXPECT_NE(format_solve(range).find("drape_a_towel_over_the_bowl: 2 of 3 seeds; not solved: seed 4"),
+  EXPECT_NE(format_solve(range).find("drape_a_towel_over_the_bowl: 2 of 3 seeds; not solved: seed 7"),
             std::string::npos)
       << format_solve(range);
 }
@@ -264,6 +274,28 @@ TEST(ActivitySolve, ARagIsDippedIntoABottleOnACounterFromASlant) {
   for (const nlohmann::json& seed : s["seeds"]) EXPECT_TRUE(seed["solved"].get<bool>()) << seed.dump();
   const std::vector<std::string> plan = s["plan"];
   EXPECT_NE(std::find(plan.begin(), plan.end(), "dip(liquid_soap__bottle.n.01_1)"), plan.end());
+}
+
+// An espresso machine (a coffee maker) on a counter, its top 1.23 m high:
+// pointing down the hand reaches 1.2 m at most, so no instance had it in
+// reach before toggle_on pressed tilted 45 degrees too where nothing
+// reaches from above (0 of seeds 0-9 built; now all 10 solve). Seeds 0-1
+// are solved physically too (0-2 of 0-3: at seed 3 the hand slips off the
+// toggle point).
+TEST(ActivitySolve, ACoffeeMakerOnACounterIsPressedFromASlant) {
+  const auto dir = test::scratch_dir("solve_espresso");
+  std::filesystem::copy_file(test::data_path("bddl/behavior-1k/make_espresso.bddl"), dir / "make_espresso.bddl");
+  std::ostringstream log;
+  for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
+    const int last_seed = mode == ExecutionMode::symbolic ? 3 : 1;
+    const nlohmann::json c =
+        activity_coverage({.dir = dir.string(), .seed = 0, .solve = mode, .last_seed = last_seed}, log);
+    const nlohmann::json& s = c["activities"][0]["solve"];
+    ASSERT_EQ(s["seeds"].size(), static_cast<size_t>(last_seed + 1));
+    for (const nlohmann::json& seed : s["seeds"]) EXPECT_TRUE(seed["solved"].get<bool>()) << seed.dump();
+    EXPECT_EQ(s["plan"], nlohmann::json::array({"navigate(coffee_maker.n.01_1)", "toggle_on(coffee_maker.n.01_1)",
+                                                "[single_toggleable_machine:coffeemaker_espresso]"}));
+  }
 }
 
 }  // namespace

@@ -318,6 +318,36 @@ TEST(Primitives, TheExpertStoresBothPumpkinsInTheRightOrder) {
   }
 }
 
+// Symbolically (push, close) a drawer is set along its joint, and what lies
+// in it goes with it, as its floor carries it when pulled: the pumpkins the
+// expert put into StoreDecoration's drawer ride in as it is set shut (set
+// alone, the joint would leave them in the air in front of the cabinet).
+TEST(Primitives, ADrawerSetSymbolicallyCarriesWhatLiesInIt) {
+  Env env(primitive_config("store_decoration", ExecutionMode::symbolic));
+  bool success = false;
+  run_expert(env, 1, success);
+  ASSERT_TRUE(success);
+  World& w = env.impl().world();
+  const int cabinet = w.scene().find_object("cabinet_drawer_1") - &w.scene().objects()[0];
+  const auto drawer = articulation(w, cabinet);
+  ASSERT_TRUE(drawer && !drawer->hinge);
+  const auto link_at = [&] { return Eigen::Vector3d(w.data()->xpos + 3 * drawer->link); };
+  const auto centre_of = [&](int object) { return object_aabb(w, object).center(); };
+  std::vector<int> pumpkins;
+  for (const char* p : {"pumpkin_1", "pumpkin_2"}) pumpkins.push_back(w.scene().find_object(p) - &w.scene().objects()[0]);
+  const Eigen::Vector3d link_before = link_at();
+  std::vector<Eigen::Vector3d> before;
+  for (int p : pumpkins) before.push_back(centre_of(p));
+  set_articulation(w, *drawer, drawer->low);
+  EXPECT_FALSE(is_open(w, cabinet));
+  const Eigen::Vector3d moved = link_at() - link_before;
+  EXPECT_GT(moved.norm(), 0.2);
+  for (size_t i = 0; i < pumpkins.size(); ++i) {
+    EXPECT_TRUE(inside(w, pumpkins[i], cabinet)) << i;
+    EXPECT_LT((centre_of(pumpkins[i]) - before[i] - moved).norm(), 0.02) << i;
+  }
+}
+
 TEST(Primitives, PhysicalModeTracksThePlansInPhysics) {
   Env env(primitive_config("store_decoration", ExecutionMode::physical));
   bool success = false;

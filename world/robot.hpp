@@ -42,6 +42,8 @@ struct Robot {
   static constexpr double kHomeTorso = 0.0;
   static const std::array<double, kArmJoints> kTuckedArm;
   static constexpr double kGripperOpen = 0.045;  // per finger (m)
+  // The base drives over what lies lower than this (m): floors, a rug, a rag.
+  static constexpr double kDrivesOver = 0.02;
 };
 
 // Robot MJCF files are read up to this size.
