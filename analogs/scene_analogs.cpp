@@ -39,6 +39,7 @@ constexpr double kReachDepth = 0.6;
 constexpr double kHeadroom = 0.5;    // m kept between furniture's top and a wall item above it
 constexpr double kFlat = 0.02;       // m: what is this thin (a rug) the base drives over: it may lie in an aisle
 constexpr int kTries = 60;           // random placements tried per object
+constexpr double kCounterTop = 0.6;  // m: an appliance lower than this stands on a surface
 constexpr int kAttachments = 64;     // weld pairs per pair of synsets an activity attaches
 
 // An axis-aligned rectangle of the floor.
@@ -102,7 +103,10 @@ Kind kind_of(const Models& models, const std::string& synset) {
                         "wall_clock.n.01", "towel_rack.n.01", "poster.n.01", "wall_nail.n.01"}) {
     if (is(s)) return Kind::on_wall;
   }
-  return models.has_property(synset, "sceneObject") ? Kind::furniture : Kind::small;
+  if (!models.has_property(synset, "sceneObject")) return Kind::small;
+  // A kitchen appliance lower than a counter (a microwave, a toaster) is a
+  // fixture that stands on one; ovens and stoves stand on the floor.
+  return is("kitchen_appliance.n.01") && models.size(synset).z() < kCounterTop ? Kind::small : Kind::furniture;
 }
 
 // A model's footprint half-extents at a yaw that is a multiple of 90 degrees.
@@ -133,6 +137,7 @@ struct RoomLayout {
     Rect top;
     double height;
     std::vector<Rect> taken;
+    int turns;  // of the furniture it tops: its front faces the room
   };
   std::vector<Surface> surfaces;
   // Stretches of wall free for wall items: per side (0 bottom, 1 right, 2 top, 3 left), intervals used.
@@ -423,12 +428,15 @@ bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor,
   return false;
 }
 
-// On a surface of the room (the top of a table, counter, cabinet, shelf), else the floor.
-bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen::Vector3d& at, int& turns) {
+// On a surface of the room (the top of a table, counter, cabinet, shelf), else
+// the floor. A fixture (a microwave) faces the way the furniture under it does.
+bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen::Vector3d& at, int& turns,
+                 bool fixture = false) {
   turns = uniform_index(rng, 4);
-  const Eigen::Vector2d half = half_footprint(size, turns);
   for (int t = 0; t < kTries && !room.surfaces.empty(); ++t) {
     RoomLayout::Surface& s = room.surfaces[uniform_index(rng, static_cast<int>(room.surfaces.size()))];
+    if (fixture) turns = s.turns;
+    const Eigen::Vector2d half = half_footprint(size, turns);
     const Rect top = s.top.grown(-0.02);
     if (2 * half.x() > top.width() || 2 * half.y() > top.depth()) continue;
     const Eigen::Vector2d c(uniform(rng, top.x0 + half.x(), top.x1 - half.x()),
@@ -461,7 +469,7 @@ bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
   const bool clear =
       std::any_of(clear_tops.begin(), clear_tops.end(), [&](const std::string& s) { return models.is_a(synset, s); });
   if (flat_top && !clear && size.z() > 0.3 && size.z() < 1.6) {
-    room.surfaces.push_back({top, size.z(), {}});
+    room.surfaces.push_back({top, size.z(), {}, turns});
   }
   return true;
 }
@@ -619,15 +627,16 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
         continue;
       }
       // An object of no room given goes in the first room with space for it.
-      bool placed = place_small(room, models.size(e.synset), rng, at, turns);
+      const bool fixture = !e.loose && models.has_property(e.synset, "sceneObject");
+      bool placed = place_small(room, models.size(e.synset), rng, at, turns, fixture);
       for (size_t r = 0; !placed && e.room.empty() && r < rooms.size(); ++r) {
-        placed = place_small(rooms[r], models.size(e.synset), rng, at, turns);
+        placed = place_small(rooms[r], models.size(e.synset), rng, at, turns, fixture);
       }
       if (!placed) {
         ++analog.left_out;
         continue;
       }
-      builder.add(e.synset, at, turns, false);
+      builder.add(e.synset, at, turns, fixture);
     }
   }
   for (RoomLayout& room : rooms) {
@@ -639,11 +648,13 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
         Eigen::Vector3d at;
         int turns = 0;
         const bool on_wall = kind == Kind::on_wall;
-        if (!(on_wall ? place_on_wall(room, size, false, rng, at, turns) : place_small(room, size, rng, at, turns))) {
+        const bool fixture = models.has_property(synset, "sceneObject");
+        if (!(on_wall ? place_on_wall(room, size, false, rng, at, turns)
+                      : place_small(room, size, rng, at, turns, fixture))) {
           ++analog.left_out;
           continue;
         }
-        builder.add(synset, at, turns, on_wall || models.has_property(synset, "sceneObject"));
+        builder.add(synset, at, turns, on_wall || fixture);
       }
     }
   }

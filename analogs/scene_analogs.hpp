@@ -70,7 +70,9 @@ struct SceneAnalog {
 
 // An object added beyond the inventory, in the first room whose name or type
 // is `room` ("": the first room): fixed furniture when its synset is a scene
-// object and it is not `loose`, else free on a surface or the floor.
+// object and it is not `loose` (a kitchen appliance lower than a counter, a
+// microwave, fixed on a surface facing the way the furniture under it does),
+// else free on a surface or the floor.
 struct ExtraObject {
   std::string room, synset;
   bool loose = false;

@@ -180,28 +180,28 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_EQ(c["solved"], 1);
   EXPECT_NE(format_solve(c).find("cook_a_steak: solved, 6 primitives"), std::string::npos) << format_solve(c);
 
-  // From three seeds' instances (--seeds 6-8) of draping a towel over a
-  // bowl: solved from seeds 6 and 8; at seed 7's the robot, carrying the
-  // towel, finds no base pose from which to drape it, so the activity is not
-  // solved, saying where. (With the towel hanging from the hand few base
-  // poses reach the bowl: 12 of seeds 0-29 are solved.)
+  // From two seeds' instances (--seeds 5-6) of draping a towel over a bowl:
+  // solved from seed 5; at seed 6's the robot, carrying the towel, finds no
+  // base pose from which to drape it, so the activity is not solved, saying
+  // where. (With the towel hanging from the hand few base poses reach the
+  // bowl: 8 of seeds 0-29 are solved.)
   const auto drape_dir = test::scratch_dir("solve_seeds");
   std::filesystem::copy_file(test::data_path("bddl/behavior-1k/drape_a_towel_over_the_bowl.bddl"),
                              drape_dir / "drape_a_towel_over_the_bowl.bddl");
   const nlohmann::json range =
-      activity_coverage({.dir = drape_dir.string(), .seed = 6, .solve = ExecutionMode::symbolic, .last_seed = 8}, log);
+      activity_coverage({.dir = drape_dir.string(), .seed = 5, .solve = ExecutionMode::symbolic, .last_seed = 6}, log);
   const nlohmann::json& drapes = range["activities"][0]["solve"];
-  ASSERT_EQ(drapes["seeds"].size(), 3u);
-  for (int s = 0; s < 3; ++s) {
-    EXPECT_EQ(drapes["seeds"][s]["seed"], 6 + s);
-    EXPECT_EQ(drapes["seeds"][s]["solved"].get<bool>(), s != 1) << drapes["seeds"][s].dump();
+  ASSERT_EQ(drapes["seeds"].size(), 2u);
+  for (int s = 0; s < 2; ++s) {
+    EXPECT_EQ(drapes["seeds"][s]["seed"], 5 + s);
+    EXPECT_EQ(drapes["seeds"][s]["solved"].get<bool>(), s == 0) << drapes["seeds"][s].dump();
   }
   EXPECT_EQ(range["solved"], 0);
-  EXPECT_EQ(drapes["reason"].get<std::string>().rfind("seed 7: step 1, navigate(bowl.n.01_1)", 0), 0u)
+  EXPECT_EQ(drapes["reason"].get<std::string>().rfind("seed 6: step 1, navigate(bowl.n.01_1)", 0), 0u)
       << drapes["reason"];
   EXPECT_NE(drapes["reason"].get<std::string>().find("no collision-free base pose within reach of 'bowl_1'"),
             std::string::npos);
-  EXPECT_NE(format_solve(range).find("drape_a_towel_over_the_bowl: 2 of 3 seeds; not solved: seed 7"),
+  EXPECT_NE(format_solve(range).find("drape_a_towel_over_the_bowl: 1 of 2 seeds; not solved: seed 6"),
             std::string::npos)
       << format_solve(range);
 }
