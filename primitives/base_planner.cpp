@@ -12,8 +12,8 @@
 namespace chore {
 namespace {
 
-constexpr double kRobotHeight = 1.5;      // m: what the base, torso and tucked arm sweep
-constexpr double kMaxEscape = 0.4;        // m the base may move straight out of inflated space
+constexpr double kRobotHeight = 1.5;  // m: what the base, torso and tucked arm sweep
+constexpr double kMaxEscape = 0.4;    // m the base may move straight out of inflated space
 
 // OMPL's SE2 takes headings in [-pi, pi): std::remainder alone can give +pi.
 double wrap(double yaw) {

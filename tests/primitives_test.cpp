@@ -334,7 +334,8 @@ TEST(Primitives, ADrawerSetSymbolicallyCarriesWhatLiesInIt) {
   const auto link_at = [&] { return Eigen::Vector3d(w.data()->xpos + 3 * drawer->link); };
   const auto centre_of = [&](int object) { return object_aabb(w, object).center(); };
   std::vector<int> pumpkins;
-  for (const char* p : {"pumpkin_1", "pumpkin_2"}) pumpkins.push_back(w.scene().find_object(p) - &w.scene().objects()[0]);
+  for (const char* p : {"pumpkin_1", "pumpkin_2"})
+    pumpkins.push_back(w.scene().find_object(p) - &w.scene().objects()[0]);
   const Eigen::Vector3d link_before = link_at();
   std::vector<Eigen::Vector3d> before;
   for (int p : pumpkins) before.push_back(centre_of(p));
