@@ -11,6 +11,7 @@
 #include "base/json_file.hpp"
 #include "base/random.hpp"
 #include "tasks/knowledge_base.hpp"
+#include "world/robot.hpp"
 #include "world/scene.hpp"
 
 namespace chore {
@@ -37,7 +38,6 @@ constexpr double kRobotClear = 0.5;  // around the robot's start
 constexpr double kAisle = 0.7;
 constexpr double kReachDepth = 0.6;
 constexpr double kHeadroom = 0.5;    // m kept between furniture's top and a wall item above it
-constexpr double kFlat = 0.02;       // m: what is this thin (a rug) the base drives over: it may lie in an aisle
 constexpr int kTries = 60;           // random placements tried per object
 constexpr double kCounterTop = 0.6;  // m: an appliance lower than this stands on a surface
 constexpr int kAttachments = 64;     // weld pairs per pair of synsets an activity attaches
@@ -362,7 +362,7 @@ bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, bool free_st
       if (side == 3) c.x() = inner.x0 + half.x();
     }
     const Rect r = footprint(c, half);
-    const bool flat = size.z() <= kFlat;
+    const bool flat = size.z() < Robot::kDrivesOver;  // a rug: it may lie in an aisle
     std::vector<Rect> aisles;
     Rect reached = r;
     if (!flat && against_wall) {

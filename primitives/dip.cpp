@@ -56,7 +56,7 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   for (const Eigen::Vector3d& spot : spots) out.push_back({spot, kDown, std::nullopt});
   for (const Eigen::Vector3d& spot : spots) {
     const Eigen::Vector3d towards(spot.x() - base.x, spot.y() - base.y, 0);
-    if (towards.norm() > 1e-6) out.push_back({spot, (towards.normalized() + kDown).normalized(), std::nullopt});
+    if (towards.norm() > 1e-6) out.push_back({spot, tilted_towards(towards), std::nullopt});
   }
   return out;
 }

@@ -48,7 +48,7 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   }
   // Tilted 45 degrees towards it where no pose has room above to point
   // down (a shelf over it, a cabinet's top): the fingers close across.
-  out.push_back({out.front().point, (towards + kDown).normalized(), kUp.cross(towards), true});
+  out.push_back({out.front().point, tilted_towards(towards), kUp.cross(towards), true});
   return out;
 }
 

@@ -29,6 +29,12 @@ inline double since(Clock::time_point t) {
 }
 
 inline const Eigen::Vector3d kDown(0, 0, -1), kUp(0, 0, 1);
+// The hand's direction tilted 45 degrees from straight down towards a
+// horizontal direction: where nothing reaches down onto a point (a shelf
+// above it; a top higher than a hand pointing down gets).
+inline Eigen::Vector3d tilted_towards(const Eigen::Vector3d& horizontal) {
+  return (horizontal.normalized() + kDown).normalized();
+}
 inline constexpr double kFingerReach = 0.04;    // m from the hand's centre to the fingertips
 inline constexpr double kClearance = 0.10;      // m above a target before descending
 inline constexpr double kLift = 0.15;           // m raised after grasping or releasing

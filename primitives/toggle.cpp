@@ -43,7 +43,7 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   const Eigen::Vector3d towards(base.x - point.x(), base.y - point.y(), 0);
   if (towards.norm() < kNearer) return {{point, kDown, std::nullopt}};
   const Eigen::Vector3d nearer = point + towards.normalized() * kNearer;
-  const Eigen::Vector3d tilted = (kDown - towards.normalized()).normalized();
+  const Eigen::Vector3d tilted = tilted_towards(-towards);
   return {{point, kDown, std::nullopt},
           {nearer, kDown, std::nullopt},
           {point, tilted, std::nullopt, true},
