@@ -1,39 +1,65 @@
 // navigate(object): drives the base to a pose from which the hand reaches
 // what the next primitive on the object would need (OmniGibson's base-pose
 // sampler, then a collision-free base path), the arm tucked.
+#include <algorithm>
+#include <cstdio>
+
 #include "primitives/primitive_def.hpp"
 #include "world/predicates.hpp"
 
 namespace chore {
 namespace {
 
-// Navigation aims at what will be done there: an articulated object's handle
-// (to push it open, or shut) while the hand is empty; while holding, dirt lying on it to
-// wipe, a liquid to dip into, a container or surface to pour what the held
-// container holds into or onto, something to cut with the held knife or to
-// attach the held object to, or a place to put the load.
-PrimitiveType purpose_of_navigation(const World& w, int object) {
+// Navigation aims at what will be done there. With the hand empty: an
+// articulated object's handle (to push it open, or shut), else the object to
+// pick; and its toggle point too where it can be toggled (an oven is opened,
+// loaded, shut and turned on from one place; a switch is only pressed).
+// While holding: dirt lying on it to wipe, a liquid to dip into, a container
+// or surface to pour what the held container holds into or onto, something
+// to cut with the held knife or to attach the held object to, or a place to
+// put the load. The first purpose comes first: where no base pose serves
+// them all, navigation serves it alone.
+std::vector<PrimitiveType> purposes_of_navigation(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
   if (w.grasped_object() < 0) {
-    if (!articulation(w, object)) return PrimitiveType::pick;
-    return is_open(w, object) ? PrimitiveType::close : PrimitiveType::push;
+    std::vector<PrimitiveType> out;
+    if (articulation(w, object)) {
+      out.push_back(is_open(w, object) ? PrimitiveType::close : PrimitiveType::push);
+    } else if (primitive_def(PrimitiveType::pick).applies(w, object)) {
+      out.push_back(PrimitiveType::pick);
+    }
+    for (const PrimitiveType toggle : {PrimitiveType::toggle_on, PrimitiveType::toggle_off}) {
+      const PrimitiveDef& def = primitive_def(toggle);
+      if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) out.push_back(toggle);
+    }
+    if (out.empty()) out.push_back(PrimitiveType::pick);
+    return out;
   }
-  if (ab && ab->covered && !dirt_particles(w, object).empty()) return PrimitiveType::wipe;
+  if (ab && ab->covered && !dirt_particles(w, object).empty()) return {PrimitiveType::wipe};
   for (const PrimitiveType with_load :
        {PrimitiveType::dip, PrimitiveType::pour, PrimitiveType::cut, PrimitiveType::attach}) {
     const PrimitiveDef& def = primitive_def(with_load);
-    if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) return with_load;
+    if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) return {with_load};
   }
-  return PrimitiveType::place;
+  return {PrimitiveType::place};
+}
+
+// Whether the arm, the base at p, reaches the object for each of `purposes`
+// (the room checked by the caller).
+bool reaches_for(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object, const Pose2& p,
+                 const std::vector<PrimitiveType>& purposes, size_t starts) {
+  return std::all_of(purposes.begin(), purposes.end(), [&](PrimitiveType purpose) {
+    return reach(ik, checker, w, object, approaches(w, purpose, object, p), p, purpose, load_below_hand(w), starts)
+        .has_value();
+  });
 }
 
 bool reachable_here(const World& w, IkSolver& ik, ArmCollisionChecker& checker, int object,
-                    size_t starts = kReachStarts.size()) {
-  const PrimitiveType purpose = purpose_of_navigation(w, object);
-  const std::vector<Approach> a = approaches(w, purpose, object, w.base_pose());
+                    const std::vector<PrimitiveType>& purposes, size_t starts = kReachStarts.size()) {
+  const std::vector<Approach> a = approaches(w, purposes[0], object, w.base_pose());
   const Scene& scene = w.scene();
   return scene.room_at(w.base_pose().x, w.base_pose().y) == scene.room_at(a[0].point.x(), a[0].point.y()) &&
-         reach(ik, checker, w, object, a, w.base_pose(), purpose, load_below_hand(w), starts).has_value();
+         reaches_for(w, ik, checker, object, w.base_pose(), purposes, starts);
 }
 
 bool applies(const World&, int) {
@@ -55,40 +81,58 @@ bool act(Executor& e) {
     return false;
   }
   const Clock::time_point t = Clock::now();
-  const PrimitiveType purpose = purpose_of_navigation(w, object);
-  const std::vector<Approach> here = approaches(w, purpose, object, w.base_pose());
+  const std::vector<PrimitiveType> purposes = purposes_of_navigation(w, object);
   ArmCollisionChecker checker(w);
-  if (reachable_here(w, m.ik(), checker, object)) {
+  if (reachable_here(w, m.ik(), checker, object, purposes)) {
     result.planning_seconds += since(t);
     return e.fail(PrimitiveStatus::precondition_failure, "already within reach of '" + e.name() + "'");
   }
   const Footprint footprint(w);
-  const auto targets = [&](const Pose2& p) { return approaches(w, purpose, object, p); };
   BasePoseTally tally;
   int path_failures = 0;
   bool arrived = false;
   Clock::time_point planning = t;
-  sample_base_poses(w, m.ik(), checker, footprint, purpose, object, here, targets, m.next_seed(), load_below_hand(w),
-                    e.options().base_pose_samples, tally, [&](const Pose2& p, size_t starts) {
-                      // Reachable with the arm; now the base must get there.
-                      result.planning_seconds += since(planning);
-                      // Where the base stops (physically, millimetres off p)
-                      // the arm must still reach, as it did there: at the
-                      // edge of its reach it may not, and the next candidate
-                      // is tried.
-                      arrived = m.base_to(p, footprint) && reachable_here(w, m.ik(), checker, object, starts);
-                      planning = Clock::now();
-                      if (arrived || result.diverged || ++path_failures == 3) return true;
-                      result.status = PrimitiveStatus::success;  // try the next candidate
-                      result.reason.clear();
-                      return false;
-                    });
-  result.planning_seconds += since(planning);
-  // A failed base path says why itself; out of reach where the base stopped
-  // falls to the tally below.
-  if (arrived || result.diverged || (path_failures == 3 && !result.ok())) return arrived;
+  std::vector<std::vector<PrimitiveType>> aims = {purposes};
+  if (purposes.size() > 1) aims.push_back({purposes[0]});
+  for (const std::vector<PrimitiveType>& aim : aims) {
+    const std::vector<Approach> here = approaches(w, aim[0], object, w.base_pose());
+    const auto targets = [&](const Pose2& p) { return approaches(w, aim[0], object, p); };
+    const std::vector<PrimitiveType> others(aim.begin() + 1, aim.end());
+    path_failures = 0;
+    sample_base_poses(w, m.ik(), checker, footprint, aim[0], object, here, targets, m.next_seed(), load_below_hand(w),
+                      e.options().base_pose_samples, tally, [&](const Pose2& p, size_t starts) {
+                        if (!reaches_for(w, m.ik(), checker, object, p, others, starts))
+                          return ++tally.unreachable, false;
+                        // Reachable with the arm; now the base must get there.
+                        result.planning_seconds += since(planning);
+                        // Where the base stops (physically, millimetres off p)
+                        // the arm must still reach, as it did there: at the
+                        // edge of its reach it may not, and the next candidate
+                        // is tried.
+                        arrived = m.base_to(p, footprint) && reachable_here(w, m.ik(), checker, object, aim, starts);
+                        planning = Clock::now();
+                        if (arrived || result.diverged || ++path_failures == 3) return true;
+                        result.status = PrimitiveStatus::success;  // try the next candidate
+                        result.reason.clear();
+                        return false;
+                      });
+    result.planning_seconds += since(planning);
+    planning = Clock::now();
+    // A failed base path says why itself; out of reach where the base stopped
+    // falls to the tally below.
+    if (arrived || result.diverged || (path_failures == 3 && !result.ok())) return arrived;
+  }
+  // What for, and with what in hand: a load hanging low keeps the base off
+  // what stands as high (its disk in the footprint).
+  std::string aim = to_string(purposes[0]);
+  if (w.carried_object() >= 0) {
+    char hangs[32];
+    std::snprintf(hangs, sizeof hangs, "%.2f", load_below_hand(w));
+    aim +=
+        ", holding '" + w.scene().objects()[w.carried_object()].name + "', which hangs " + hangs + " m below the hand";
+  }
   return e.fail(PrimitiveStatus::motion_planning_failure,
-                "no collision-free base pose within reach of '" + e.name() + "' in its room (" +
+                "no collision-free base pose within reach of '" + e.name() + "' (to " + aim + ") in its room (" +
                     std::to_string(tally.blocked) + " samples in collision, then of " +
                     std::to_string(tally.elsewhere + tally.unreachable + path_failures) +
                     " free ones: " + std::to_string(tally.elsewhere) + " in another room, " +
@@ -114,7 +158,7 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
 bool within_reach(const World& world, int object) {
   IkSolver ik(world);
   ArmCollisionChecker checker(world);
-  return reachable_here(world, ik, checker, object);
+  return reachable_here(world, ik, checker, object, purposes_of_navigation(world, object));
 }
 
 const PrimitiveDef& navigate_primitive() {

@@ -2,10 +2,15 @@
 // or through the open side of a container closed on top, released, and the
 // hand back: on or in it, or a place failure.
 #include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <mujoco/mujoco.h>
 
 #include "primitives/primitive_def.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
+#include "world/sampling.hpp"
 
 namespace chore {
 namespace {
@@ -25,6 +30,8 @@ constexpr double kInset = 0.05;             // m from the opening to the load's 
 constexpr double kHandRoom = 0.1;           // m above a load for the hand and wrist
 constexpr double kComfortableHeight = 0.9;  // m: a level's hand height nearest this is tried first
 constexpr double kSlant = 0.7;              // rad: the most the hand's way in turns from straight in
+constexpr double kNearHand = 0.3;           // m: a symbolic place's sampled spot is preferred this near the hand
+constexpr int kSetDownAttempts = 1000;      // of the sampler: an instance's sampling tries 100, then another instance
 
 // Into a container closed on top (a bookcase, a shelf, a fridge or cabinet
 // with its door open), as a person puts things away: through its open side,
@@ -107,10 +114,48 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   return out;
 }
 
+// Symbolically, what goes into a container is set where the world's sampler
+// puts it inside (upright, clear of what is there already, near the hand),
+// as OmniGibson's symbolic place samples the load's pose with the predicate:
+// dropped as the hand holds it, a load lies as the hand turned it, and loads
+// pile up over the rim (six cans into a bucket). What came to rest neither
+// in nor on anything else is sampled on it. Where the sampler finds no pose,
+// the load stays as it dropped.
+void set_down_symbolically(Executor& e, int held) {
+  World& w = e.world();
+  const int object = e.object();
+  const ObjectAbilities* ab = w.states().abilities(object);
+  const bool container = ab && ab->holds_liquid;
+  if (!container && (inside(w, held, object) || ontop(w, held, object))) return;
+  const mjModel* m = w.model();
+  mjData* d = w.data();
+  const int joint = m->body_jntadr[w.scene().objects()[held].body];
+  mjtNum* qpos = d->qpos + m->jnt_qposadr[joint];
+  std::array<mjtNum, 7> dropped;
+  std::copy_n(qpos, dropped.size(), dropped.begin());
+  const auto restore = [&] {
+    std::copy(dropped.begin(), dropped.end(), qpos);
+    std::fill_n(d->qvel + m->jnt_dofadr[joint], 6, 0.0);
+    mj_forward(m, d);
+  };
+  Rng rng(e.motion().next_seed());
+  SampleOptions options;
+  options.attempts = kSetDownAttempts;
+  const Eigen::Vector3d hand = e.approach().point;
+  options.prefer = [&](const Eigen::Vector3d& support, double, bool) {
+    return std::hypot(support.x() - hand.x(), support.y() - hand.y()) < kNearHand;
+  };
+  if (container && sample_inside(w, held, object, rng, options)) return;
+  if (container) restore();
+  if (inside(w, held, object) || ontop(w, held, object)) return;
+  if (!sample_ontop(w, held, object, rng, options)) restore();
+}
+
 bool act(Executor& e) {
   World& w = e.world();
   const int held = w.grasped_object();
   if (!e.go_to_pre_pose_with_load() || !e.release()) return false;
+  if (!e.motion().physical()) set_down_symbolically(e, held);
   if (!inside(w, held, e.object()) && !ontop(w, held, e.object())) {
     return e.fail(PrimitiveStatus::place_failure,
                   "'" + w.scene().objects()[held].name + "' is neither on nor in '" + e.name() + "'");

@@ -349,6 +349,32 @@ TEST(Primitives, ADrawerSetSymbolicallyCarriesWhatLiesInIt) {
   }
 }
 
+// Symbolically a load put into a container is set where the world's sampler
+// puts it inside, upright, as OmniGibson's symbolic place samples the pose:
+// dropped as the hand held them (a can taken from the side lies in a hand
+// pointing down), the cans lay across the 0.3 m bucket and the third stood
+// on the other two over the rim ("neither on nor in").
+TEST(Primitives, ASymbolicPlaceSetsTheLoadUprightInAContainer) {
+  Env env(primitive_config(test::data_path("bddl/behavior-1k/collecting_aluminum_cans.bddl"), ExecutionMode::symbolic));
+  env.reset(0);
+  World& w = env.impl().world();
+  const int bucket = env.activity()->object("bucket.n.01_1");
+  for (const std::string can :
+       {"can__of__soda.n.01_1", "can__of__soda.n.01_2", "can__of__soda.n.01_3", "can__of__soda.n.01_4"}) {
+    SCOPED_TRACE(can);
+    const int object = env.activity()->object(can);
+    const double standing = object_aabb(w, object).extent().z();
+    for (const std::string& action :
+         std::vector<std::string>{"navigate(" + can + ")", "pick(" + can + ")", "navigate(bucket.n.01_1)"}) {
+      const int status = act(env, action).info.primitive_status;
+      EXPECT_TRUE(status == 0 || env.last_primitive().reason.starts_with("already within reach")) << action;
+    }
+    EXPECT_EQ(act(env, "place(bucket.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+    EXPECT_TRUE(inside(w, object, bucket));
+    EXPECT_NEAR(object_aabb(w, object).extent().z(), standing, 0.01);
+  }
+}
+
 TEST(Primitives, PhysicalModeTracksThePlansInPhysics) {
   Env env(primitive_config("store_decoration", ExecutionMode::physical));
   bool success = false;
