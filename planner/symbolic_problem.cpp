@@ -202,13 +202,35 @@ class WorldSteps {
         const bool substance = p_.objects[in].kind == Kind::substance;
         step.needs.push_back(
             literal(substance ? "contains" : "inside", {substance ? place : in, substance ? in : place}));
-        if (substance) step.deletes.push_back(literal("contains", {place, in}));
+        if (substance) {
+          step.deletes.push_back(literal("contains", {place, in}));
+          step.deletes.push_back(literal("filled", {place, in}));
+        }
       }
     };
+    // The outputs into the place, and the step added. The world gives one
+    // substance made there the inputs' level (transitions.cpp): made of
+    // objects alone it fills the place; made of substances, it does where
+    // one of them filled it (a variant of the step each).
     const auto into = [&](int place, SymbolicStep& step) {
+      std::vector<int> made;
       for (const int o : outputs) {
         const bool substance = p_.objects[o].kind == Kind::substance;
         step.adds.push_back(literal(substance ? "contains" : "inside", {substance ? place : o, substance ? o : place}));
+        if (substance) made.push_back(o);
+      }
+      std::vector<int> liquids;
+      for (const int in : bound) {
+        if (p_.objects[in].kind == Kind::substance) liquids.push_back(in);
+      }
+      if (made.size() == 1 && liquids.empty()) step.adds.push_back(literal("filled", {place, made[0]}));
+      add(step);
+      if (made.size() != 1) return;
+      for (const int in : liquids) {
+        SymbolicStep filling = step;
+        filling.needs.push_back(literal("filled", {place, in}));
+        filling.adds.push_back(literal("filled", {place, made[0]}));
+        add(filling);
       }
     };
     // A substance one object becomes (diced pieces, melted butter) stays
@@ -281,8 +303,7 @@ class WorldSteps {
           SymbolicStep step = s;
           step.needs = {literal(kHeated, {container})};
           held_in(container, step);
-          into(container, step);
-          if (states(step)) add(step);
+          if (states(step)) into(container, step);
         }
         break;
       case TransitionFamily::single_toggleable_machine:
@@ -291,8 +312,7 @@ class WorldSteps {
             SymbolicStep step = s;
             step.needs = {literal("toggled_on", {machine})};
             held_in(machine, step);
-            into(machine, step);
-            if (states(step)) add(step);
+            if (states(step)) into(machine, step);
           }
         }
         break;
@@ -303,8 +323,7 @@ class WorldSteps {
             SymbolicStep step = s;
             step.needs = {literal("touching", {tool, container})};
             held_in(container, step);
-            into(container, step);
-            if (states(step)) add(step);
+            if (states(step)) into(container, step);
           }
         }
         break;
