@@ -10,38 +10,44 @@
 namespace chore {
 namespace {
 
-// Navigation aims at what will be done there. With the hand empty: an
+// Navigation aims at what will be done there, each aim the primitives a
+// base pose must serve together, tried in turn. With the hand empty: an
 // articulated object's handle (to push it open, or shut), else the object to
-// pick; and its toggle point too where it can be toggled (an oven is opened,
-// loaded, shut and turned on from one place; a switch is only pressed).
-// While holding: dirt lying on it to wipe, a liquid to dip into, a container
-// or surface to pour what the held container holds into or onto, something
-// to cut with the held knife or to attach the held object to, or a place to
-// put the load. The first purpose comes first: where no base pose serves
-// them all, navigation serves it alone.
-std::vector<PrimitiveType> purposes_of_navigation(const World& w, int object) {
-  const ObjectAbilities* ab = w.states().abilities(object);
+// pick, and its toggle point too where it can be toggled (an oven is opened,
+// loaded, shut and turned on from one place); where no pose serves both,
+// each alone. While holding, one at a time: dirt lying on it to wipe, a
+// liquid to dip into, a container or surface to pour what the held container
+// holds into or onto, something to cut with the held knife or to attach the
+// held object to, then a place to put the load.
+std::vector<std::vector<PrimitiveType>> aims_of_navigation(const World& w, int object) {
+  std::vector<std::vector<PrimitiveType>> aims;
   if (w.grasped_object() < 0) {
-    std::vector<PrimitiveType> out;
+    std::vector<PrimitiveType> both;
     if (articulation(w, object)) {
-      out.push_back(is_open(w, object) ? PrimitiveType::close : PrimitiveType::push);
+      both.push_back(is_open(w, object) ? PrimitiveType::close : PrimitiveType::push);
     } else if (primitive_def(PrimitiveType::pick).applies(w, object)) {
-      out.push_back(PrimitiveType::pick);
+      both.push_back(PrimitiveType::pick);
     }
     for (const PrimitiveType toggle : {PrimitiveType::toggle_on, PrimitiveType::toggle_off}) {
       const PrimitiveDef& def = primitive_def(toggle);
-      if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) out.push_back(toggle);
+      if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) both.push_back(toggle);
     }
-    if (out.empty()) out.push_back(PrimitiveType::pick);
-    return out;
+    if (both.empty()) return {{PrimitiveType::pick}};
+    aims.push_back(both);
+    if (both.size() > 1) {
+      for (const PrimitiveType purpose : both) aims.push_back({purpose});
+    }
+    return aims;
   }
-  if (ab && ab->covered && !dirt_particles(w, object).empty()) return {PrimitiveType::wipe};
+  const ObjectAbilities* ab = w.states().abilities(object);
+  if (ab && ab->covered && !dirt_particles(w, object).empty()) aims.push_back({PrimitiveType::wipe});
   for (const PrimitiveType with_load :
        {PrimitiveType::dip, PrimitiveType::pour, PrimitiveType::cut, PrimitiveType::attach}) {
     const PrimitiveDef& def = primitive_def(with_load);
-    if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) return {with_load};
+    if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) aims.push_back({with_load});
   }
-  return {PrimitiveType::place};
+  aims.push_back({PrimitiveType::place});
+  return aims;
 }
 
 // Whether the arm, the base at p, reaches the object for each of `purposes`
@@ -81,9 +87,9 @@ bool act(Executor& e) {
     return false;
   }
   const Clock::time_point t = Clock::now();
-  const std::vector<PrimitiveType> purposes = purposes_of_navigation(w, object);
+  const std::vector<std::vector<PrimitiveType>> aims = aims_of_navigation(w, object);
   ArmCollisionChecker checker(w);
-  if (reachable_here(w, m.ik(), checker, object, purposes)) {
+  if (reachable_here(w, m.ik(), checker, object, aims[0])) {
     result.planning_seconds += since(t);
     return e.fail(PrimitiveStatus::precondition_failure, "already within reach of '" + e.name() + "'");
   }
@@ -92,8 +98,6 @@ bool act(Executor& e) {
   int path_failures = 0;
   bool arrived = false;
   Clock::time_point planning = t;
-  std::vector<std::vector<PrimitiveType>> aims = {purposes};
-  if (purposes.size() > 1) aims.push_back({purposes[0]});
   for (const std::vector<PrimitiveType>& aim : aims) {
     const std::vector<Approach> here = approaches(w, aim[0], object, w.base_pose());
     const auto targets = [&](const Pose2& p) { return approaches(w, aim[0], object, p); };
@@ -123,8 +127,12 @@ bool act(Executor& e) {
     if (arrived || result.diverged || (path_failures == 3 && !result.ok())) return arrived;
   }
   // What for, and with what in hand: a load hanging low keeps the base off
-  // what stands as high (its disk in the footprint).
-  std::string aim = to_string(purposes[0]);
+  // what stands as high (its disk in the footprint). The counts are the last
+  // aim's.
+  std::string aim;
+  for (size_t k = aims.size() > 1 && aims[0].size() > 1 ? 1 : 0; k < aims.size(); ++k) {
+    aim += (aim.empty() ? "" : " or ") + std::string(to_string(aims[k][0]));
+  }
   if (w.carried_object() >= 0) {
     char hangs[32];
     std::snprintf(hangs, sizeof hangs, "%.2f", load_below_hand(w));
@@ -158,7 +166,7 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
 bool within_reach(const World& world, int object) {
   IkSolver ik(world);
   ArmCollisionChecker checker(world);
-  return reachable_here(world, ik, checker, object, purposes_of_navigation(world, object));
+  return reachable_here(world, ik, checker, object, aims_of_navigation(world, object)[0]);
 }
 
 const PrimitiveDef& navigate_primitive() {

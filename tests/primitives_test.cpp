@@ -924,6 +924,8 @@ TEST(Primitives, TheCheckersLoadContactsAreThoseMuJoCoFindsForThePose) {
 // particle within reach beside a patch no base pose reaches (the last stains
 // mid-table after the strokes took the rest) is still found. Here the patch
 // is a particle 2 m above the table, 5 cm to the side of one within reach.
+// Alone, no pose reaches it for wiping: navigate brings the table within
+// reach to put the rag down on it instead, and the wipe fails from there.
 TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) {
   Env env(primitive_config("clean_table", ExecutionMode::symbolic));
   const PrimitiveOptions symbolic{.mode = ExecutionMode::symbolic};
@@ -949,11 +951,17 @@ TEST(Primitives, NavigateToWipeFindsAReachableParticleBesideAnUnreachablePatch) 
   }
   ASSERT_TRUE(reachable.has_value());
   const Eigen::Vector3d above = *reachable + Eigen::Vector3d(0.05, 0, 2.0);
+  World& w = env.impl().world();
+  const int table = env.activity()->object("table.n.02_1");
   const PrimitiveResult alone = navigate_with_stains({above});
-  EXPECT_EQ(alone.status, PrimitiveStatus::motion_planning_failure) << alone.reason;
+  EXPECT_TRUE(alone.ok()) << alone.reason;
+  EXPECT_EQ(execute_primitive(w, PrimitiveType::wipe, table, 6, symbolic).status,
+            PrimitiveStatus::motion_planning_failure);
   // Equally dense, the one above comes first (the patch), the other is passed over.
   const PrimitiveResult both = navigate_with_stains({above, *reachable});
   EXPECT_TRUE(both.ok()) << both.reason;
+  const PrimitiveResult wiped = execute_primitive(w, PrimitiveType::wipe, table, 6, symbolic);
+  EXPECT_NE(wiped.status, PrimitiveStatus::motion_planning_failure) << wiped.reason;
 }
 
 // wipe presses the tool in before its strokes: from this base pose (where
