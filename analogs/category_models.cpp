@@ -85,7 +85,9 @@ void add_tray(std::vector<GeomSpec>& geoms, const Eigen::Vector3d& s, double z0,
 
 constexpr double kShelfPitch = 0.6;  // m between shelves behind a cabinet's door
 
-LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb) {
+// A drawer where the cabinet is wider than tall, else a door; an appliance
+// (a microwave, an oven) opens with a door whatever its shape.
+LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool appliance) {
   const double t = 0.02;
   const Eigen::Vector3d s = size.cwiseMax(0.15);  // room for a carcass, a drawer or a door
   LinkSpec root;
@@ -97,7 +99,8 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb) {
   for (double side : {-1.0, 1.0}) {
     g.push_back(box({t / 2, s.y() / 2 - t / 2, s.z() / 2 - t}, {side * (s.x() - t) / 2, t / 2, s.z() / 2}, rgb));
   }
-  if (s.x() <= s.z()) {
+  const bool drawer = s.x() > s.z() && !appliance;
+  if (!drawer) {
     // Behind a door, shelves about 0.6 m apart (a fridge's; a kitchen's base
     // cabinet has one halfway up): what is inside need not lie on the bottom,
     // where an arm reaching in through the door does not get. (A cabinet under
@@ -109,7 +112,7 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb) {
   }
   LinkSpec front;
   front.mass = std::max(0.2, mass * 0.1);
-  if (s.x() > s.z()) {  // wider than tall: a drawer sliding out towards -y
+  if (drawer) {  // sliding out towards -y
     front.name = "drawer";
     front.joint_type = "slide";
     front.axis = {0, -1, 0};
@@ -365,7 +368,8 @@ ObjectModel CategoryModels::model(const std::string& synset, const Eigen::Vector
       break;
     }
     case Archetype::cabinet:
-      model.root = cabinet(s, m, rgb);
+      model.root = cabinet(
+          s, m, rgb, knowledge_base().contains("appliance.n.02") && knowledge_base().is_a(synset, "appliance.n.02"));
       break;
     case Archetype::basin:
       model.root = container(s, m, rgb, false);
