@@ -364,5 +364,36 @@ TEST(TaskPlanner, PlansThroughThePrimitivesAndTheWorldsSteps) {
   EXPECT_EQ(cut.reason, "no plan within 2 expansions");
 }
 
+// A mug in a closed cabinet is picked only once the cabinet is pushed open
+// (pick's model: out of what opens only while it is open); boiled in a
+// microwave, the water that filled it leaves it filled with boiled water (the
+// world gives the made substance the inputs' level: transitions.cpp).
+TEST(TaskPlanner, OpensWhatHoldsTheObjectAndBoilsTheWaterThatFilledTheMug) {
+  const std::string objects =
+      "water.n.06_1 - water.n.06 cooked__water.n.01_1 - cooked__water.n.01 mug.n.04_1 - mug.n.04 "
+      "cabinet.n.01_1 - cabinet.n.01 sink.n.01_1 - sink.n.01 microwave.n.02_1 - microwave.n.02 "
+      "floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01";
+  const std::string init =
+      "(inside mug.n.04_1 cabinet.n.01_1) (insource sink.n.01_1 water.n.06_1) (future cooked__water.n.01_1) "
+      "(inroom floor.n.01_1 kitchen) (inroom sink.n.01_1 kitchen) (inroom microwave.n.02_1 kitchen) "
+      "(inroom cabinet.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)";
+  const Case picked = solve(objects, init, "(and (ontop mug.n.04_1 floor.n.01_1))");
+  const Plan out = plan_task(picked.symbolic, ground_goal(picked.problem));
+  ASSERT_TRUE(out.found) << out.reason;
+  const std::vector<std::string> steps = names(out);
+  const auto at = [&](const char* step) { return std::find(steps.begin(), steps.end(), step) - steps.begin(); };
+  EXPECT_LT(at("push(cabinet.n.01_1)"), at("pick(mug.n.04_1)"));
+  EXPECT_LT(at("pick(mug.n.04_1)"), static_cast<long>(steps.size()));
+
+  const Case boiled = solve(objects, init,
+                            "(and (real cooked__water.n.01_1) (filled mug.n.04_1 cooked__water.n.01_1) "
+                            "(inside mug.n.04_1 microwave.n.02_1))");
+  const Plan boil = plan_task(boiled.symbolic, ground_goal(boiled.problem));
+  ASSERT_TRUE(boil.found) << boil.reason;
+  const std::vector<std::string> boiling = names(boil);
+  EXPECT_NE(std::find(boiling.begin(), boiling.end(), "dip(sink.n.01_1)"), boiling.end());
+  EXPECT_EQ(boiling.back(), "[substance_cooking:water.n.06-cooking]");
+}
+
 }  // namespace
 }  // namespace chore
