@@ -17,6 +17,10 @@ namespace {
 constexpr double kPressSeconds = (ObjectStates::kToggleSteps + 3) / 30.0;
 // m from the toggle point towards the base a press may aim: within
 // ObjectStates::kToggleDistance with the hand up to 7 cm above or below it.
+// (Not tilted: the hand then stops with its centre 5.6 cm back and 5.6 cm up
+// from the point it aimed at, where a finger meets the top; aimed 7 cm
+// nearer, it stayed 14 cm from an oven's toggle point, 3 cm nearer 10.6 cm,
+// and nothing turned on.)
 constexpr double kNearer = 0.07;
 
 bool applies(const World& w, int object) {
@@ -35,19 +39,16 @@ std::string unmet(const World& w, int object, bool on) {
 // On the toggle point; else as far towards the base as the rule still
 // counts the hand there once it presses down (a stove's centre on a deep
 // counter lies beyond the arm's reach from above). Where no pose reaches
-// down onto them, the same points tilted 45 degrees towards the object: a
+// down onto them, the toggle point tilted 45 degrees towards the object: a
 // coffee maker or a mixer on a counter has its top at 1.2-1.5 m, and the
 // hand points down no higher than 1.2 m (tilted, Ik: 1.3-1.4 m).
 std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
   const Eigen::Vector3d point = toggle_point(w, object);
   const Eigen::Vector3d towards(base.x - point.x(), base.y - point.y(), 0);
   if (towards.norm() < kNearer) return {{point, kDown, std::nullopt}};
-  const Eigen::Vector3d nearer = point + towards.normalized() * kNearer;
-  const Eigen::Vector3d tilted = tilted_towards(-towards);
   return {{point, kDown, std::nullopt},
-          {nearer, kDown, std::nullopt},
-          {point, tilted, std::nullopt, true},
-          {nearer, tilted, std::nullopt, true}};
+          {point + towards.normalized() * kNearer, kDown, std::nullopt},
+          {point, tilted_towards(-towards), std::nullopt, true}};
 }
 
 bool press(Executor& e, bool on) {
