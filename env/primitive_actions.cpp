@@ -92,6 +92,11 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
            ((ab->heat_source && ab->heat_source->requires_inside) ||
             (ab->cold_source && ab->cold_source->requires_inside));
   };
+  // Goals that make something (real: a recipe's output) juggle a jar, a mug
+  // and a spoon: place serves them too, onto what holds things at the start
+  // and into what the goal fills (a spoon put into the mug stirs it).
+  std::set<std::string> made;
+  arguments_of(problem.goal, {"real"}, 0, made, scope);
   // Setting down on something serves goals that it touch it too.
   std::set<std::string> touched;
   arguments_of(problem.goal, {"touching"}, 0, touched, scope);
@@ -137,7 +142,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       const auto type = static_cast<PrimitiveType>(t);
       bool applies = primitive_applies(world, type, b.index);
       if (type == PrimitiveType::place) {
-        applies = (!goal_supports.empty() && named(supports)) || named(touched) || heats_inside(b.index);
+        applies = ((!goal_supports.empty() || !made.empty()) && named(supports)) || named(touched) ||
+                  heats_inside(b.index) || (!made.empty() && named(receivers));
       }
       if (type == PrimitiveType::push) applies = applies && (named(openable) || heats_inside(b.index));
       if (type == PrimitiveType::close) applies = applies && (named(closable) || heats_inside(b.index));

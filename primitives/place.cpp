@@ -179,7 +179,10 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
                                        {literal("touching", {a.held, a.target}),
                                         literal("touching", {a.target, a.held}), literal("ontop", {a.held, a.target})});
   if (!target.has("fillable")) return {on};
-  SymbolicStep in = setting_down(agent, a, {literal("inside", {a.held, a.target})});
+  // In it, it rests on it too (a spoon put into a mug touches it: a mixing tool stirs).
+  SymbolicStep in = setting_down(agent, a,
+                                 {literal("inside", {a.held, a.target}), literal("touching", {a.held, a.target}),
+                                  literal("touching", {a.target, a.held})});
   if (target.has("openable")) in.needs.push_back(literal("open", {a.target}));
   return {on, in};
 }

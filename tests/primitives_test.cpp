@@ -113,6 +113,15 @@ TEST(PrimitiveActions, AreDerivedFromEachActivitysBddl) {
             (std::vector<std::string>{"navigate(table.n.02_1)", "wipe(table.n.02_1)", "navigate(rag.n.01_1)",
                                       "pick(rag.n.01_1)", "navigate(cabinet.n.01_1)", "navigate(bucket.n.01_1)",
                                       "dip(bucket.n.01_1)"}));
+  // A goal that makes something (drip coffee, stirred in a mug): the hands
+  // set the mug, the jar and the spoon down on the counter, and the spoon into
+  // the mug (without place there was no plan: nothing could be put down).
+  const Env coffee(
+      primitive_config(test::data_path("bddl/behavior-1k/make_instant_coffee.bddl"), ExecutionMode::symbolic));
+  const std::vector<std::string> coffee_actions = action_names(coffee);
+  for (const char* a : {"place(countertop.n.01_1)", "place(mug.n.04_1)", "place(cabinet.n.01_1)"})
+    EXPECT_NE(std::find(coffee_actions.begin(), coffee_actions.end(), a), coffee_actions.end()) << a;
+  EXPECT_EQ(std::find(coffee_actions.begin(), coffee_actions.end(), "place(tablespoon.n.02_1)"), coffee_actions.end());
 }
 
 TEST(PrimitiveActions, BadActionsAndConfigsAreErrors) {
