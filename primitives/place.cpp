@@ -31,7 +31,7 @@ constexpr double kHandRoom = 0.1;           // m above a load for the hand and w
 constexpr double kComfortableHeight = 0.9;  // m: a level's hand height nearest this is tried first
 constexpr double kSlant = 0.7;              // rad: the most the hand's way in turns from straight in
 constexpr double kNearHand = 0.3;           // m: a symbolic place's sampled spot is preferred this near the hand
-constexpr int kSetDownAttempts = 1000;      // of the sampler: an instance's sampling tries 100, then another instance
+constexpr int kSetDownAttempts = 1000;      // sampler tries (an instance's take 100, then another instance is drawn)
 
 // Into a container closed on top (a bookcase, a shelf, a fridge or cabinet
 // with its door open), as a person puts things away: through its open side,
