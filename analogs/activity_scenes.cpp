@@ -96,25 +96,31 @@ Needs needs_of(const Problem& problem, const KnowledgeBase& kb) {
   }
   Needs needs;
   for (const auto& [instance, room] : room_of) needs.rooms.insert(room);
-  // A floor a state or relation is asked of ((covered floor dust), (touching
-  // shoe floor); in :init or the goal) is an object; a quantified floor
-  // variable asks it of every floor.
   std::map<std::string, std::string> type_of;
   for (const ObjectDecl& d : problem.objects) type_of[d.name] = d.type;
+  // Floor `a` (an instance, or a variable in `scope`, which stands for every
+  // floor) is an object in its room.
+  const auto floor_object = [&](const std::string& a, const std::vector<Variable>& scope) {
+    const auto var = std::find_if(scope.rbegin(), scope.rend(), [&](const Variable& v) { return v.name == a; });
+    const std::string type = var != scope.rend() ? var->type : type_of.contains(a) ? type_of[a] : "";
+    if (type != "floor.n.01") return;
+    for (const auto& [instance, room] : room_of) {
+      if (var != scope.rend() ? type_of[instance] == "floor.n.01" : instance == a) needs.floors.insert(room);
+    }
+  };
+  // A floor a state or relation is asked of ((covered floor dust), (touching
+  // shoe floor); in :init or the goal) is an object, and so is one the goal
+  // puts things on (place sets them down onto it).
   const auto floor_state = [&](const Literal& l, const std::vector<Variable>& scope) {
     if (l.predicate == "inroom" || places(l.predicate)) return;
-    for (const std::string& a : l.args) {
-      const auto var = std::find_if(scope.rbegin(), scope.rend(), [&](const Variable& v) { return v.name == a; });
-      const std::string type = var != scope.rend() ? var->type : type_of.contains(a) ? type_of[a] : "";
-      if (type != "floor.n.01") continue;
-      for (const auto& [instance, room] : room_of) {
-        if (var != scope.rend() ? type_of[instance] == "floor.n.01" : instance == a) needs.floors.insert(room);
-      }
-    }
+    for (const std::string& a : l.args) floor_object(a, scope);
   };
   std::vector<Variable> scope;
   for (const Literal& l : problem.init) floor_state(l, scope);
   each_literal(problem.goal, scope, floor_state);
+  each_literal(problem.goal, scope, [&](const Literal& l, const std::vector<Variable>& scope) {
+    if ((l.predicate == "ontop" || l.predicate == "onfloor") && l.args.size() == 2) floor_object(l.args[1], scope);
+  });
   for (const ObjectDecl& d : problem.objects) {
     if (d.type == "agent.n.01" || d.type == "floor.n.01") continue;
     const bool substance = dialect.contains(d.type) && dialect.is_substance(d.type) && !placed.contains(d.name);

@@ -37,7 +37,12 @@ constexpr double kRobotClear = 0.5;  // around the robot's start
 // which stands 0.3 m off the edge).
 constexpr double kAisle = 0.7;
 constexpr double kReachDepth = 0.6;
-constexpr double kHeadroom = 0.5;    // m kept between furniture's top and a wall item above it
+constexpr double kHeadroom = 0.5;  // m kept between furniture's top and a wall item above it
+// A wall item shorter than this (a nail, a hook, a switch) hangs with its
+// centre at kWallItemHeight, where the hand, level, reaches it (at 1.4 m, as
+// larger items' centres are, the arm does not).
+constexpr double kSmallWallItem = 0.3;
+constexpr double kWallItemHeight = 1.15;
 constexpr int kTries = 60;           // random placements tried per object
 constexpr double kCounterTop = 0.6;  // m: an appliance lower than this stands on a surface
 constexpr int kAttachments = 64;     // weld pairs per pair of synsets an activity attaches
@@ -413,7 +418,10 @@ bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor,
                             ? Eigen::Vector2d(inner.x0 + along, side == 0 ? inner.y0 + half.y() : inner.y1 - half.y())
                             : Eigen::Vector2d(side == 1 ? inner.x1 - half.x() : inner.x0 + half.x(), inner.y0 + along);
     const Rect r = footprint(c, half);
-    const double bottom = on_floor ? 0 : size.z() > 1.4 ? 0.3 : std::max(0.9, 1.4 - size.z() / 2);
+    const double bottom = on_floor                    ? 0
+                          : size.z() > 1.4            ? 0.3
+                          : size.z() < kSmallWallItem ? kWallItemHeight - size.z() / 2
+                                                      : std::max(0.9, 1.4 - size.z() / 2);
     for (const Rect& o : room.keep_clear) free &= !o.overlaps(r);
     for (size_t i = 0; i < room.taken.size() && !on_floor; ++i) {
       free &= room.heights[i] + kHeadroom <= bottom || !room.taken[i].grown(kGap).overlaps(r);

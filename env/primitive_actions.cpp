@@ -134,19 +134,25 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   std::vector<PrimitiveAction> actions;
   for (const ObjectDecl& decl : problem.objects) {
     const Binding& b = activity.binding(decl.name);
-    if (b.kind != Binding::Kind::object) continue;
+    // A floor with an object of its own (a room's slab: analogs/) is gone to
+    // and set down on. Not wiped: dirt on a floor is swept with a broom or a
+    // mop held at its top, 1.3 m up, which no wipe from above reaches.
+    const bool floor = b.kind == Binding::Kind::floor;
+    const int object = b.state_object();
+    if (object < 0) continue;
     const auto named = [&](const std::set<std::string>& names) {
       return names.count(decl.name) || names.count("?" + decl.type);
     };
     for (int t = 0; t < kPrimitiveTypes; ++t) {
       const auto type = static_cast<PrimitiveType>(t);
-      bool applies = primitive_applies(world, type, b.index);
+      if (floor && type != PrimitiveType::navigate && type != PrimitiveType::place) continue;
+      bool applies = primitive_applies(world, type, object);
       if (type == PrimitiveType::place) {
         applies = ((!goal_supports.empty() || !made.empty()) && named(supports)) || named(touched) ||
-                  heats_inside(b.index) || (!made.empty() && named(receivers));
+                  heats_inside(object) || (!made.empty() && named(receivers));
       }
-      if (type == PrimitiveType::push) applies = applies && (named(openable) || heats_inside(b.index));
-      if (type == PrimitiveType::close) applies = applies && (named(closable) || heats_inside(b.index));
+      if (type == PrimitiveType::push) applies = applies && (named(openable) || heats_inside(object));
+      if (type == PrimitiveType::close) applies = applies && (named(closable) || heats_inside(object));
       if (type == PrimitiveType::drape) applies = named(covered_by_cloth);
       if (type == PrimitiveType::place_under) applies = named(above);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
@@ -154,11 +160,11 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::place_next_to) applies = named(neighbours);
       if (type == PrimitiveType::cut) applies = applies && slicer;
       if (type == PrimitiveType::attach) applies = applies && named(attach_to);
-      if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(b.index));
+      if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(object));
       if (type == PrimitiveType::fold || type == PrimitiveType::unfold) applies = applies && named(folds);
       if (type == PrimitiveType::place_near_heating_element) applies = applies && heating;
       if (mode == ExecutionMode::physical && !primitive_is_physical(type)) applies = false;
-      if (applies) actions.push_back({type, b.index, decl.name});
+      if (applies) actions.push_back({type, object, decl.name});
     }
   }
   return actions;

@@ -1,14 +1,19 @@
 // attach(object): the carried object set onto the object and attached to it
 // (BDDL's attached: a lid on its jar, a hanger in the wardrobe, a wreath on
 // its nail), OmniGibson's AttachedTo forming where two attachable objects
-// meet. Placed as place places it (symbolically, dropped straight onto what
-// is below); touching the object, the scene's attachment weld between the
-// two (world/scene.hpp) holds them together.
+// meet. Placed as place places it, or held against the object's side and
+// let go; touching the object, the scene's attachment weld between the two
+// (world/scene.hpp) holds them together. Symbolically, what did not come to
+// touch it is attached where the world's sampler attaches it.
 #include "primitives/primitive_def.hpp"
+#include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
+#include "world/sampling.hpp"
 
 namespace chore {
 namespace {
+
+constexpr double kShortOfSide = 0.02;  // m the fingertips stop before a side the hand comes at
 
 bool has_weld(const World& w, int object, int to) {
   for (const Scene::Attachment& a : w.scene().attachments()) {
@@ -33,10 +38,37 @@ std::string unmet_precondition(const World& w, int object) {
   return "";
 }
 
+// As place sets a load down onto the object; and against its side, in
+// horizontally from where the base stands, the hand stopping with the
+// fingertips 2 cm short of the side's middle: a nail on a wall, or a hook,
+// has no top to set anything on.
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
+  std::vector<Approach> out = onto_top(w, object, base);
+  const Aabb box = object_aabb(w, object);
+  Eigen::Vector3d in(box.center().x() - base.x, box.center().y() - base.y, 0);
+  if (in.norm() < 1e-6) return out;
+  in.normalize();
+  // Where the line from the base meets the box (on the hand's side of it).
+  const Eigen::Vector3d half = box.extent() / 2;
+  const double depth =
+      std::min(half.x() / std::max(std::abs(in.x()), 1e-9), half.y() / std::max(std::abs(in.y()), 1e-9));
+  const Eigen::Vector3d side = box.center() - in * depth;
+  // The pre-pose, kClearance + kFingerReach short of the point, is where the hand stops.
+  out.push_back({side + in * (kClearance - kShortOfSide), in, std::nullopt});
+  return out;
+}
+
 bool act(Executor& e) {
   World& w = e.world();
   const int held = w.grasped_object();
   if (!e.go_to_pre_pose_with_load() || !e.release()) return false;
+  // Symbolically, attached where the world's sampler attaches it, as
+  // OmniGibson's symbolic attach sets AttachedTo: dropped against a wall's
+  // nail, a load falls to the floor.
+  if (!e.motion().physical() && !touching(w, held, e.object())) {
+    Rng rng(e.motion().next_seed());
+    if (sample_attached(w, held, e.object(), rng)) return true;
+  }
   if (!touching(w, held, e.object())) {
     return e.fail(PrimitiveStatus::place_failure,
                   "'" + w.scene().objects()[held].name + "' does not touch '" + e.name() + "'");
@@ -61,8 +93,12 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
 }  // namespace
 
 const PrimitiveDef& attach_primitive() {
-  static const PrimitiveDef def{
-      .applies = applies, .unmet_precondition = unmet_precondition, .act = act, .model = model, .touches = false};
+  static const PrimitiveDef def{.applies = applies,
+                                .unmet_precondition = unmet_precondition,
+                                .act = act,
+                                .model = model,
+                                .approaches = approaches,
+                                .touches = false};
   return def;
 }
 

@@ -17,8 +17,9 @@ namespace {
 // loaded, shut and turned on from one place); where no pose serves both,
 // each alone. While holding, one at a time: dirt lying on it to wipe, a
 // liquid to dip into, a container or surface to pour what the held container
-// holds into or onto, something to cut with the held knife or to attach the
-// held object to, then a place to put the load.
+// holds into or onto, something to cut with the held knife, to attach the
+// held object to or to drape the held cloth over, then a place to put the
+// load.
 std::vector<std::vector<PrimitiveType>> aims_of_navigation(const World& w, int object) {
   std::vector<std::vector<PrimitiveType>> aims;
   if (w.grasped_object() < 0) {
@@ -42,7 +43,7 @@ std::vector<std::vector<PrimitiveType>> aims_of_navigation(const World& w, int o
   const ObjectAbilities* ab = w.states().abilities(object);
   if (ab && ab->covered && !dirt_particles(w, object).empty()) aims.push_back({PrimitiveType::wipe});
   for (const PrimitiveType with_load :
-       {PrimitiveType::dip, PrimitiveType::pour, PrimitiveType::cut, PrimitiveType::attach}) {
+       {PrimitiveType::dip, PrimitiveType::pour, PrimitiveType::cut, PrimitiveType::attach, PrimitiveType::drape}) {
     const PrimitiveDef& def = primitive_def(with_load);
     if (def.applies(w, object) && def.unmet_precondition(w, object).empty()) aims.push_back({with_load});
   }
@@ -99,6 +100,11 @@ bool act(Executor& e) {
   bool arrived = false;
   Clock::time_point planning = t;
   for (const std::vector<PrimitiveType>& aim : aims) {
+    // One purpose alone that the hand serves from here already is not where
+    // to go: the other is (a door just opened, the robot swung round with
+    // it, reaches its handle but not the toggle point; back at a pose for the
+    // handle alone the plan would never toggle).
+    if (aim != aims[0] && reachable_here(w, m.ik(), checker, object, aim)) continue;
     const std::vector<Approach> here = approaches(w, aim[0], object, w.base_pose());
     const auto targets = [&](const Pose2& p) { return approaches(w, aim[0], object, p); };
     const std::vector<PrimitiveType> others(aim.begin() + 1, aim.end());

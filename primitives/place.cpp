@@ -28,6 +28,7 @@ constexpr double kRoofDepth = 0.1;          // m: a top this close below the box
 constexpr double kLevelStep = 0.05;         // m between the heights rays look down for a level from
 constexpr double kInset = 0.05;             // m from the opening to the load's near side
 constexpr double kHandRoom = 0.1;           // m above a load for the hand and wrist
+constexpr double kForearmAbove = 0.4;       // m above the hand's centre the arm takes, the hand pointing down
 constexpr double kComfortableHeight = 0.9;  // m: a level's hand height nearest this is tried first
 constexpr double kSlant = 0.7;              // rad: the most the hand's way in turns from straight in
 constexpr double kNearHand = 0.3;           // m: a symbolic place's sampled spot is preferred this near the hand
@@ -108,9 +109,42 @@ std::vector<Approach> through_open_side(const World& w, int object, const Pose2&
   return out;
 }
 
+// Over a spot under a roof (a jar on a cabinet's shelf, a pencil box in a
+// bookcase), where the arm may have no room to come down from above: in
+// horizontally from where the base stands, as through_open_side goes in, the
+// load just over the top, and let go. None where the arm has room above
+// (from above is surer) or none for the load and the hand under the roof.
+std::optional<Approach> under_roof(const World& w, int object, const Eigen::Vector3d& spot, const Pose2& base) {
+  const int held = w.carried_object();
+  const double size = object_aabb(w, held).extent().maxCoeff();
+  // Pointing down, the hand's pre-pose and the wrist and forearm over it.
+  const double above = kClearance + std::max(kFingerReach, load_below_hand(w)) + kForearmAbove;
+  const mjtNum up[3] = {0, 0, 1};
+  int geom = -1;
+  const double roof =
+      mj_ray(w.model(), w.data(), spot.data(), up, nullptr, 1, w.scene().objects()[object].body, &geom, nullptr);
+  const double hand = size / 2 + 0.04;  // over the top, the load below the hand clear of it
+  if (roof < 0 || roof > above || hand + kHandRoom > roof) return std::nullopt;
+  Eigen::Vector3d in(spot.x() - base.x, spot.y() - base.y, 0);
+  if (in.norm() < 1e-6) return std::nullopt;
+  in.normalize();
+  const Eigen::Vector3d at(spot.x(), spot.y(), spot.z() + hand);
+  return Approach{at + in * (kClearance + kFingerReach), in, std::nullopt};
+}
+
+// Onto the top: from above; under a roof, in under it; else, too high for the
+// hand pointing down, tilted.
 std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
   std::vector<Approach> out = through_open_side(w, object, base);
-  for (const Eigen::Vector3d& spot : top_spots(w, object, base)) out.push_back({spot, kDown, std::nullopt});
+  for (const Eigen::Vector3d& spot : top_spots(w, object, base)) {
+    out.push_back({spot, kDown, std::nullopt});
+    if (w.carried_object() < 0) continue;
+    if (const auto in = under_roof(w, object, spot, base)) {
+      out.push_back(*in);
+    } else if (const auto tilted = tilted_onto(w, spot, base)) {
+      out.push_back(*tilted);
+    }
+  }
   return out;
 }
 

@@ -315,10 +315,24 @@ std::vector<Eigen::Vector3d> dirt_particles(const World& w, int object) {
 
 std::vector<Approach> approaches(const World& w, PrimitiveType type, int object, const Pose2& base) {
   const PrimitiveDef& def = primitive_def(type);
-  if (def.approaches) return def.approaches(w, object, base);
+  return def.approaches ? def.approaches(w, object, base) : onto_top(w, object, base);
+}
+
+std::vector<Approach> onto_top(const World& w, int object, const Pose2& base) {
   std::vector<Approach> out;
-  for (const Eigen::Vector3d& spot : top_spots(w, object, base)) out.push_back({spot, kDown, std::nullopt});
+  for (const Eigen::Vector3d& spot : top_spots(w, object, base)) {
+    out.push_back({spot, kDown, std::nullopt});
+    if (const auto tilted = tilted_onto(w, spot, base)) out.push_back(*tilted);
+  }
   return out;
+}
+
+std::optional<Approach> tilted_onto(const World& w, const Eigen::Vector3d& spot, const Pose2& base) {
+  const Eigen::Vector3d towards(spot.x() - base.x, spot.y() - base.y, 0);
+  if (w.carried_object() < 0 || towards.norm() < 1e-6 || spot.z() + kClearance + load_below_hand(w) <= kHighestDown) {
+    return std::nullopt;
+  }
+  return Approach{spot, tilted_towards(towards), std::nullopt, true};
 }
 
 // How far a held object hangs below the hand's centre (0 with an empty hand).
@@ -412,10 +426,17 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
   // Poses from which the arm reaches from the untucked start first, over the
   // whole budget: the configurations the physical primitives were tuned on
   // (from the low or high start the hand reaches farther, and closes a door
-  // less surely). Then from any of kReachStarts; the tally is that pass's.
-  for (const size_t starts : {size_t{1}, kReachStarts.size()}) {
+  // less surely). Then from any of kReachStarts; then from those, standing
+  // clear of what the object stands on or in too (below). The tally is the
+  // last pass's.
+  struct Pass {
+    size_t starts;
+    bool clear_of_support;
+  };
+  for (const Pass pass : {Pass{1, false}, Pass{kReachStarts.size(), false}, Pass{kReachStarts.size(), true}}) {
+    const size_t starts = pass.starts;
     tally = {};
-    std::mt19937_64 rng(seed + starts - 1);
+    std::mt19937_64 rng(seed + starts - 1 + pass.clear_of_support);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (int i = 0; i < kDrawsPerSample * samples && i - tally.blocked < samples; ++i) {
       const Approach& a = around[i % around.size()];
@@ -429,15 +450,31 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
       } else {
         // Anywhere around the target, facing it, or side-on (the arm reaches sideways too).
         const double theta = 2 * M_PI * unit(rng), c = std::cos(theta), s = std::sin(theta);
-        // Leave the object's box along (c, s) from the target point, then stand off.
-        double exit = 1e9;
+        // Leave the object's box along (c, s) from the target point, then
+        // stand off; not what the base drives over (a floor, a rug).
+        double exit = box.hi.z() < Robot::kDrivesOver ? 0 : 1e9;
         for (const auto& [d, from, lo, hi] :
              {std::tuple{c, a.point.x(), box.lo.x(), box.hi.x()}, std::tuple{s, a.point.y(), box.lo.y(), box.hi.y()}}) {
           if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
         }
-        // Within the arm's reach of the point (0.6 m at the floor, 1 m at
-        // table height) and clear of the object's box by the body's radius.
-        const double near = exit + 0.25, far = std::max(near + 0.05, a.point.z() < 0.45 ? 0.62 : 1.0);
+        // Clear of the object's box by the body's radius, within the arm's
+        // reach of the point (0.6 m at the floor, 1 m at table height). In
+        // the last pass clear of what it stands on or in too: from the first
+        // cell along (c, s) where the base fits (a tupperware in a fridge is
+        // left where the fridge ends, not where the tupperware does: 2,000
+        // draws of 2,000 fell inside the fridge), none along (c, s) if that
+        // cell lies beyond reach (a draw in collision).
+        const double reach = a.point.z() < 0.45 ? 0.62 : 1.0;
+        double near = exit + 0.25;
+        while (pass.clear_of_support && near <= reach &&
+               !footprint.body_map().free(a.point.x() + c * near, a.point.y() + s * near)) {
+          near += OccupancyMap::kResolution;
+        }
+        if (pass.clear_of_support && near > reach) {
+          ++tally.blocked;
+          continue;
+        }
+        const double far = std::max(near + 0.05, reach);
         // Biased towards the object: at arm's length, tracking is fragile.
         const double u = unit(rng), distance = near + (far - near) * u * u;
         p = {a.point.x() + c * distance, a.point.y() + s * distance, 0};

@@ -19,6 +19,7 @@
 #include "primitives/motion.hpp"
 #include "primitives/primitive.hpp"
 #include "primitives/symbolic_model.hpp"
+#include "world/robot.hpp"
 
 namespace chore {
 
@@ -35,8 +36,9 @@ inline const Eigen::Vector3d kDown(0, 0, -1), kUp(0, 0, 1);
 inline Eigen::Vector3d tilted_towards(const Eigen::Vector3d& horizontal) {
   return (horizontal.normalized() + kDown).normalized();
 }
-inline constexpr double kFingerReach = 0.04;    // m from the hand's centre to the fingertips
-inline constexpr double kClearance = 0.10;      // m above a target before descending
+inline constexpr double kFingerReach = Robot::kFingertips;  // m from the hand's centre to the fingertips
+inline constexpr double kClearance = 0.10;                  // m above a target before descending
+inline constexpr double kHighestDown = 1.2;     // m: the hand pointing down gets no higher (tilted 45 degrees: 1.3-1.4)
 inline constexpr double kLift = 0.15;           // m raised after grasping or releasing
 inline constexpr double kContactDepth = 0.05;   // m below an object's top the fingertips may need to reach
 inline constexpr double kPullFraction = 0.9;    // of a drawer's range, push opens it this far
@@ -89,6 +91,14 @@ Eigen::Vector3d top_centre(const World& w, int object, const Pose2& base);
 // (a deep counter's near side: the arm reaches less far with a load; not in
 // an open drawer).
 std::vector<Eigen::Vector3d> top_spots(const World& w, int object, const Pose2& base);
+// From above onto each of top_spots() and, with a load, tilted_onto() them:
+// the default approaches.
+std::vector<Approach> onto_top(const World& w, int object, const Pose2& base);
+// Onto `spot` with a load, where the hand pointing down would be higher than
+// it gets (kHighestDown; a tall load over a counter): tilted 45 degrees
+// towards the spot from the base, which reaches higher, and the load, hanging
+// along the hand's axis, a third lower. A last resort (Approach::last_resort).
+std::optional<Approach> tilted_onto(const World& w, const Eigen::Vector3d& spot, const Pose2& base);
 // How far, in the plane, p lies from the nearest loose object (not fixed,
 // not carried, not `object`) whose centre is between heights lo and hi; 1e9
 // with none: where a load set down leaves the most room.
@@ -215,7 +225,7 @@ struct PrimitiveDef {
   // on these objects (alternatives, e.g. one per solvent a stain needs), none
   // where it cannot act on them.
   std::vector<SymbolicStep> (*model)(const std::vector<SymbolicObject>& objects, const SymbolicArgs& args);
-  // Where the hand acts: null for the default, from above onto top_spots().
+  // Where the hand acts: null for the default, onto_top().
   std::vector<Approach> (*approaches)(const World& w, int object, const Pose2& base) = nullptr;
   // Where the hand's centre ends the line along approach `a` from a base at
   // `base`, with `load` hanging below the hand: null for at contact,

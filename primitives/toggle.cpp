@@ -15,13 +15,14 @@ namespace {
 // and three more: the hand settles after its approach (physically 2-3 steps
 // above ObjectStates::kToggleSpeed).
 constexpr double kPressSeconds = (ObjectStates::kToggleSteps + 3) / 30.0;
-// m from the toggle point towards the base a press may aim: within
-// ObjectStates::kToggleDistance with the hand up to 7 cm above or below it.
-// (Not tilted: the hand then stops with its centre 5.6 cm back and 5.6 cm up
-// from the point it aimed at, where a finger meets the top; aimed 7 cm
-// nearer, it stayed 14 cm from an oven's toggle point, 3 cm nearer 10.6 cm,
-// and nothing turned on.)
+// m from the toggle point towards the base a press may aim: the fingers
+// within ObjectStates::kToggleDistance of it. Pointing down, the fingertips
+// stop on the top 7 cm short. Tilted, the hand stops with its centre 5.6 cm
+// back and 5.6 cm up from the point it aimed at, where a finger meets the
+// top, the fingertips 2.8 cm back and up: aimed 4 cm short, they stay within
+// 7.3 cm (aimed 7 cm short, 10.2 cm, and nothing turned on).
 constexpr double kNearer = 0.07;
+constexpr double kTiltedNearer = 0.04;
 
 bool applies(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
@@ -37,18 +38,20 @@ std::string unmet(const World& w, int object, bool on) {
 }
 
 // On the toggle point; else as far towards the base as the rule still
-// counts the hand there once it presses down (a stove's centre on a deep
+// counts the fingers there once they press down (a stove's centre on a deep
 // counter lies beyond the arm's reach from above). Where no pose reaches
-// down onto them, the toggle point tilted 45 degrees towards the object: a
-// coffee maker or a mixer on a counter has its top at 1.2-1.5 m, and the
-// hand points down no higher than 1.2 m (tilted, Ik: 1.3-1.4 m).
+// down onto them, the same tilted 45 degrees towards the object: a coffee
+// maker or a mixer on a counter has its top at 1.2-1.5 m, and the hand
+// points down no higher than 1.2 m (tilted, Ik: 1.3-1.4 m).
 std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
   const Eigen::Vector3d point = toggle_point(w, object);
   const Eigen::Vector3d towards(base.x - point.x(), base.y - point.y(), 0);
   if (towards.norm() < kNearer) return {{point, kDown, std::nullopt}};
+  const Eigen::Vector3d tilted = tilted_towards(-towards);
   return {{point, kDown, std::nullopt},
           {point + towards.normalized() * kNearer, kDown, std::nullopt},
-          {point, tilted_towards(-towards), std::nullopt, true}};
+          {point, tilted, std::nullopt, true},
+          {point + towards.normalized() * kTiltedNearer, tilted, std::nullopt, true}};
 }
 
 bool press(Executor& e, bool on) {

@@ -295,6 +295,36 @@ TEST_F(ObjectStatesTest, TheHandAtTheTogglePointForFiveStepsToggles) {
   EXPECT_TRUE(toggled_on(world_, apple));
 }
 
+// The fingers press, not the hand's centre (OmniGibson's ToggledOn counts a
+// robot's finger links near the toggle marker): the toggle point 13 cm ahead
+// of the hand's centre along its fingers (9 cm from the fingertips) toggles
+// the object; as far behind the hand it does not.
+TEST_F(ObjectStatesTest, TheFingersNotTheHandsCentreReachTheTogglePoint) {
+  const int apple = object("apple_1");
+  ObjectAbilities lamp;
+  lamp.toggleable = true;
+  world_.states().configure(apple, lamp);
+  world_.model()->opt.gravity[2] = 0;
+  for (int g : scene_->objects()[apple].geoms) {
+    world_.model()->geom_contype[g] = world_.model()->geom_conaffinity[g] = 0;
+  }
+  const int site = world_.robot()->gripper_site;
+  const Eigen::Vector3d hand(world_.data()->site_xpos + 3 * site);
+  const double* frame = world_.data()->site_xmat + 9 * site;
+  const Eigen::Vector3d fingers(frame[0], frame[3], frame[6]);
+  put(apple, hand.x(), hand.y(), hand.z() - 1.0, 0);
+  const Eigen::Vector3d origin(hand.x(), hand.y(), hand.z() - 1.0);
+  const Eigen::Vector3d top = toggle_point(world_, apple) - origin;
+  for (const double side : {-1.0, 1.0}) {
+    SCOPED_TRACE(side > 0 ? "ahead" : "behind");
+    const Eigen::Vector3d at = hand + side * 0.13 * fingers - top;
+    put(apple, at.x(), at.y(), at.z(), 0);
+    ASSERT_NEAR((toggle_point(world_, apple) - hand).norm(), 0.13, 1e-6);
+    for (int i = 0; i < 8; ++i) world_.step(4);
+    EXPECT_EQ(toggled_on(world_, apple), side > 0);
+  }
+}
+
 TEST_F(ObjectStatesTest, StateSamplersAgreeWithTheCheckers) {
   const int apple = object("apple_1"), bin = object("trash_bin_1");
   ObjectAbilities all;

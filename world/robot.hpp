@@ -42,6 +42,9 @@ struct Robot {
   static constexpr double kHomeTorso = 0.0;
   static const std::array<double, kArmJoints> kTuckedArm;
   static constexpr double kGripperOpen = 0.045;  // per finger (m)
+  // m from gripper_center to the fingertips along the hand's approach axis
+  // (the site's x; the finger pads end at x 0.21 in tiago.xml, the site is at 0.17).
+  static constexpr double kFingertips = 0.04;
   // The base drives over what lies lower than this (m): floors, a rug, a rag.
   static constexpr double kDrivesOver = 0.02;
 };

@@ -161,17 +161,24 @@ void update_states_after_env_step(World& w, double dt) {
   std::map<int, ObjectState>& state_of = w.states().all_states();
   const std::map<int, ObjectAbilities>& abilities_of = w.states().all_abilities();
   if (state_of.empty()) return;
-  // Toggling: the hand held at the toggle point (top centre) for a few steps;
-  // not the hand that holds the object there (a sprayer grasped from above).
+  // Toggling: the fingers held at the toggle point (top centre) for a few
+  // steps, as OmniGibson's ToggledOn counts a robot's finger links near its
+  // toggle marker; not the hand that holds the object there (a sprayer
+  // grasped from above).
   if (const Robot* r = w.robot()) {
     const Eigen::Vector3d hand(w.data()->site_xpos + 3 * r->gripper_site);
+    const mjtNum* frame = w.data()->site_xmat + 9 * r->gripper_site;
+    const Eigen::Vector3d fingers = Eigen::Vector3d(frame[0], frame[3], frame[6]) * Robot::kFingertips;
     std::optional<Eigen::Vector3d>& last = w.states().last_hand();
     const bool held = !last || (hand - *last).norm() < ObjectStates::kToggleSpeed * dt;
     last = hand;
     for (auto& [object, s] : state_of) {
       if (!abilities_of.at(object).toggleable || object == w.grasped_object()) continue;
       const Eigen::Vector3d point = toggle_point(w, object);
-      const bool near = held && (point - hand).norm() < ObjectStates::kToggleDistance;
+      // The point's distance from the fingers: the segment from the hand's
+      // centre to the fingertips.
+      const double along = std::clamp((point - hand).dot(fingers) / fingers.squaredNorm(), 0.0, 1.0);
+      const bool near = held && (point - (hand + along * fingers)).norm() < ObjectStates::kToggleDistance;
       s.toggle_steps = near ? s.toggle_steps + 1 : 0;
       if (s.toggle_steps == ObjectStates::kToggleSteps) s.toggled = !s.toggled;
     }

@@ -25,7 +25,8 @@ void update_states_at_motion_waypoint(World& world, double dt, int moved, const 
                                       const std::vector<mjContact_>& moved_contacts);
 // Where the hand presses to toggle an object: the top centre of its box. The
 // rule toggles it after ObjectStates::kToggleSteps consecutive env steps with
-// the hand held within ObjectStates::kToggleDistance of it (slower than
+// the fingers (from the hand's centre to the fingertips) held within
+// ObjectStates::kToggleDistance of it (the hand slower than
 // ObjectStates::kToggleSpeed).
 Eigen::Vector3d toggle_point(const World& world, int object);
 // Whether heat or cold source `source` (its ThermalSource `t`) acts on
