@@ -21,6 +21,7 @@ class ObjectStatesTest : public ::testing::Test {
   ObjectStatesTest() : scene_(Scene::load(test::data_path("scenes/predicate_room.json"))), world_(scene_) {}
 
   int object(const char* name) const { return static_cast<int>(scene_->find_object(name) - scene_->objects().data()); }
+  int floating_switch();
   // Teleports a free object's origin (bottom centre) and lets it settle.
   void put(int o, double x, double y, double z, int steps = 8) {
     const mjModel* m = world_.model();
@@ -275,16 +276,22 @@ TEST_F(ObjectStatesTest, HardImpactsBreakAndAPressedSlicerSlices) {
   EXPECT_TRUE(sliced(world_, apple));
 }
 
-TEST_F(ObjectStatesTest, TheHandAtTheTogglePointForFiveStepsToggles) {
+// The apple as a switch that floats where it is put, near the hand without
+// touching it: no gravity, no contacts.
+int ObjectStatesTest::floating_switch() {
   const int apple = object("apple_1");
   ObjectAbilities lamp;
   lamp.toggleable = true;
   world_.states().configure(apple, lamp);
-  // Floating at the hand without touching it: no gravity, no contacts.
   world_.model()->opt.gravity[2] = 0;
   for (int g : scene_->objects()[apple].geoms) {
     world_.model()->geom_contype[g] = world_.model()->geom_conaffinity[g] = 0;
   }
+  return apple;
+}
+
+TEST_F(ObjectStatesTest, TheHandAtTheTogglePointForFiveStepsToggles) {
+  const int apple = floating_switch();
   const double* hand = world_.data()->site_xpos + 3 * world_.robot()->gripper_site;
   put(apple, hand[0], hand[1], hand[2] - 0.12, 0);  // top 4 cm below the hand
   for (int i = 0; i < 4; ++i) world_.step(4);
@@ -300,14 +307,7 @@ TEST_F(ObjectStatesTest, TheHandAtTheTogglePointForFiveStepsToggles) {
 // of the hand's centre along its fingers (9 cm from the fingertips) toggles
 // the object; as far behind the hand it does not.
 TEST_F(ObjectStatesTest, TheFingersNotTheHandsCentreReachTheTogglePoint) {
-  const int apple = object("apple_1");
-  ObjectAbilities lamp;
-  lamp.toggleable = true;
-  world_.states().configure(apple, lamp);
-  world_.model()->opt.gravity[2] = 0;
-  for (int g : scene_->objects()[apple].geoms) {
-    world_.model()->geom_contype[g] = world_.model()->geom_conaffinity[g] = 0;
-  }
+  const int apple = floating_switch();
   const int site = world_.robot()->gripper_site;
   const Eigen::Vector3d hand(world_.data()->site_xpos + 3 * site);
   const double* frame = world_.data()->site_xmat + 9 * site;
