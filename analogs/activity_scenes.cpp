@@ -314,6 +314,7 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
   std::map<std::string, std::string> synset_of;
   for (const ObjectDecl& d : problem.objects) synset_of[d.name] = d.type;
   std::set<std::pair<std::string, std::string>> attachable;
+  bool at_start = true;
   const auto attaches = [&](const Literal& l, const std::vector<Variable>& scope) {
     if (l.negated || l.predicate != "attached" || l.args.size() != 2) return;
     std::string types[2];
@@ -323,11 +324,13 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
       const auto declared = synset_of.find(l.args[i]);
       types[i] = var != scope.rend() ? var->type : declared != synset_of.end() ? declared->second : "";
     }
-    if (!types[0].empty() && !types[1].empty() && types[1] != "agent.n.01")
-      attachable.insert({needs_model(needs, types[0]), needs_model(needs, types[1])});
+    if (types[0].empty() || types[1].empty() || types[1] == "agent.n.01") return;
+    attachable.insert({needs_model(needs, types[0]), needs_model(needs, types[1])});
+    if (at_start) extras.holding_at_start.push_back(needs_model(needs, types[1]));
   };
   std::vector<Variable> none;
   for (const Literal& l : problem.init) attaches(l, none);
+  at_start = false;
   each_literal(problem.goal, none, attaches);
   for (const auto& [object, to] : attachable) extras.attachments.push_back({object, to});
   return generate_scene_analog(inventory, models, 0, extras);

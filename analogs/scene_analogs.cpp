@@ -40,7 +40,8 @@ constexpr double kReachDepth = 0.6;
 constexpr double kHeadroom = 0.5;  // m kept between furniture's top and a wall item above it
 // A wall item shorter than this (a nail, a hook, a switch) hangs with its
 // centre at kWallItemHeight, where the hand, level, reaches it (at 1.4 m, as
-// larger items' centres are, the arm does not).
+// larger items' centres are, the arm does not), unless something hangs on it
+// from the start (AnalogExtras::holding_at_start).
 constexpr double kSmallWallItem = 0.3;
 constexpr double kWallItemHeight = 1.15;
 constexpr int kTries = 60;           // random placements tried per object
@@ -401,7 +402,7 @@ bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, bool free_st
 // counter); `on_floor` (doors): standing on the floor, clear of the furniture
 // too.
 bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor, Rng& rng, Eigen::Vector3d& at,
-                   int& turns) {
+                   int& turns, bool holds_something = false) {
   const Rect inner = room.rect.grown(-kWall / 2 - 0.01);  // not touching the wall: a door's leaf swings free
   for (int t = 0; t < kTries; ++t) {
     const int side = uniform_index(rng, 4);
@@ -418,10 +419,10 @@ bool place_on_wall(RoomLayout& room, const Eigen::Vector3d& size, bool on_floor,
                             ? Eigen::Vector2d(inner.x0 + along, side == 0 ? inner.y0 + half.y() : inner.y1 - half.y())
                             : Eigen::Vector2d(side == 1 ? inner.x1 - half.x() : inner.x0 + half.x(), inner.y0 + along);
     const Rect r = footprint(c, half);
-    const double bottom = on_floor                    ? 0
-                          : size.z() > 1.4            ? 0.3
-                          : size.z() < kSmallWallItem ? kWallItemHeight - size.z() / 2
-                                                      : std::max(0.9, 1.4 - size.z() / 2);
+    const double bottom = on_floor                                        ? 0
+                          : size.z() > 1.4                                ? 0.3
+                          : size.z() < kSmallWallItem && !holds_something ? kWallItemHeight - size.z() / 2
+                                                                          : std::max(0.9, 1.4 - size.z() / 2);
     for (const Rect& o : room.keep_clear) free &= !o.overlaps(r);
     for (size_t i = 0; i < room.taken.size() && !on_floor; ++i) {
       free &= room.heights[i] + kHeadroom <= bottom || !room.taken[i].grown(kGap).overlaps(r);
@@ -608,6 +609,10 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
       }
     }
   }
+  const auto holds_from_start = [&](const std::string& synset) {
+    return std::any_of(extras.holding_at_start.begin(), extras.holding_at_start.end(),
+                       [&](const std::string& to) { return models.is_a(synset, to); });
+  };
   // What the caller adds, before the inventory's small objects take the
   // space: furniture first (it makes surfaces), then the rest.
   for (int pass = 0; pass < 2; ++pass) {
@@ -627,7 +632,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
         for (const auto& [object, to] : extras.attachments) {
           if (models.is_a(e.synset, to)) size.x() = std::max(size.x(), models.size(object).head<2>().maxCoeff());
         }
-        if (place_on_wall(room, size, false, rng, at, turns)) {
+        if (place_on_wall(room, size, false, rng, at, turns, holds_from_start(e.synset))) {
           builder.add(e.synset, at, turns, true);
         } else {
           ++analog.left_out;
@@ -657,7 +662,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
         int turns = 0;
         const bool on_wall = kind == Kind::on_wall;
         const bool fixture = models.has_property(synset, "sceneObject");
-        if (!(on_wall ? place_on_wall(room, size, false, rng, at, turns)
+        if (!(on_wall ? place_on_wall(room, size, false, rng, at, turns, holds_from_start(synset))
                       : place_small(room, size, rng, at, turns, fixture))) {
           ++analog.left_out;
           continue;

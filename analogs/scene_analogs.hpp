@@ -98,6 +98,9 @@ struct AnalogExtras {
   // Synsets (object, to) an activity attaches: every object of the first
   // with every object of the second may be (SceneFile::attachments).
   std::vector<std::pair<std::string, std::string>> attachments;
+  // Synsets something hangs on from the start (a wind chimes' pole on its
+  // nail): as wall items they keep a larger item's height, with room below.
+  std::vector<std::string> holding_at_start;
   // Rooms (name or type, as ExtraObject::room) whose floor is an object: a
   // fixed slab of synset floor.n.01 over the room's floor, in its colour,
   // that keeps states as objects do (dust on the floor).
