@@ -187,8 +187,9 @@ std::string joined(const std::vector<std::string>& names) {
 // the largest diagonal, and, inside, the tallest under the lid; walls, doors
 // and the sampler's margins beside. A container grows along both sides, a
 // surface along its width. Nested ones (a tupperware in the fridge) are sized
-// inside out.
-std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, const CategoryModels& models) {
+// inside out. The least inner heights (AnalogExtras::least_inner_heights)
+// beside: the tallest content and the margins above it.
+void support_sizes(const Problem& problem, const CategoryModels& models, AnalogExtras& extras) {
   constexpr double kWalls = 0.1, kSpace = 2.5;
   const KnowledgeBase& kb = models.knowledge_base();
   std::map<std::string, std::string> synset_of;
@@ -201,7 +202,7 @@ std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, con
                ? it->second
                : "";
   };
-  std::map<std::string, Eigen::Vector3d> least;
+  std::map<std::string, Eigen::Vector3d>& least = extras.least_sizes;
   const auto size = [&](const std::string& synset) {
     const auto it = least.find(synset);
     return it == least.end() ? models.size(synset) : models.size(synset).cwiseMax(it->second);
@@ -231,6 +232,8 @@ std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, con
       if (load.inside) {
         const double side = std::max(load.diagonal, std::sqrt(kSpace * load.area)) + kWalls;
         need = {side, side, load.height + kWalls};
+        double& inner = extras.least_inner_heights[synset];
+        inner = std::max(inner, load.height + kWalls);
       } else {
         need = {std::max(load.diagonal, kSpace * load.area / std::max(own.y(), load.diagonal)), load.diagonal, 0};
       }
@@ -238,7 +241,6 @@ std::map<std::string, Eigen::Vector3d> support_sizes(const Problem& problem, con
       if (!fresh) it->second = it->second.cwiseMax(need);
     }
   }
-  return least;
 }
 
 }  // namespace
@@ -306,7 +308,7 @@ SceneAnalog activity_scene_analog(const Problem& problem, const SceneInventory& 
   }
   for (const std::string& synset : needs.loose) extras.objects.push_back({"", synset, true});
   for (const std::string& synset : needs.future) extras.objects.push_back({"", synset, true, true});
-  extras.least_sizes = support_sizes(problem, models);
+  support_sizes(problem, models, extras);
   extras.modelled_as = needs.modelled_as;
   extras.floors.assign(needs.floors.begin(), needs.floors.end());
   // A weld for each pair :init attaches or the goal would (a quantified pair:

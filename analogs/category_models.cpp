@@ -87,19 +87,25 @@ constexpr double kShelfPitch = 0.6;  // m between shelves behind a cabinet's doo
 
 // A drawer where the cabinet is wider than tall, else a door; an appliance
 // (a microwave, an oven) opens with a door whatever its shape.
-LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool appliance) {
+LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool appliance, double inner_height) {
   const double t = 0.02;
   const Eigen::Vector3d s = size.cwiseMax(0.15);  // room for a carcass, a drawer or a door
+  const bool drawer = s.x() > s.z() && !appliance;
+  // A drawer kDrawerHeight deep (or as deep as what goes in it) over a solid
+  // carcass: what lies in it is within an arm's reach from above once it is
+  // pulled out (a drawer the cabinet's height kept it 4 cm above the floor).
+  constexpr double kDrawerHeight = 0.3;
+  const double below = drawer ? std::max(t, s.z() - 2 * t - std::max(kDrawerHeight, inner_height)) : t;  // carcass
+  const double tray_height = s.z() - 2 * t - below;
   LinkSpec root;
   root.mass = mass;
   auto& g = root.geoms;
-  g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, t / 2}, {0, t / 2, t / 2}, rgb));                  // bottom
+  g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, below / 2}, {0, t / 2, below / 2}, rgb));          // bottom
   g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, t / 2}, {0, t / 2, s.z() - t / 2}, rgb));          // top
   g.push_back(box({s.x() / 2 - t, t / 2, s.z() / 2 - t}, {0, s.y() / 2 - t / 2, s.z() / 2}, rgb));  // back
   for (double side : {-1.0, 1.0}) {
     g.push_back(box({t / 2, s.y() / 2 - t / 2, s.z() / 2 - t}, {side * (s.x() - t) / 2, t / 2, s.z() / 2}, rgb));
   }
-  const bool drawer = s.x() > s.z() && !appliance;
   if (!drawer) {
     // Behind a door, shelves about 0.6 m apart (a fridge's; a kitchen's base
     // cabinet has one halfway up): what is inside need not lie on the bottom,
@@ -117,11 +123,11 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool 
     front.joint_type = "slide";
     front.axis = {0, -1, 0};
     front.range[1] = 0.8 * s.y();
-    front.pos = {0, 0, t};
-    const Eigen::Vector3d tray(s.x() - 2.5 * t, s.y() - 2 * t, s.z() - 3 * t);
+    front.pos = {0, 0, below};
+    const Eigen::Vector3d tray(s.x() - 2.5 * t, s.y() - 2 * t, tray_height);
     add_tray(front.geoms, tray, 0, t, shade(rgb, 0.9));
-    front.geoms.push_back(box({s.x() / 2 - t, t / 2, (s.z() - 2 * t) / 2}, {0, -s.y() / 2 + t / 2, (s.z() - 2 * t) / 2},
-                              shade(rgb, 1.15)));
+    const double panel = (tray_height + t) / 2;  // half its height
+    front.geoms.push_back(box({s.x() / 2 - t, t / 2, panel}, {0, -s.y() / 2 + t / 2, panel}, shade(rgb, 1.15)));
   } else {  // a door hinged on its left edge, swinging out
     front.name = "door";
     front.joint_type = "hinge";
@@ -222,6 +228,23 @@ LinkSpec container(const Eigen::Vector3d& size, double mass, const Rgb& rgb, boo
     lid.geoms.push_back(box({s.x() / 2, s.y() / 2, t / 2}, {0, -s.y() / 2, t / 2}, shade(rgb, 1.15)));
     root.links.push_back(lid);
   }
+  return root;
+}
+
+// A scene's basin (a sink, a bathtub): a solid stand, and on it an open box
+// kBasinDepth deep (or as deep as what goes in it), so that what lies in it is
+// within an arm's reach from above (a sink 0.9 m deep to the floor kept its
+// dirt, and what lay in it, out of every reach).
+LinkSpec basin(const Eigen::Vector3d& size, double mass, const Rgb& rgb, double inner_height) {
+  constexpr double kBasinDepth = 0.3;
+  const double depth = std::max(kBasinDepth, inner_height);
+  if (size.z() <= depth) return container(size, mass, rgb, false);
+  LinkSpec root;
+  root.mass = mass;
+  const double stand = size.z() - depth;
+  root.geoms.push_back(box({size.x() / 2, size.y() / 2, stand / 2}, {0, 0, stand / 2}, shade(rgb, 0.9)));
+  const double t = std::clamp(0.08 * std::min(size.x(), size.y()), 0.003, 0.03);
+  add_tray(root.geoms, {size.x(), size.y(), depth}, stand, t, rgb);
   return root;
 }
 
@@ -348,7 +371,7 @@ ObjectModel CategoryModels::model(const std::string& synset) const {
   return model(synset, size(synset));
 }
 
-ObjectModel CategoryModels::model(const std::string& synset, const Eigen::Vector3d& s) const {
+ObjectModel CategoryModels::model(const std::string& synset, const Eigen::Vector3d& s, double inner_height) const {
   const Archetype a = archetype(synset);
   const double m = mass(synset);
   const Rgb rgb = colour(synset);
@@ -369,10 +392,11 @@ ObjectModel CategoryModels::model(const std::string& synset, const Eigen::Vector
     }
     case Archetype::cabinet:
       model.root = cabinet(
-          s, m, rgb, knowledge_base().contains("appliance.n.02") && knowledge_base().is_a(synset, "appliance.n.02"));
+          s, m, rgb, knowledge_base().contains("appliance.n.02") && knowledge_base().is_a(synset, "appliance.n.02"),
+          inner_height);
       break;
     case Archetype::basin:
-      model.root = container(s, m, rgb, false);
+      model.root = basin(s, m, rgb, inner_height);
       break;
     case Archetype::door:
       model.root = door(s, m, rgb);

@@ -67,8 +67,10 @@ class CategoryModels {
   // The entry of the size table that sized it (itself or its nearest ancestor).
   std::string size_entry(const std::string& synset) const;
   ObjectModel model(const std::string& synset) const;
-  // Its model at another size (a lawn sized to its garden).
-  ObjectModel model(const std::string& synset, const Eigen::Vector3d& size) const;
+  // Its model at another size (a lawn sized to its garden). A drawer or a
+  // basin is at least `inner_height` deep (what an activity puts in it), and
+  // no deeper than the arm needs (its floor as high as that leaves it).
+  ObjectModel model(const std::string& synset, const Eigen::Vector3d& size, double inner_height = 0) const;
 
   const KnowledgeBase& knowledge_base() const { return *kb_; }
 

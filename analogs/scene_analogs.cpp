@@ -74,7 +74,9 @@ struct Models {
     return least == extras.least_sizes.end() ? own : own.cwiseMax(least->second);
   }
   ObjectModel model(const std::string& synset) const {
-    ObjectModel m = models.model(resolve(synset), size(synset));
+    const auto inner = extras.least_inner_heights.find(synset);
+    ObjectModel m =
+        models.model(resolve(synset), size(synset), inner == extras.least_inner_heights.end() ? 0.0 : inner->second);
     m.synset = synset;
     return m;
   }

@@ -92,6 +92,9 @@ struct AnalogExtras {
   // what the activity puts inside them. A synset keeps its own size where
   // that is larger.
   std::map<std::string, Eigen::Vector3d> least_sizes;
+  // Least inner heights of drawers and basins: the tallest thing the activity
+  // puts inside, with room above it (CategoryModels::model).
+  std::map<std::string, double> least_inner_heights;
   // Synsets the category models lack (BEHAVIOR-100's sunglass.n.01) built as
   // another's (an ancestor's): synset -> the synset whose model it takes.
   std::map<std::string, std::string> modelled_as;

@@ -10,8 +10,9 @@
 namespace chore {
 namespace {
 
-constexpr double kSlim = 0.08;     // m: objects this narrow fit between the open fingers
-constexpr double kUpright = 0.08;  // m: objects this tall are taken from the side too
+constexpr double kSlim = 0.08;           // m: objects this narrow fit between the open fingers
+constexpr double kUpright = 0.08;        // m: objects this tall are taken from the side too
+constexpr double kNearSideInset = 0.05;  // m in from a wide object's edge its near side is taken at
 
 bool applies(const World& w, int object) {
   const SceneObject& o = w.scene().objects().at(object);
@@ -49,6 +50,15 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   // Tilted 45 degrees towards it where no pose has room above to point
   // down (a shelf over it, a cabinet's top): the fingers close across.
   out.push_back({out.front().point, tilted_towards(towards), kUp.cross(towards), true});
+  // A wide one also by its near side, from above (a sheet of paper on the
+  // floor: pointing down at the floor the hand reaches 0.4 m from the base's
+  // centre, 0.1 m past its edge, not the paper's centre).
+  if (std::max(size.x(), size.y()) > 2 * kNearSideInset + kSlim) {
+    const Eigen::Vector3d near(std::clamp(base.x, box.lo.x() + kNearSideInset, box.hi.x() - kNearSideInset),
+                               std::clamp(base.y, box.lo.y() + kNearSideInset, box.hi.y() - kNearSideInset),
+                               out.front().point.z());
+    out.push_back({near, kDown, std::nullopt, true});
+  }
   return out;
 }
 

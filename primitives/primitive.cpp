@@ -350,13 +350,42 @@ IkTarget pre_pose(const Approach& a, double load, double clearance) {
   const double standoff = clearance + (from_above(a) ? std::max(kFingerReach, load) : kFingerReach);
   return {a.point - a.direction * standoff, a.direction, a.closing};
 }
+
+// How far from `point` along `direction` the first thing is that is neither
+// `object` nor the robot (MuJoCo's ray through their geoms, one after another);
+// `limit` when nothing is nearer.
+double room_past(const World& w, int object, const Eigen::Vector3d& point, const Eigen::Vector3d& direction,
+                 double limit) {
+  const mjModel* m = w.model();
+  const int robot = m->body_rootid[w.robot()->gripper_body];
+  mjtByte groups[mjNGROUP] = {};
+  groups[kStaticGroup] = groups[kCollisionGroup] = 1;
+  constexpr int kMostSkipped = 256;  // a cloth's particles along the ray
+  constexpr double kPast = 1e-6;     // m beyond a skipped geom's surface
+  Eigen::Vector3d from = point;
+  double travelled = 0;
+  for (int i = 0; i < kMostSkipped && travelled < limit; ++i) {
+    int geom = -1;
+    const double hit = mj_ray(m, w.data(), from.data(), direction.data(), groups, 1, -1, &geom, nullptr);
+    if (hit < 0) return limit;
+    if (w.scene().object_of_geom(geom) != object && m->body_rootid[m->geom_bodyid[geom]] != robot) {
+      return std::min(limit, travelled + hit);
+    }
+    travelled += hit + kPast;
+    from += direction * (hit + kPast);
+  }
+  return std::min(limit, travelled);
+}
 }  // namespace
 
 // How far past the approach point the fingertips may need to go: kContactDepth,
-// or half way through a thinner object (a rag in a drawer: not into the drawer).
+// or half way through a thinner object (a rag in a drawer: not into the
+// drawer), or half way to what lies beyond the point (a cloth hanging over a
+// counter's edge is as thick as it hangs in its box, not under the hand).
 double contact_depth(const World& w, int object, const Approach& a) {
   const Aabb box = object_aabb(w, object);
-  return std::min(kContactDepth, std::abs(a.direction.dot(box.hi - box.lo)) / 2);
+  const double through = std::abs(a.direction.dot(box.hi - box.lo));
+  return std::min({kContactDepth, through / 2, room_past(w, object, a.point, a.direction, through) / 2});
 }
 
 Eigen::Vector3d contact_point(const World& w, int object, const Approach& a) {
@@ -516,9 +545,10 @@ bool ReachSearch::sample(const std::vector<Approach>& around,
                            });
 }
 
-bool ReachSearch::kept_reaches(const std::vector<Approach>& at) {
-  return std::any_of(kept.begin(), kept.end(),
-                     [&](const Pose2& p) { return reach(ik, checker, w, object, at, p, type, load).has_value(); });
+bool ReachSearch::kept_reaches(const std::function<std::vector<Approach>(const Pose2&)>& targets) {
+  return std::any_of(kept.begin(), kept.end(), [&](const Pose2& p) {
+    return reach(ik, checker, w, object, targets(p), p, type, load).has_value();
+  });
 }
 
 Executor::Executor(World& w, PrimitiveType type, int object, uint64_t seed, const PrimitiveOptions& options)

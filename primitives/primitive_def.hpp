@@ -165,8 +165,8 @@ struct ReachSearch {
   // draws going round the points of `around`; the pose found is kept.
   bool sample(const std::vector<Approach>& around, const std::function<std::vector<Approach>(const Pose2&)>& targets,
               uint64_t sample_seed);
-  // Whether a kept pose brings one of `at` within reach.
-  bool kept_reaches(const std::vector<Approach>& at);
+  // Whether a kept pose brings one of targets(pose) within reach.
+  bool kept_reaches(const std::function<std::vector<Approach>(const Pose2&)>& targets);
 };
 
 struct PrimitiveDef;

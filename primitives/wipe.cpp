@@ -5,14 +5,32 @@
 #include <cmath>
 
 #include "primitives/primitive_def.hpp"
+#include "world/object_geometry.hpp"
 
 namespace chore {
 namespace {
 
-// Strokes: kRows rows kRowSpacing apart, the first kFarRow beyond the approach point.
+// Strokes: kRows rows kRowSpacing apart, the first kFarRow beyond the approach
+// point, each kHalfWidth to either side of it; on an object smaller than that,
+// as far as its box reaches (an egg: the tool's contact cleans round it).
 constexpr int kRows = 4;
-constexpr double kRowSpacing = 0.08, kFarRow = 1.5 * kRowSpacing;
+constexpr double kRowSpacing = 0.08, kFarRow = 1.5 * kRowSpacing, kHalfWidth = 0.22;
 constexpr double kYawSpread = 0.6;  // rad: a base pose to wipe from faces the dirt within +-0.3
+
+struct Strokes {
+  Eigen::Vector3d forward, left;  // from the base facing its yaw
+  double far_row, row_spacing, half_width;
+};
+Strokes strokes(const World& w, int object, double yaw) {
+  const Aabb box = object_aabb(w, object);
+  const Eigen::Vector3d size = box.hi - box.lo;
+  const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
+  const auto half_across = [&](const Eigen::Vector3d& d) {
+    return (std::abs(d.x()) * size.x() + std::abs(d.y()) * size.y()) / 2;
+  };
+  const double far_row = std::min(kFarRow, half_across(forward));
+  return {forward, left, far_row, far_row * kRowSpacing / kFarRow, std::min(kHalfWidth, half_across(left))};
+}
 
 bool applies(const World& w, int object) {
   const ObjectAbilities* ab = w.states().abilities(object);
@@ -53,24 +71,45 @@ std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
   return patches;
 }
 
-std::vector<Approach> approaches(const World& w, int object, const Pose2&) {
+// Down onto the patch; else, where it lies beyond that reach (the back of a
+// deep counter), down nearer the base, so that the strokes' far row passes
+// within half the cleaning radius of it, where that spot is still on the
+// object.
+std::vector<Approach> onto_patch(const World& w, int object, const Eigen::Vector3d& patch, const Pose2& base) {
+  constexpr double kInside = 0.02;  // m the nearer spot keeps inside the object's box
+  std::vector<Approach> out = {{patch, kDown, std::nullopt}};
+  Eigen::Vector3d towards(patch.x() - base.x, patch.y() - base.y, 0);
+  if (towards.norm() < 1e-6) return out;
+  const Eigen::Vector3d nearer =
+      patch - towards.normalized() * (strokes(w, object, base.yaw).far_row + ObjectStates::kCleaningRadius / 2);
+  const Aabb box = object_aabb(w, object);
+  if (nearer.x() > box.lo.x() + kInside && nearer.x() < box.hi.x() - kInside && nearer.y() > box.lo.y() + kInside &&
+      nearer.y() < box.hi.y() - kInside) {
+    out.push_back({nearer, kDown, std::nullopt});
+  }
+  return out;
+}
+
+std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
   std::vector<Approach> out;
-  for (const Eigen::Vector3d& patch : dirt_patches(w, object)) out.push_back({patch, kDown, std::nullopt});
+  for (const Eigen::Vector3d& patch : dirt_patches(w, object)) {
+    for (const Approach& a : onto_patch(w, object, patch, base)) out.push_back(a);
+  }
   return out;
 }
 
 // At contact where the strokes begin: their farthest row.
 Eigen::Vector3d line_end(const World& w, int object, const Approach& a, const Pose2& base, double) {
-  return contact_point(w, object, a) + Eigen::Vector3d(std::cos(base.yaw), std::sin(base.yaw), 0) * kFarRow;
+  const Strokes st = strokes(w, object, base.yaw);
+  return contact_point(w, object, a) + st.forward * st.far_row;
 }
 
 // Enough of the dirt within reach that wiping all of that leaves the object clean.
 std::string out_of_reach(ReachSearch& s) {
   int missed = 0;
   for (const Eigen::Vector3d& particle : dirt_particles(s.w, s.object)) {
-    const std::vector<Approach> at = {{particle, kDown, std::nullopt}};
-    const bool reached = s.kept_reaches(at) || s.sample(
-                                                   at, [&](const Pose2&) { return at; }, s.seed++);
+    const auto at = [&](const Pose2& base) { return onto_patch(s.w, s.object, particle, base); };
+    const bool reached = s.kept_reaches(at) || s.sample({{particle, kDown, std::nullopt}}, at, s.seed++);
     if (!reached && ++missed == ObjectStates::kCoveredParticles) {
       return std::to_string(missed) + " dirt particles on '" + s.w.scene().objects().at(s.object).name +
              "' lie out of reach of every base pose the robot can drive to";
@@ -86,9 +125,7 @@ bool act(Executor& e) {
   if (!m.line(kDown * (kClearance + 0.06), true, kApproachSpeed)) return false;
   if (!m.touched()) return e.fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
   // Strokes left-right, row by row towards the robot, pressing 1 cm in.
-  const double yaw = w.base_pose().yaw;
-  const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
-  constexpr double kHalfWidth = 0.22;
+  const Strokes st = strokes(w, e.object(), w.base_pose().yaw);
   // Pressed 1 cm in along the first stroke. Symbolic: before it, as a line of
   // its own: a rigid tool held kinematically presses only as far as the arm
   // follows that stroke, and a stroke cut short left it above the table.
@@ -97,11 +134,12 @@ bool act(Executor& e) {
   // as the arm reaches along it.
   const Eigen::Vector3d press = kDown * 0.01;
   if (!m.physical()) m.line(press, false, 0.25, 0.0);
-  m.line(forward * kFarRow - left * kHalfWidth + (m.physical() ? press : Eigen::Vector3d::Zero()), false, 0.25, 0.0);
+  m.line(st.forward * st.far_row - st.left * st.half_width + (m.physical() ? press : Eigen::Vector3d::Zero()), false,
+         0.25, 0.0);
   for (int row = 0; row < kRows; ++row) {
     const double side = row % 2 == 0 ? 1.0 : -1.0;
-    m.line(left * (2 * kHalfWidth * side), false, 0.3, 0.0);
-    if (row + 1 < kRows) m.line(-forward * kRowSpacing, false, 0.25, 0.0);
+    m.line(st.left * (2 * st.half_width * side), false, 0.3, 0.0);
+    if (row + 1 < kRows) m.line(-st.forward * st.row_spacing, false, 0.25, 0.0);
   }
   m.line(kUp * kLift, false, kRetreatSpeed, 0.0);
   if (!e.tuck_where_possible()) return false;

@@ -180,6 +180,52 @@ TEST(CategoryModels, ModelsCompileAndStandOnTheFloor) {
   }
 }
 
+// A sink's basin and a cabinet's drawer stand on solid stands, 0.3 m deep
+// (the hand pointing down reaches into them): a basin the sink's full height
+// and a drawer the cabinet's kept what lay in them 2-4 cm above the floor, out
+// of every reach. Deeper where an activity puts something taller in (a sack
+// of sugar 0.8 m tall in a kitchen drawer).
+TEST(CategoryModels, WhatASinkOrADrawerHoldsLiesWithinReachFromAbove) {
+  SceneFile file;
+  file.name = "basins";
+  file.rooms.push_back({"kitchen_0", "kitchen", {{-1, -1, 5, 3}}});
+  // A kitchen's base cabinet, wider than tall: a drawer; the same with a sack inside.
+  const std::vector<std::string> synsets = {"sink.n.01", "cabinet.n.01", "cabinet.n.01"};
+  const std::vector<Eigen::Vector3d> sizes = {shipped().size("sink.n.01"), {1.1, 0.6, 0.9}, {1.1, 0.6, 0.9}};
+  const std::vector<double> inner = {0, 0, 0.85};
+  for (size_t i = 0; i < synsets.size(); ++i) {
+    const ObjectModel model = shipped().model(synsets[i], sizes[i], inner[i]);
+    ObjectPlacement p;
+    p.name = model.category + "_" + std::to_string(i);
+    p.model = p.synset = synsets[i];
+    p.fixed = true;
+    p.pos = {1.0 + 2.5 * i, 1.0, 0};
+    p.model = p.name;
+    file.models[p.name] = model;
+    file.objects.push_back(p);
+  }
+  file.robot_start = {-0.5, -0.5, 0};
+  const auto scene = Scene::build(file);
+  World world(scene);
+  world.reset(scene->robot_start());
+  ASSERT_EQ(scene->objects()[1].joints.size(), 1u);
+  std::vector<double> floors;
+  for (size_t i = 0; i < synsets.size(); ++i) {
+    const Aabb box = object_aabb(world, static_cast<int>(i));
+    ASSERT_GT(box.hi.z(), 0.6) << synsets[i];
+    // Down from under the top (a drawer's carcass has one) at the centre.
+    const mjtNum from[3] = {box.center().x(), box.center().y(), box.hi.z() - 0.03}, down[3] = {0, 0, -1};
+    int geom = -1;
+    const double depth = mj_ray(world.model(), world.data(), from, down, nullptr, 1, -1, &geom, nullptr);
+    ASSERT_GE(depth, 0) << synsets[i];
+    EXPECT_EQ(scene->object_of_geom(geom), static_cast<int>(i)) << synsets[i];
+    floors.push_back(box.hi.z() - 0.03 - depth);
+  }
+  EXPECT_GT(floors[0], shipped().size("sink.n.01").z() - 0.33);
+  EXPECT_GT(floors[1], 0.9 - 0.37);
+  EXPECT_LT(floors[2], 0.9 - 0.85);
+}
+
 TEST(SceneAnalogs, InventoriesGiveRoomsAndSynsetCounts) {
   const SceneInventory& rs = find_scene_inventory("Rs_int");
   std::map<std::string, const RoomInventory*> rooms;
