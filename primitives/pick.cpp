@@ -13,6 +13,7 @@ namespace {
 constexpr double kSlim = 0.08;           // m: objects this narrow fit between the open fingers
 constexpr double kUpright = 0.08;        // m: objects this tall are taken from the side too
 constexpr double kNearSideInset = 0.05;  // m in from a wide object's edge its near side is taken at
+constexpr double kFlat = 0.1;            // m: objects this low are taken by their near side too
 
 bool applies(const World& w, int object) {
   const SceneObject& o = w.scene().objects().at(object);
@@ -50,14 +51,18 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   // Tilted 45 degrees towards it where no pose has room above to point
   // down (a shelf over it, a cabinet's top): the fingers close across.
   out.push_back({out.front().point, tilted_towards(towards), kUp.cross(towards), true});
-  // A wide one also by its near side, from above (a sheet of paper on the
-  // floor: pointing down at the floor the hand reaches 0.4 m from the base's
-  // centre, 0.1 m past its edge, not the paper's centre).
-  if (std::max(size.x(), size.y()) > 2 * kNearSideInset + kSlim) {
-    const Eigen::Vector3d near(std::clamp(base.x, box.lo.x() + kNearSideInset, box.hi.x() - kNearSideInset),
-                               std::clamp(base.y, box.lo.y() + kNearSideInset, box.hi.y() - kNearSideInset),
-                               out.front().point.z());
-    out.push_back({near, kDown, std::nullopt, true});
+  // A wide flat one also by its near side, from above, on its surface there
+  // (a sheet of paper or a hammer on the floor: pointing down at the floor
+  // the hand reaches 0.4 m from the base's centre, 0.1 m past its edge, not
+  // the middle). Along the line from its centre to the base: a box's corner
+  // may hold nothing of a bottle lying there. (Not a pumpkin: taken by its
+  // near side from above, the paper's StoreDecoration failed at seed 5.)
+  const double half_across = (std::abs(towards.x()) * size.x() + std::abs(towards.y()) * size.y()) / 2;
+  if (size.z() <= kFlat && half_across > kNearSideInset + kSlim / 2) {
+    const Eigen::Vector3d above =
+        box.center() - towards * (half_across - kNearSideInset) + Eigen::Vector3d(0, 0, size.z() / 2 + kClearance);
+    const double down = ray_to_object(w, object, above, kDown, size.z() + kClearance);
+    if (down >= 0) out.push_back({above + kDown * down, kDown, std::nullopt, true});
   }
   return out;
 }
