@@ -188,9 +188,16 @@ std::string joined(const std::vector<std::string>& names) {
 // and the sampler's margins beside. A container grows along both sides, a
 // surface along its width. Nested ones (a tupperware in the fridge) are sized
 // inside out. The least inner heights (AnalogExtras::least_inner_heights)
-// beside: the tallest content and the margins above it.
+// beside: the tallest content and the margins above it. And furniture that
+// :init puts something on (or attaches something to, which hangs from its
+// top) no taller than keeps that within an arm's reach from above
+// (AnalogExtras::greatest_heights): BDDL's ontop is the top, and a bottle on
+// a 1.8 m shelf's top is out of reach; what must go inside keeps its room.
 void support_sizes(const Problem& problem, const CategoryModels& models, AnalogExtras& extras) {
   constexpr double kWalls = 0.1, kSpace = 2.5;
+  // m: the highest top of a load the samplers prefer (arm_reach_preference),
+  // and the lowest a support is made for a tall load.
+  constexpr double kReachedTop = 1.15, kLowestTop = 0.4;
   const KnowledgeBase& kb = models.knowledge_base();
   std::map<std::string, std::string> synset_of;
   const KnowledgeBase& dialect = *dialect_knowledge_base(problem.domain);
@@ -214,10 +221,16 @@ void support_sizes(const Problem& problem, const CategoryModels& models, AnalogE
   for (int depth = 0; depth < 3; ++depth) {  // BEHAVIOR nests two deep at most
     std::map<std::string, Load> loads;       // support instance -> what goes on or in it
     for (const Literal& l : problem.init) {
-      if (l.negated || (l.predicate != "inside" && l.predicate != "ontop") || l.args.size() != 2) continue;
-      const std::string what = object_synset(l.args[0]);
-      if (what.empty() || object_synset(l.args[1]).empty()) continue;
+      if (l.negated || l.args.size() != 2) continue;
+      const std::string what = object_synset(l.args[0]), support = object_synset(l.args[1]);
+      if (what.empty() || support.empty()) continue;
       const Eigen::Vector3d s = size(what);
+      if ((l.predicate == "ontop" || l.predicate == "attached") && kb.has_property(support, "sceneObject")) {
+        const double highest = std::max(kLowestTop, kReachedTop - s.z());
+        const auto [it, fresh] = extras.greatest_heights.try_emplace(support, highest);
+        if (!fresh) it->second = std::min(it->second, highest);
+      }
+      if (l.predicate != "inside" && l.predicate != "ontop") continue;
       Load& load = loads[l.args[1]];
       const double diagonal = s.head<2>().norm() + 0.02;
       load.inside |= l.predicate == "inside";
@@ -232,6 +245,12 @@ void support_sizes(const Problem& problem, const CategoryModels& models, AnalogE
       if (load.inside) {
         const double side = std::max(load.diagonal, std::sqrt(kSpace * load.area)) + kWalls;
         need = {side, side, load.height + kWalls};
+        // Reached into through its door, it keeps its depth and grows wider
+        // (a fridge grown deeper held a bowl at its back beyond the arm).
+        if (models.archetype(synset) == Archetype::cabinet) {
+          need.x() = std::max(load.diagonal, kSpace * load.area / std::max(own.y(), load.diagonal)) + kWalls;
+          need.y() = load.diagonal + kWalls;
+        }
         double& inner = extras.least_inner_heights[synset];
         inner = std::max(inner, load.height + kWalls);
       } else {

@@ -94,13 +94,20 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool 
   // A drawer kDrawerHeight deep (or as deep as what goes in it) over a solid
   // carcass: what lies in it is within an arm's reach from above once it is
   // pulled out (a drawer the cabinet's height kept it 4 cm above the floor).
-  constexpr double kDrawerHeight = 0.3;
-  const double below = drawer ? std::max(t, s.z() - 2 * t - std::max(kDrawerHeight, inner_height)) : t;  // carcass
-  const double tray_height = s.z() - 2 * t - below;
+  // Its top no higher than kHighestDrawer, solid above: a car's, 1.5 m up,
+  // had its handle beyond the arm.
+  constexpr double kDrawerHeight = 0.3, kHighestDrawer = 1.0;
+  const double depth = std::max(kDrawerHeight, inner_height);
+  const double top = drawer ? std::min(s.z() - t, std::max(kHighestDrawer, depth + 2 * t)) : s.z() - t;
+  const double below = drawer ? std::max(t, top - t - depth) : t;  // carcass
+  const double tray_height = top - t - below;
   LinkSpec root;
   root.mass = mass;
   auto& g = root.geoms;
-  g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, below / 2}, {0, t / 2, below / 2}, rgb));          // bottom
+  g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, below / 2}, {0, t / 2, below / 2}, rgb));  // bottom
+  if (top < s.z() - t - 1e-9) {                                                             // above a drawer
+    g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, (s.z() - t - top) / 2}, {0, t / 2, (top + s.z() - t) / 2}, rgb));
+  }
   g.push_back(box({s.x() / 2, s.y() / 2 - t / 2, t / 2}, {0, t / 2, s.z() - t / 2}, rgb));          // top
   g.push_back(box({s.x() / 2 - t, t / 2, s.z() / 2 - t}, {0, s.y() / 2 - t / 2, s.z() / 2}, rgb));  // back
   for (double side : {-1.0, 1.0}) {
@@ -122,7 +129,11 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool 
     front.name = "drawer";
     front.joint_type = "slide";
     front.axis = {0, -1, 0};
-    front.range[1] = 0.8 * s.y();
+    // Out by most of its depth, but no more than an arm standing before it
+    // reaches into (a car's, 4.5 m deep, needed 3.2 m of floor behind the
+    // robot pulling it).
+    constexpr double kLongestPull = 0.6;
+    front.range[1] = std::min(0.8 * s.y(), kLongestPull);
     front.pos = {0, 0, below};
     const Eigen::Vector3d tray(s.x() - 2.5 * t, s.y() - 2 * t, tray_height);
     add_tray(front.geoms, tray, 0, t, shade(rgb, 0.9));
@@ -350,8 +361,15 @@ Archetype CategoryModels::archetype(const std::string& synset) const {
   const bool openable = kb.is_openable(synset), fillable = kb.has_property(synset, "fillable");
   if (kb.has_property(synset, "sceneObject")) {
     if (openable) return Archetype::cabinet;
-    // (A bookcase holds things on shelves, not in a basin 1.8 m deep.)
-    if (is("shelf.n.01") || is("bookcase.n.01")) return Archetype::shelf;
+    // (A bookcase holds things on shelves, not in a basin 1.8 m deep; so does
+    // what holds things and stands taller than wide and than a basin's stand
+    // keeps within an arm's reach: a grocery store's shelves and open
+    // fridges, a wardrobe. A basin on a 1.5 m stand held their contents out
+    // of reach.)
+    constexpr double kTallestBasin = 1.2;
+    const Eigen::Vector3d s = size(synset);
+    const bool tall = s.z() > kTallestBasin && s.z() > std::max(s.x(), s.y());
+    if (is("shelf.n.01") || is("bookcase.n.01") || (fillable && tall)) return Archetype::shelf;
     if (fillable) return Archetype::basin;
     if (is("seat.n.03")) return Archetype::seat;
     if (is("bed.n.01")) return Archetype::bed;

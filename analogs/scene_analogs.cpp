@@ -36,6 +36,10 @@ constexpr double kRobotClear = 0.5;  // around the robot's start
 // the arm reaches from there (1 m from the base's centre at table height,
 // which stands 0.3 m off the edge).
 constexpr double kAisle = 0.7;
+// Before what opens (a cabinet, a fridge, a car): room to stand and pull a
+// drawer out or swing a door (a car's drawer 0.6 m out, the robot 0.5-0.9 m
+// before its handle, left no room in 1.35 m of a garage's floor).
+constexpr double kOpeningAisle = 1.3;
 constexpr double kReachDepth = 0.6;
 constexpr double kHeadroom = 0.5;  // m kept between furniture's top and a wall item above it
 // A wall item shorter than this (a nail, a hook, a switch) hangs with its
@@ -58,8 +62,8 @@ struct Rect {
 };
 
 // The category models at their sizes in this scene: a synset's own (or that
-// of the synset the caller models it as), grown to the least size the caller
-// asks of it.
+// of the synset the caller models it as), no taller than the greatest height
+// and grown to the least size the caller asks of it.
 struct Models {
   const CategoryModels& models;
   const AnalogExtras& extras;
@@ -70,8 +74,10 @@ struct Models {
   }
   Eigen::Vector3d size(const std::string& synset) const {
     const auto least = extras.least_sizes.find(synset);
-    const Eigen::Vector3d own = models.size(resolve(synset));
-    return least == extras.least_sizes.end() ? own : own.cwiseMax(least->second);
+    const auto greatest = extras.greatest_heights.find(synset);
+    Eigen::Vector3d s = models.size(resolve(synset));
+    if (greatest != extras.greatest_heights.end()) s.z() = std::min(s.z(), greatest->second);
+    return least == extras.least_sizes.end() ? s : s.cwiseMax(least->second);
   }
   ObjectModel model(const std::string& synset) const {
     const auto inner = extras.least_inner_heights.find(synset);
@@ -347,12 +353,12 @@ int facing_in(int side) {
   return turns[side];
 }
 
-// Furniture against a wall with an aisle before its front, else
+// Furniture against a wall with an aisle `aisle` deep before its front, else
 // free-standing with aisles along both long sides (a table: the arm reaches
 // its middle from either); false when nowhere fits. `top`: the part of its
 // top the arm reaches from its aisles. What is flat needs no aisle and may lie
 // in one.
-bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, bool free_standing_first, Rng& rng,
+bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, bool free_standing_first, double aisle, Rng& rng,
                      Eigen::Vector2d& at, int& turns, Rect* top = nullptr) {
   const Rect inner = room.rect.grown(-kWall / 2);
   for (int t = 0; t < 2 * kTries; ++t) {
@@ -375,14 +381,14 @@ bool place_furniture(RoomLayout& room, const Eigen::Vector3d& size, bool free_st
     Rect reached = r;
     if (!flat && against_wall) {
       // The front faces the room's middle, away from wall `side`.
-      if (side == 0) aisles = {{r.x0, r.y1, r.x1, r.y1 + kAisle}}, reached.y0 = std::max(r.y0, r.y1 - kReachDepth);
-      if (side == 1) aisles = {{r.x0 - kAisle, r.y0, r.x0, r.y1}}, reached.x1 = std::min(r.x1, r.x0 + kReachDepth);
-      if (side == 2) aisles = {{r.x0, r.y0 - kAisle, r.x1, r.y0}}, reached.y1 = std::min(r.y1, r.y0 + kReachDepth);
-      if (side == 3) aisles = {{r.x1, r.y0, r.x1 + kAisle, r.y1}}, reached.x0 = std::max(r.x0, r.x1 - kReachDepth);
+      if (side == 0) aisles = {{r.x0, r.y1, r.x1, r.y1 + aisle}}, reached.y0 = std::max(r.y0, r.y1 - kReachDepth);
+      if (side == 1) aisles = {{r.x0 - aisle, r.y0, r.x0, r.y1}}, reached.x1 = std::min(r.x1, r.x0 + kReachDepth);
+      if (side == 2) aisles = {{r.x0, r.y0 - aisle, r.x1, r.y0}}, reached.y1 = std::min(r.y1, r.y0 + kReachDepth);
+      if (side == 3) aisles = {{r.x1, r.y0, r.x1 + aisle, r.y1}}, reached.x0 = std::max(r.x0, r.x1 - kReachDepth);
     } else if (!flat && r.width() >= r.depth()) {
-      aisles = {{r.x0, r.y0 - kAisle, r.x1, r.y0}, {r.x0, r.y1, r.x1, r.y1 + kAisle}};
+      aisles = {{r.x0, r.y0 - aisle, r.x1, r.y0}, {r.x0, r.y1, r.x1, r.y1 + aisle}};
     } else if (!flat) {
-      aisles = {{r.x0 - kAisle, r.y0, r.x0, r.y1}, {r.x1, r.y0, r.x1 + kAisle, r.y1}};
+      aisles = {{r.x0 - aisle, r.y0, r.x0, r.y1}, {r.x1, r.y0, r.x1 + aisle, r.y1}};
     }
     if (!room.free(r, flat) ||
         !std::all_of(aisles.begin(), aisles.end(), [&](const Rect& a) { return room.can_keep(a); })) {
@@ -459,7 +465,7 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
     return true;
   }
   Eigen::Vector2d c;
-  if (!place_furniture(room, size, false, rng, c, turns)) return false;
+  if (!place_furniture(room, size, false, kAisle, rng, c, turns)) return false;
   at = {c.x(), c.y(), 0.002};
   return true;
 }
@@ -473,7 +479,14 @@ bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
   Eigen::Vector2d at;
   int turns = 0;
   Rect top;
-  if (!place_furniture(room, size, archetype == Archetype::table, rng, at, turns, &top)) return false;
+  // What opens with room to open it where it fits, else as the rest: a
+  // fridge with little floor before it is better than none in a small bar.
+  const bool opens = archetype == Archetype::cabinet;
+  const bool free_standing_first = archetype == Archetype::table;
+  if (!(opens && place_furniture(room, size, free_standing_first, kOpeningAisle, rng, at, turns, &top)) &&
+      !place_furniture(room, size, free_standing_first, kAisle, rng, at, turns, &top)) {
+    return false;
+  }
   builder.add(synset, {at.x(), at.y(), 0}, turns, true);
   const bool flat_top = archetype == Archetype::table || archetype == Archetype::cabinet ||
                         archetype == Archetype::shelf || archetype == Archetype::block;

@@ -111,9 +111,18 @@ Eigen::Vector2d point_in(const Aabb& box, double r, Rng& rng) {
 // from above or the side closes its fingers round it.
 bool hand_room(const World& w, int b, const Eigen::Vector3d& centre, double r) {
   constexpr double kHandRoom = 0.06;
+  // Not a door's leaf: it swings open before the hand comes in (a closed
+  // fridge door counted as a wall kept bowls off all but a 6 cm band of a
+  // shelf within reach). A drawer's walls stay as they are.
+  const mjModel* m = w.model();
+  std::vector<int> walls;
+  for (const int g : w.scene().objects()[b].geoms) {
+    const int joint = m->body_jntadr[m->geom_bodyid[g]];
+    if (joint < 0 || m->jnt_type[joint] != mjJNT_HINGE) walls.push_back(g);
+  }
   for (const Eigen::Vector3d dir : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}) {
     for (const double sign : {1.0, -1.0}) {
-      const double to_wall = ray_to_object(w, b, centre, sign * dir, r + kHandRoom);
+      const double to_wall = ray_to_geoms(w, walls, centre, sign * dir, r + kHandRoom);
       if (to_wall >= 0) return false;
     }
   }
