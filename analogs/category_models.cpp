@@ -96,10 +96,18 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool 
   // pulled out (a drawer the cabinet's height kept it 4 cm above the floor).
   // Its top no higher than kHighestDrawer, solid above: a car's, 1.5 m up,
   // had its handle beyond the arm.
+  // Behind a door of one space (an oven, a kitchen's base cabinet: 0.6-1.2 m
+  // tall), the bottom halfway up, where a base cabinet's shelf was, as on a
+  // plinth; lower where what goes in needs the room: an arm reaching in
+  // through the door does not get to the floor. (A fridge keeps its: under
+  // its 0.6 m shelf, a space 0.3 m high was out of the hand's reach in 25
+  // activities.)
   constexpr double kDrawerHeight = 0.3, kHighestDrawer = 1.0;
   const double depth = std::max(kDrawerHeight, inner_height);
   const double top = drawer ? std::min(s.z() - t, std::max(kHighestDrawer, depth + 2 * t)) : s.z() - t;
-  const double below = drawer ? std::max(t, top - t - depth) : t;  // carcass
+  const bool one_space = s.z() >= kShelfPitch && s.z() < 2 * kShelfPitch;
+  const double raised = one_space ? std::min(s.z() / 2, s.z() - 2 * t - inner_height) : t;
+  const double below = drawer ? std::max(t, top - t - depth) : std::max(t, raised);  // carcass
   const double tray_height = top - t - below;
   LinkSpec root;
   root.mass = mass;
@@ -114,13 +122,16 @@ LinkSpec cabinet(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool 
     g.push_back(box({t / 2, s.y() / 2 - t / 2, s.z() / 2 - t}, {side * (s.x() - t) / 2, t / 2, s.z() / 2}, rgb));
   }
   if (!drawer) {
-    // Behind a door, shelves about 0.6 m apart (a fridge's; a kitchen's base
-    // cabinet has one halfway up): what is inside need not lie on the bottom,
-    // where an arm reaching in through the door does not get. (A cabinet under
-    // 0.9 m keeps one space; what is too tall for a level stands on the bottom.)
+    // Shelves about 0.6 m apart (a fridge's at 0.6 and 1.2 m), none within
+    // half that of the bottom (a kitchen's base cabinet keeps one space):
+    // what is inside need not lie on the bottom. (What is too tall for a
+    // level stands on the bottom.)
     const int levels = static_cast<int>(std::lround(s.z() / kShelfPitch));
     for (int k = 1; k < levels; ++k) {
-      g.push_back(box({s.x() / 2 - t, s.y() / 2 - 1.5 * t, t / 2}, {0, t / 2, k * s.z() / levels}, shade(rgb, 1.1)));
+      const double z = k * s.z() / levels;
+      if (z >= below + kShelfPitch / 2) {
+        g.push_back(box({s.x() / 2 - t, s.y() / 2 - 1.5 * t, t / 2}, {0, t / 2, z}, shade(rgb, 1.1)));
+      }
     }
   }
   LinkSpec front;

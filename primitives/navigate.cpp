@@ -164,7 +164,9 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
     if (o != a.target) s.deletes.push_back(literal(kWithinReach, {o}));
   }
   s.adds = {literal(kWithinReach, {a.target})};
-  return {s};
+  // To what lies in a closed fridge or oven the base-pose search finds no
+  // pose (the door is in the arm's way): the plan opens it first.
+  return only_while_open(objects, a.target, s);
 }
 
 }  // namespace

@@ -110,19 +110,7 @@ std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, cons
   s.deletes = {literal(kHandEmpty, {})};
   end_placements(objects, a.target, s);
   s.adds = {literal("grasped", {agent, a.target})};
-  // Out of what opens (a cabinet, a fridge, a jar) only while it is open:
-  // shut, it is in the way of the hand. A step for what lies in none of
-  // them, and one for each it may lie in.
-  std::vector<SymbolicStep> out = {s};
-  for (int c = 0; c < static_cast<int>(objects.size()); ++c) {
-    if (c == a.target || objects[c].kind != SymbolicObject::Kind::object || !objects[c].has("openable")) continue;
-    out[0].needs_not.push_back(literal("inside", {a.target, c}));
-    SymbolicStep from = s;
-    from.needs.push_back(literal("inside", {a.target, c}));
-    from.needs.push_back(literal("open", {c}));
-    out.push_back(from);
-  }
-  return out;
+  return only_while_open(objects, a.target, s);
 }
 
 }  // namespace

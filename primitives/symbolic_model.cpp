@@ -32,6 +32,20 @@ SymbolicStep setting_down(int agent, const SymbolicArgs& a, std::vector<Symbolic
   return s;
 }
 
+std::vector<SymbolicStep> only_while_open(const std::vector<SymbolicObject>& objects, int object,
+                                          const SymbolicStep& step) {
+  std::vector<SymbolicStep> out = {step};
+  for (int c = 0; c < static_cast<int>(objects.size()); ++c) {
+    if (c == object || objects[c].kind != SymbolicObject::Kind::object || !objects[c].has("openable")) continue;
+    out[0].needs_not.push_back(literal("inside", {object, c}));
+    SymbolicStep from = step;
+    from.needs.push_back(literal("inside", {object, c}));
+    from.needs.push_back(literal("open", {c}));
+    out.push_back(from);
+  }
+  return out;
+}
+
 int agent_index(const std::vector<SymbolicObject>& objects) {
   for (size_t i = 0; i < objects.size(); ++i) {
     if (objects[i].kind == SymbolicObject::Kind::agent) return static_cast<int>(i);

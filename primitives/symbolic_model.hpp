@@ -66,6 +66,12 @@ void end_placements(const std::vector<SymbolicObject>& objects, int object, Symb
 // reach and real; then the hand empty, and `adds`.
 SymbolicStep setting_down(int agent, const SymbolicArgs& args, std::vector<SymbolicLiteral> adds);
 
+// `step` on `object` out of what opens (a cabinet, a fridge, a jar) only
+// while that is open: shut, it is in the way of the hand. The step for an
+// object in none of them, and one for each it may lie in.
+std::vector<SymbolicStep> only_while_open(const std::vector<SymbolicObject>& objects, int object,
+                                          const SymbolicStep& step);
+
 // The first agent among the objects (the planner adds one where the activity
 // declares none).
 int agent_index(const std::vector<SymbolicObject>& objects);

@@ -195,14 +195,16 @@ TEST(CategoryModels, ModelsCompileAndStandOnTheFloor) {
 // and a drawer the cabinet's kept what lay in them 2-4 cm above the floor, out
 // of every reach. Deeper where an activity puts something taller in (a sack
 // of sugar 0.8 m tall in a kitchen drawer).
-TEST(CategoryModels, WhatASinkOrADrawerHoldsLiesWithinReachFromAbove) {
+TEST(CategoryModels, WhatASinkADrawerOrAnOvenHoldsLiesWithinReach) {
   SceneFile file;
   file.name = "basins";
   file.rooms.push_back({"kitchen_0", "kitchen", {{-1, -1, 5, 3}}});
-  // A kitchen's base cabinet, wider than tall: a drawer; the same with a sack inside.
-  const std::vector<std::string> synsets = {"sink.n.01", "cabinet.n.01", "cabinet.n.01"};
-  const std::vector<Eigen::Vector3d> sizes = {shipped().size("sink.n.01"), {1.1, 0.6, 0.9}, {1.1, 0.6, 0.9}};
-  const std::vector<double> inner = {0, 0, 0.85};
+  // A kitchen's base cabinet, wider than tall: a drawer; the same with a sack
+  // inside; an oven (a door before one space: its bottom halfway up).
+  const std::vector<std::string> synsets = {"sink.n.01", "cabinet.n.01", "cabinet.n.01", "oven.n.01"};
+  const std::vector<Eigen::Vector3d> sizes = {
+      shipped().size("sink.n.01"), {1.1, 0.6, 0.9}, {1.1, 0.6, 0.9}, shipped().size("oven.n.01")};
+  const std::vector<double> inner = {0, 0, 0.85, 0};
   for (size_t i = 0; i < synsets.size(); ++i) {
     const ObjectModel model = shipped().model(synsets[i], sizes[i], inner[i]);
     ObjectPlacement p;
@@ -226,7 +228,9 @@ TEST(CategoryModels, WhatASinkOrADrawerHoldsLiesWithinReachFromAbove) {
     // Down from under the top (a drawer's carcass has one) at the centre.
     const mjtNum from[3] = {box.center().x(), box.center().y(), box.hi.z() - 0.03}, down[3] = {0, 0, -1};
     int geom = -1;
-    const double depth = mj_ray(world.model(), world.data(), from, down, nullptr, 1, -1, &geom, nullptr);
+    mjtByte colliding[mjNGROUP] = {};  // not the visual geoms
+    colliding[kStaticGroup] = colliding[kCollisionGroup] = 1;
+    const double depth = mj_ray(world.model(), world.data(), from, down, colliding, 1, -1, &geom, nullptr);
     ASSERT_GE(depth, 0) << synsets[i];
     EXPECT_EQ(scene->object_of_geom(geom), static_cast<int>(i)) << synsets[i];
     floors.push_back(box.hi.z() - 0.03 - depth);
@@ -234,6 +238,7 @@ TEST(CategoryModels, WhatASinkOrADrawerHoldsLiesWithinReachFromAbove) {
   EXPECT_GT(floors[0], shipped().size("sink.n.01").z() - 0.33);
   EXPECT_GT(floors[1], 0.9 - 0.37);
   EXPECT_LT(floors[2], 0.9 - 0.85);
+  EXPECT_GT(floors[3], shipped().size("oven.n.01").z() / 2 - 0.01);
 }
 
 TEST(SceneAnalogs, InventoriesGiveRoomsAndSynsetCounts) {
