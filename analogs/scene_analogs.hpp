@@ -95,8 +95,9 @@ struct AnalogExtras {
   // Least inner heights of drawers and basins: the tallest thing the activity
   // puts inside, with room above it (CategoryModels::model).
   std::map<std::string, double> least_inner_heights;
-  // Greatest heights of furniture synsets whose top holds what the activity
-  // acts on: that top within an arm's reach. A least size wins over it.
+  // Greatest heights of furniture synsets whose top :init puts something on
+  // (or attaches something to): that within an arm's reach from above. A
+  // least size wins over it.
   std::map<std::string, double> greatest_heights;
   // Synsets the category models lack (BEHAVIOR-100's sunglass.n.01) built as
   // another's (an ancestor's): synset -> the synset whose model it takes.

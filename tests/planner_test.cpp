@@ -317,6 +317,11 @@ std::vector<std::string> names(const Plan& p) {
   return out;
 }
 
+// Where `step` first stands in `steps` (steps.size() where it does not).
+long position(const std::vector<std::string>& steps, const char* step) {
+  return std::find(steps.begin(), steps.end(), step) - steps.begin();
+}
+
 // The planner's known answers: the shortest plan where the search finds it
 // directly, a cooking plan through the world's steps, and each way it ends
 // without one.
@@ -381,7 +386,7 @@ TEST(TaskPlanner, OpensWhatHoldsTheObjectAndBoilsTheWaterThatFilledTheMug) {
   const Plan out = plan_task(picked.symbolic, ground_goal(picked.problem));
   ASSERT_TRUE(out.found) << out.reason;
   const std::vector<std::string> steps = names(out);
-  const auto at = [&](const char* step) { return std::find(steps.begin(), steps.end(), step) - steps.begin(); };
+  const auto at = [&](const char* step) { return position(steps, step); };
   EXPECT_LT(at("push(cabinet.n.01_1)"), at("pick(mug.n.04_1)"));
   EXPECT_LT(at("pick(mug.n.04_1)"), static_cast<long>(steps.size()));
 
@@ -413,7 +418,7 @@ TEST(TaskPlanner, GoesToWhatADoorShutsInOnlyOnceItIsOpen) {
   const Plan out = plan_task(cool.symbolic, ground_goal(cool.problem));
   ASSERT_TRUE(out.found) << out.reason;
   const std::vector<std::string> steps = names(out);
-  const auto at = [&](const char* step) { return std::find(steps.begin(), steps.end(), step) - steps.begin(); };
+  const auto at = [&](const char* step) { return position(steps, step); };
   ASSERT_LT(at("navigate(fruitcake.n.02_1)"), static_cast<long>(steps.size()));
   EXPECT_LT(at("push(oven.n.01_1)"), at("navigate(fruitcake.n.02_1)"));
 }
