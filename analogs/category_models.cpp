@@ -233,9 +233,14 @@ LinkSpec shelf(const Eigen::Vector3d& s, double mass, const Rgb& rgb) {
   return root;
 }
 
+// A container's or a basin's walls: thinner for smaller ones.
+double wall_thickness(const Eigen::Vector3d& size) {
+  return std::clamp(0.08 * std::min(size.x(), size.y()), 0.003, 0.03);
+}
+
 LinkSpec container(const Eigen::Vector3d& size, double mass, const Rgb& rgb, bool lidded) {
   LinkSpec root;
-  const double t = std::clamp(0.08 * std::min(size.x(), size.y()), 0.003, 0.03);
+  const double t = wall_thickness(size);
   const Eigen::Vector3d s(size.x(), size.y(), std::max(size.z(), 4 * t));  // a floor, walls and a lid
   root.mass = mass;
   add_tray(root.geoms, {s.x(), s.y(), lidded ? s.z() - t : s.z()}, 0, t, rgb);
@@ -265,7 +270,7 @@ LinkSpec basin(const Eigen::Vector3d& size, double mass, const Rgb& rgb, double 
   root.mass = mass;
   const double stand = size.z() - depth;
   root.geoms.push_back(box({size.x() / 2, size.y() / 2, stand / 2}, {0, 0, stand / 2}, shade(rgb, 0.9)));
-  const double t = std::clamp(0.08 * std::min(size.x(), size.y()), 0.003, 0.03);
+  const double t = wall_thickness(size);
   add_tray(root.geoms, {size.x(), size.y(), depth}, stand, t, rgb);
   return root;
 }

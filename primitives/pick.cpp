@@ -57,7 +57,7 @@ std::vector<Approach> approaches(const World& w, int object, const Pose2& base) 
   // the middle). Along the line from its centre to the base: a box's corner
   // may hold nothing of a bottle lying there. (Not a pumpkin: taken by its
   // near side from above, the paper's StoreDecoration failed at seed 5.)
-  const double half_across = (std::abs(towards.x()) * size.x() + std::abs(towards.y()) * size.y()) / 2;
+  const double half_across = box.half_across(towards);
   if (size.z() <= kFlat && half_across > kNearSideInset + kSlim / 2) {
     const Eigen::Vector3d above =
         box.center() - towards * (half_across - kNearSideInset) + Eigen::Vector3d(0, 0, size.z() / 2 + kClearance);

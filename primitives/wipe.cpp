@@ -23,13 +23,9 @@ struct Strokes {
 };
 Strokes strokes(const World& w, int object, double yaw) {
   const Aabb box = object_aabb(w, object);
-  const Eigen::Vector3d size = box.hi - box.lo;
   const Eigen::Vector3d forward(std::cos(yaw), std::sin(yaw), 0), left(-std::sin(yaw), std::cos(yaw), 0);
-  const auto half_across = [&](const Eigen::Vector3d& d) {
-    return (std::abs(d.x()) * size.x() + std::abs(d.y()) * size.y()) / 2;
-  };
-  const double far_row = std::min(kFarRow, half_across(forward));
-  return {forward, left, far_row, far_row * kRowSpacing / kFarRow, std::min(kHalfWidth, half_across(left))};
+  const double far_row = std::min(kFarRow, box.half_across(forward));
+  return {forward, left, far_row, far_row * kRowSpacing / kFarRow, std::min(kHalfWidth, box.half_across(left))};
 }
 
 bool applies(const World& w, int object) {

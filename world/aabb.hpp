@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace chore {
 
@@ -10,6 +11,11 @@ struct Aabb {
 
   Eigen::Vector3d center() const { return (lo + hi) / 2; }
   Eigen::Vector3d extent() const { return hi - lo; }
+  // Half the box's width along a horizontal direction `d` (unit): how far its
+  // edge lies from its centre that way.
+  double half_across(const Eigen::Vector3d& d) const {
+    return (std::abs(d.x()) * (hi.x() - lo.x()) + std::abs(d.y()) * (hi.y() - lo.y())) / 2;
+  }
   bool contains(const Eigen::Vector3d& p) const {
     return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
   }
