@@ -70,7 +70,15 @@ std::vector<Eigen::Vector3d> dirt_patches(const World& w, int object) {
 // Down onto the patch; else, where it lies beyond that reach (the back of a
 // deep counter), down nearer the base, so that the strokes' far row passes
 // within half the cleaning radius of it, where that spot is still on the
-// object.
+// object. Last (Approach::last_resort), onto the patch tilted 45 degrees
+// towards it where the hand pointing down does not get: higher than
+// kHighestDown, or farther than kFarthestDown from the base's centre;
+// tilted, the hand gets to 1.4 m and 0.9 m (a monitor's top, a shell at the
+// back of a counter against a wall). Not elsewhere: physically the rag
+// hanging from a tilted hand cleans little, and where coming down failed for
+// other reasons the robot had better stand elsewhere. Only from a base
+// facing the spot, as the strokes across the robot's front need (turned
+// away, the arm bends back and the descent stops).
 std::vector<Approach> onto_patch(const World& w, int object, const Eigen::Vector3d& patch, const Pose2& base) {
   constexpr double kInside = 0.02;  // m the nearer spot keeps inside the object's box
   std::vector<Approach> out = {{patch, kDown, std::nullopt}};
@@ -83,14 +91,22 @@ std::vector<Approach> onto_patch(const World& w, int object, const Eigen::Vector
       nearer.y() < box.hi.y() - kInside) {
     out.push_back({nearer, kDown, std::nullopt});
   }
+  constexpr double kFarthestDown = 0.75;  // m from the base's centre, at a counter's height
+  const double off_facing = std::remainder(std::atan2(towards.y(), towards.x()) - base.yaw, 2 * M_PI);
+  const bool beyond_down = towards.norm() > kFarthestDown || patch.z() + kClearance + load_below_hand(w) > kHighestDown;
+  if (!beyond_down || std::abs(off_facing) > kYawSpread / 2) return out;
+  out.push_back({patch, tilted_towards(towards), std::nullopt, true});
   return out;
 }
 
+// From above onto every patch before tilted onto any: tilted, the tool
+// meets the surface with its edge and the strokes clean less.
 std::vector<Approach> approaches(const World& w, int object, const Pose2& base) {
-  std::vector<Approach> out;
+  std::vector<Approach> out, tilted;
   for (const Eigen::Vector3d& patch : dirt_patches(w, object)) {
-    for (const Approach& a : onto_patch(w, object, patch, base)) out.push_back(a);
+    for (const Approach& a : onto_patch(w, object, patch, base)) (a.last_resort ? tilted : out).push_back(a);
   }
+  out.insert(out.end(), tilted.begin(), tilted.end());
   return out;
 }
 
@@ -118,7 +134,12 @@ bool act(Executor& e) {
   World& w = e.world();
   Motion& m = e.motion();
   if (!e.go_to_pre_pose()) return false;
-  if (!m.line(kDown * (kClearance + 0.06), true, kApproachSpeed)) return false;
+  // Down until the tool touches (physically the rag hanging below the hand
+  // drapes onto the surface first); tilted, the pre-pose stands off by the
+  // tool along the hand's axis, which the line then covers as well.
+  const Approach& a = e.approach();
+  const double descent = kClearance + 0.06 + (a.last_resort ? std::max(kFingerReach, load_below_hand(w)) : 0.0);
+  if (!m.line(a.direction * descent, true, kApproachSpeed)) return false;
   if (!m.touched()) return e.fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
   // Strokes left-right, row by row towards the robot, pressing 1 cm in.
   const Strokes st = strokes(w, e.object(), w.base_pose().yaw);

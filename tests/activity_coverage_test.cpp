@@ -465,5 +465,19 @@ TEST(ActivitySolve, ACarsBootOpensWithinReach) {
   EXPECT_EQ(first_instance_out_of_reach("loading_the_car", 0), "");
 }
 
+// clean_seashells: sandy shells at the back of a 0.65 m counter against a
+// wall; clean_a_flat_panel_monitor: dust on a monitor's top 1.2 m up. A
+// hand pointing down reaches 0.75 m from the base's centre at a counter's
+// height and no higher than 1.2 m; wipe came down only so (seed 0's first
+// instances: "wipe(seashell.n.01_2): 5 dirt particles on 'seashell_2' lie
+// out of reach ...", "wipe(monitor.n.04_1): ..."). It now also comes in
+// tilted 45 degrees towards the dirt from a base facing it.
+TEST(ActivitySolve, WipeTiltedReachesTheBackOfACounterAndAMonitorsTop) {
+  EXPECT_EQ(first_instance_out_of_reach("clean_seashells", 0), "");
+  EXPECT_EQ(solved_seeds("clean_seashells", 0, 1), std::vector<bool>(2, true));
+  EXPECT_EQ(first_instance_out_of_reach("clean_a_flat_panel_monitor", 0), "");
+  EXPECT_EQ(solved_seeds("clean_a_flat_panel_monitor", 0, 1), std::vector<bool>(2, true));
+}
+
 }  // namespace
 }  // namespace chore
