@@ -134,11 +134,14 @@ bool act(Executor& e) {
   World& w = e.world();
   Motion& m = e.motion();
   if (!e.go_to_pre_pose()) return false;
-  // Down until the tool touches (physically the rag hanging below the hand
-  // drapes onto the surface first); tilted, the pre-pose stands off by the
-  // tool along the hand's axis, which the line then covers as well.
+  // Down until the tool touches. Physically the rag hanging below the hand
+  // drapes onto the surface within kClearance + 6 cm; symbolically only the
+  // part of a cloth in the hand touches (the rest gives way: arm_planner.hpp),
+  // and tilted the tool lies along the hand's axis: the line covers the
+  // pre-pose's standoff for the tool as well.
   const Approach& a = e.approach();
-  const double descent = kClearance + 0.06 + (a.last_resort ? std::max(kFingerReach, load_below_hand(w)) : 0.0);
+  const double descent =
+      kClearance + 0.06 + (a.last_resort || !m.physical() ? std::max(kFingerReach, load_below_hand(w)) : 0.0);
   if (!m.line(a.direction * descent, true, kApproachSpeed)) return false;
   if (!m.touched()) return e.fail(PrimitiveStatus::motion_planning_failure, "the tool did not reach the surface");
   // Strokes left-right, row by row towards the robot, pressing 1 cm in.
