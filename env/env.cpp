@@ -10,6 +10,8 @@
 #include "env/observations.hpp"
 #include "env/rewards.hpp"
 #include "primitives/primitive.hpp"
+#include "tasks/intermediates.hpp"
+#include "tasks/vocabulary.hpp"
 #include "world/model_cache.hpp"
 
 namespace chore {
@@ -38,8 +40,11 @@ EnvAssets load_assets(const EnvConfig& config) {
   const bool inventory = std::any_of(shipped_scene_inventories().begin(), shipped_scene_inventories().end(),
                                      [&](const SceneInventory& s) { return s.name == scene; });
   std::optional<Problem> problem;
-  if (!config.activity.empty() && (inventory || scene.empty()))
+  if (!config.activity.empty() && (inventory || scene.empty())) {
     problem = load_bddl(resolve_activity_path(config.activity));
+    // The scene holds what the rules make on the way, as the activity binds it.
+    declare_intermediates(*problem, *dialect_knowledge_base(problem->domain), behavior_transition_rules());
+  }
   if (problem) {
     const SceneInventory& chosen = activity_inventory(*problem, scene);
     assets.scene = Scene::build(activity_scene_analog(*problem, chosen, *CategoryModels::shipped()).file, options);

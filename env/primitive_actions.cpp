@@ -97,6 +97,12 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   // and into what the goal fills (a spoon put into the mug stirs it).
   std::set<std::string> made;
   arguments_of(problem.goal, {"real"}, 0, made, scope);
+  // The activity's transitions happen in places (a blender, a mixing bowl, a
+  // pot on the stove) and its washers and dryers on what is inside them:
+  // where it makes something, things are put and poured into those.
+  std::set<int> transition_places;
+  for (const Transition& t : transitions) transition_places.insert(t.places.begin(), t.places.end());
+  for (const Washer& washer : world.states().washers()) transition_places.insert(washer.object);
   // Setting down on something serves goals that it touch it too.
   std::set<std::string> touched;
   arguments_of(problem.goal, {"touching"}, 0, touched, scope);
@@ -149,14 +155,16 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       bool applies = primitive_applies(world, type, object);
       if (type == PrimitiveType::place) {
         applies = ((!goal_supports.empty() || !made.empty()) && named(supports)) || named(touched) ||
-                  heats_inside(object) || (!made.empty() && named(receivers));
+                  heats_inside(object) || (!made.empty() && named(receivers)) || transition_places.count(object);
       }
-      if (type == PrimitiveType::push) applies = applies && (named(openable) || heats_inside(object));
-      if (type == PrimitiveType::close) applies = applies && (named(closable) || heats_inside(object));
+      if (type == PrimitiveType::push)
+        applies = applies && (named(openable) || heats_inside(object) || transition_places.count(object));
+      if (type == PrimitiveType::close)
+        applies = applies && (named(closable) || heats_inside(object) || transition_places.count(object));
       if (type == PrimitiveType::drape) applies = named(covered_by_cloth);
       if (type == PrimitiveType::place_under) applies = named(above);
       if (type == PrimitiveType::wipe) applies = applies && named(dirty);
-      if (type == PrimitiveType::pour) applies = applies && named(receivers);
+      if (type == PrimitiveType::pour) applies = applies && (named(receivers) || transition_places.count(object));
       if (type == PrimitiveType::place_next_to) applies = named(neighbours);
       if (type == PrimitiveType::cut) applies = applies && slicer;
       if (type == PrimitiveType::attach) applies = applies && named(attach_to);

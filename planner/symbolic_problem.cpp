@@ -176,6 +176,7 @@ class WorldSteps {
     for (const auto& candidates : inputs) bound.push_back(candidates.front());
 
     SymbolicStep s{std::string(to_string(r.family)) + ":" + r.name};
+    s.at_once = true;  // the world fires a transition as soon as its trigger holds
     for (const int o : outputs) s.adds.push_back(literal("real", {o}));
     for (const StateCondition& c : r.output_states) {
       if (c.synsets.size() != 1 || !c.value) continue;
@@ -347,7 +348,8 @@ class WorldSteps {
                           {literal("toggled_on", {washer}), literal("inside", {item, washer})},
                           {literal("open", {washer})},
                           {},
-                          {}};
+                          {},
+                          true};
         for (const int w : water) {
           SymbolicStep wet = base;
           wet.adds = {literal(soaks ? "saturated" : "covered", {item, w})};
@@ -374,7 +376,8 @@ class WorldSteps {
                {literal("toggled_on", {dryer}), literal("inside", {item, dryer})},
                {literal("open", {dryer})},
                {literal("saturated", {item, w})},
-               {}});
+               {},
+               true});
         }
       }
     }
@@ -413,44 +416,6 @@ std::optional<SymbolicLiteral> symbolic_literal(const SymbolicProblem& p, const 
   return SymbolicLiteral{l.predicate, args};
 }
 
-// What the knowledge base's rules make on the way to an activity's future
-// objects without the activity declaring it: chop_an_onion declares the
-// onion and its diced pieces, and the halves slicing makes of the onion
-// (dicing's input) come in between, as OmniGibson creates them. Each such
-// synset, a rule's input that the activity has nothing of and some rule
-// makes, up to kIntermediateDepth rules back from a future object, is one
-// more object, future at :init.
-constexpr int kIntermediateDepth = 3;
-
-std::vector<std::string> intermediates(const SymbolicProblem& p, const KnowledgeBase& kb,
-                                       const TransitionRules& rules) {
-  const auto have = [&](const std::string& synset, const std::vector<std::string>& made) {
-    for (const SymbolicObject& o : p.objects) {
-      if (o.synset == synset || (kb.contains(o.synset) && kb.contains(synset) && kb.is_a(o.synset, synset)))
-        return true;
-    }
-    return std::find(made.begin(), made.end(), synset) != made.end();
-  };
-  std::vector<std::string> wanted, made;
-  for (int i = 0; i < static_cast<int>(p.objects.size()); ++i) {
-    if (p.init.count({"future", {i}})) wanted.push_back(p.objects[i].synset);
-  }
-  for (int depth = 0; depth < kIntermediateDepth && !wanted.empty(); ++depth) {
-    std::vector<std::string> next;
-    for (const std::string& synset : wanted) {
-      for (const TransitionRule* r : rules.producing(synset)) {
-        for (const SynsetCount& in : r->inputs) {
-          if (have(in.synset, made) || rules.producing(in.synset).empty()) continue;
-          made.push_back(in.synset);
-          next.push_back(in.synset);
-        }
-      }
-    }
-    wanted = std::move(next);
-  }
-  return made;
-}
-
 SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb, const TransitionRules& rules) {
   SymbolicProblem p;
   for (const ObjectDecl& d : problem.objects) p.objects.push_back(describe(d.name, d.type, kb, problem.domain));
@@ -478,7 +443,10 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
   bool holding = false;
   for (const Literal& l : problem.init) {
     if (l.predicate == "inroom") {
-      if (const int i = p.index(l.args.at(0)); i >= 0) p.objects[i].fixed = true;
+      if (const int i = p.index(l.args.at(0)); i >= 0) {
+        p.objects[i].fixed = true;
+        if (l.args.size() == 2) p.objects[i].room = l.args[1];
+      }
       continue;
     }
     if (l.negated) continue;  // :init is closed-world: what it does not say is false
@@ -491,12 +459,6 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
     if (s->predicate == "grasped") holding = true;
   }
   if (!holding) p.init.insert(literal(kHandEmpty, {}));
-  if (problem.domain == Domain::omnigibson) {
-    for (const std::string& synset : intermediates(p, kb, rules)) {
-      p.objects.push_back(describe(synset + "_made", synset, kb, problem.domain));
-      p.init.insert({"future", {static_cast<int>(p.objects.size()) - 1}});
-    }
-  }
   for (int i = 0; i < static_cast<int>(p.objects.size()); ++i) {
     if (p.init.count({"future", {i}})) continue;
     if (p.objects[i].kind != Kind::substance) {

@@ -35,9 +35,10 @@ inline constexpr const char* kChilled = "chilled";
 struct SymbolicProblem {
   // The :objects in order (the first `declared`); then, for BEHAVIOR-100's
   // dialect, the substances its predicates imply (stain.n.01, dust.n.01,
-  // water.n.06) where not declared; then an agent where none is declared;
-  // then, future, what the rules make on the way to the activity's future
-  // objects (an onion's halves before it is diced).
+  // water.n.06) where not declared; then an agent where none is declared.
+  // (What the rules make on the way to the activity's future objects, an
+  // onion's halves before it is diced, the loaders declare:
+  // tasks/intermediates.hpp.)
   std::vector<SymbolicObject> objects;
   int declared = 0;
   std::set<SymbolicLiteral> init;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <queue>
+#include <set>
 #include <unordered_map>
 
 #include "planner/reachability.hpp"
@@ -18,6 +19,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 struct Step {
   size_t source;  // index into GroundSteps::steps
   std::vector<int> needs, needs_not, deletes, adds;
+  bool at_once;  // SymbolicStep::at_once: fired by settle(), never chosen
 };
 
 // A goal literal over interned literals: -1 for one no step or :init names
@@ -42,11 +44,12 @@ class Search {
   Search(const SymbolicProblem& problem, const GroundSteps& ground, const GroundGoal& goal,
          const std::set<std::string>& actions) {
     primitives_ = ground.primitives;
+    for (const SymbolicObject& o : problem.objects) objects_.push_back(o.name);
     for (const SymbolicLiteral& l : problem.init) init_.push_back(id(l));
     for (size_t i = 0; i < ground.steps.size(); ++i) {
       const SymbolicStep& s = ground.steps[i];
       if (i < primitives_ && !actions.empty() && !actions.count(s.name)) continue;
-      Step step{i, ids(s.needs), ids(s.needs_not), ids(s.deletes), ids(s.adds)};
+      Step step{i, ids(s.needs), ids(s.needs_not), ids(s.deletes), ids(s.adds), s.at_once};
       steps_.push_back(std::move(step));
       names_.push_back(s.name);
     }
@@ -70,6 +73,18 @@ class Search {
       if (expressible) options_.push_back({o, std::move(targets)});
     }
     keep_relevant();
+    // What wakes each step that happens at once: a literal it needs being
+    // added. The more specific first (a variant of a rule's step that puts
+    // what it makes where the input was, before the one that does not say).
+    woken_by_.assign(literals_.size(), {});
+    for (size_t i = 0; i < steps_.size(); ++i) {
+      if (!steps_[i].at_once) continue;
+      for (const int n : steps_[i].needs) woken_by_[n].push_back(i);
+    }
+    for (std::vector<size_t>& woken : woken_by_) {
+      std::stable_sort(woken.begin(), woken.end(),
+                       [&](size_t a, size_t b) { return steps_[a].needs.size() > steps_[b].needs.size(); });
+    }
     for (size_t i = 0; i < relevant_.size(); ++i) {
       for (const int n : steps_[relevant_[i]].needs) needed_by_[n].push_back(i);
       for (const int d : steps_[relevant_[i]].deletes) deleted_by_[d].push_back(i);
@@ -82,9 +97,14 @@ class Search {
       plan.reason = "no option of the goal is on the activity's objects";
       return plan;
     }
-    std::vector<State> states = {init_};
+    std::vector<size_t> at_start;
+    const State start = settle(init_, init_, at_start);
+    std::vector<State> states = {start};
     std::vector<std::pair<int, int>> parent = {{-1, -1}};  // node, step
-    std::unordered_map<State, int, StateHash> seen = {{init_, 0}};
+    // Per node: the steps that happened at once on the way in (at the root,
+    // what :init sets off).
+    std::vector<std::vector<size_t>> fired = {at_start};
+    std::unordered_map<State, int, StateHash> seen = {{start, 0}};
     using Entry = std::tuple<double, size_t, int>;  // priority, order, node
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
     open.push({0, 0, 0});
@@ -97,9 +117,9 @@ class Search {
       if (const std::optional<size_t> reached = holds(state)) {
         plan.found = true;
         plan.option = *reached;
-        for (int n = node; parent[n].first >= 0; n = parent[n].first) {
-          const int s = parent[n].second;
-          plan.steps.push_back({names_[s], steps_[s].source < primitives_});
+        for (int n = node; n >= 0; n = parent[n].first) {
+          for (auto f = fired[n].rbegin(); f != fired[n].rend(); ++f) plan.steps.push_back({names_[*f], false});
+          if (const int s = parent[n].second; s >= 0) plan.steps.push_back({names_[s], steps_[s].source < primitives_});
         }
         std::reverse(plan.steps.begin(), plan.steps.end());
         return plan;
@@ -116,26 +136,23 @@ class Search {
       for (const int l : state) in[l] = 1;
       for (const size_t r : relevant_) {
         const Step& s = steps_[r];
+        if (s.at_once) continue;
         if (!std::all_of(s.needs.begin(), s.needs.end(), [&](int l) { return in[l]; })) continue;
         if (std::any_of(s.needs_not.begin(), s.needs_not.end(), [&](int l) { return in[l]; })) continue;
-        State next;
-        next.reserve(state.size() + s.adds.size());
-        for (const int l : state) {
-          if (std::find(s.deletes.begin(), s.deletes.end(), l) == s.deletes.end()) next.push_back(l);
-        }
-        next.insert(next.end(), s.adds.begin(), s.adds.end());
-        std::sort(next.begin(), next.end());
-        next.erase(std::unique(next.begin(), next.end()), next.end());
+        std::vector<size_t> at_once;
+        State next = settle(apply(state, static_cast<int>(r)), s.adds, at_once);
         if (seen.count(next)) continue;
         const int child = static_cast<int>(states.size());
         seen.emplace(next, child);
         states.push_back(std::move(next));
         parent.push_back({node, static_cast<int>(r)});
+        fired.push_back(std::move(at_once));
         open.push({h, order++, child});
       }
     }
-    plan.reason = any_finite ? "the search ran out of states without reaching the goal"
-                             : "no sequence of the primitives and the world's steps reaches the goal";
+    plan.reason = any_finite
+                      ? "the search ran out of states without reaching the goal"
+                      : "no sequence of the primitives and the world's steps reaches the goal: " + missing(init_);
     return plan;
   }
 
@@ -153,6 +170,45 @@ class Search {
     return out;
   }
 
+  // `state` after step `r`.
+  State apply(const State& state, int r) const {
+    const Step& s = steps_[r];
+    State next;
+    next.reserve(state.size() + s.adds.size());
+    for (const int l : state) {
+      if (std::find(s.deletes.begin(), s.deletes.end(), l) == s.deletes.end()) next.push_back(l);
+    }
+    next.insert(next.end(), s.adds.begin(), s.adds.end());
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    return next;
+  }
+
+  // `state` once what happens at once has happened: each step woken by a
+  // literal `added` (or by one its own effects add) whose conditions hold
+  // and that changes the state, in turn, at most kMaxAtOnce of them (a rule
+  // fires once: it uses up its inputs). The steps fired go to `fired`.
+  State settle(State state, const std::vector<int>& added, std::vector<size_t>& fired) const {
+    constexpr size_t kMaxAtOnce = 64;
+    std::vector<int> woken_literals = added;
+    for (size_t k = 0; k < woken_literals.size() && fired.size() < kMaxAtOnce; ++k) {
+      for (const size_t i : woken_by_[woken_literals[k]]) {
+        const Step& s = steps_[i];
+        const auto has = [&](int l) { return std::binary_search(state.begin(), state.end(), l); };
+        if (!std::all_of(s.needs.begin(), s.needs.end(), has) ||
+            std::any_of(s.needs_not.begin(), s.needs_not.end(), has))
+          continue;
+        State next = apply(state, static_cast<int>(i));
+        if (next == state) continue;
+        state = std::move(next);
+        fired.push_back(i);
+        woken_literals.insert(woken_literals.end(), s.adds.begin(), s.adds.end());
+        if (fired.size() >= kMaxAtOnce) break;
+      }
+    }
+    return state;
+  }
+
   // The option that holds in `state`, if one does.
   std::optional<size_t> holds(const State& state) const {
     for (const auto& [option, targets] : options_) {
@@ -163,6 +219,81 @@ class Search {
       if (all) return option;
     }
     return std::nullopt;
+  }
+
+  // Why no option is reachable from `state`, relaxed (what a step needs
+  // absent ignored): the option missing the fewest literals, its first
+  // missing literal (or one it needs absent that no step can remove), then
+  // the need that the step making (removing) it with the fewest missing
+  // needs lacks, and so on, as far as kExplainDepth. E.g. make_lemonade's
+  // "(real lemonade.n.01_1) needs (contains pitcher.n.02_1
+  // granulated_sugar.n.01_1) needs (grasped agent.n.01_1 sugar__sack.n.01_1):
+  // no step makes it" (the sack, 35 kg, is too heavy to pick up).
+  std::string missing(const State& state) const {
+    constexpr int kExplainDepth = 4;
+    std::vector<char> reachable(literals_.size(), 0);
+    for (const int l : state) reachable[l] = 1;
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const Step& s : steps_) {
+        if (!std::all_of(s.needs.begin(), s.needs.end(), [&](int l) { return reachable[l]; })) continue;
+        for (const int a : s.adds) {
+          if (!reachable[a]) reachable[a] = changed = true;
+        }
+      }
+    }
+    const auto unmet = [&](const std::vector<int>& needs) {
+      return std::count_if(needs.begin(), needs.end(), [&](int l) { return !reachable[l]; });
+    };
+    // A literal the goal needs absent goes only by a step that deletes it.
+    const auto removable = [&](int l) {
+      return std::any_of(steps_.begin(), steps_.end(), [&](const Step& s) {
+        return unmet(s.needs) == 0 && std::find(s.deletes.begin(), s.deletes.end(), l) != s.deletes.end();
+      });
+    };
+    // The option missing the fewest, and its first missing literal that
+    // some step or :init names (-1: only ones none names).
+    int first = -1;
+    bool absent = false;  // the goal needs `first` absent
+    long fewest = std::numeric_limits<long>::max();
+    for (const auto& [option, targets] : options_) {
+      long count = 0;
+      int lead = -1;
+      bool lead_absent = false;
+      for (const Target& t : targets) {
+        const bool present = t.id >= 0 && std::binary_search(state.begin(), state.end(), t.id);
+        if (t.negated ? !present || removable(t.id) : t.id >= 0 && reachable[t.id]) continue;
+        ++count;
+        if (lead < 0 && t.id >= 0) lead = t.id, lead_absent = t.negated;
+      }
+      if (count > 0 && count < fewest) fewest = count, first = lead, absent = lead_absent;
+    }
+    if (fewest == std::numeric_limits<long>::max()) return "each literal is reachable, not all together";
+    if (first < 0) return "the goal names a literal no step or :init has";
+    std::string out = absent ? "(not " + text(first) + ")" : text(first);
+    std::set<int> told = {first};
+    for (int depth = 0, l = first; depth < kExplainDepth; ++depth) {
+      const Step* best = nullptr;
+      for (const Step& s : steps_) {
+        const std::vector<int>& effects = depth == 0 && absent ? s.deletes : s.adds;
+        if (std::find(effects.begin(), effects.end(), l) == effects.end()) continue;
+        if (!best || unmet(s.needs) < unmet(best->needs)) best = &s;
+      }
+      if (!best) return out + (depth == 0 && absent ? ": no step removes it" : ": no step makes it");
+      const auto need =
+          std::find_if(best->needs.begin(), best->needs.end(), [&](int n) { return !reachable[n] && !told.count(n); });
+      if (need == best->needs.end()) break;
+      l = *need;
+      told.insert(l);
+      out += " needs " + text(l);
+    }
+    return out;
+  }
+  std::string text(int l) const {
+    const SymbolicLiteral& literal = literals_[l];
+    std::string out = "(" + literal.predicate;
+    for (const int a : literal.args) out += " " + objects_[a];
+    return out + ")";
   }
 
   // Steps that can ever apply (their needs reachable from :init, relaxed)
@@ -267,15 +398,17 @@ class Search {
 
   std::map<SymbolicLiteral, int> ids_;
   std::vector<SymbolicLiteral> literals_;
+  std::vector<std::vector<size_t>> woken_by_;  // literal -> steps that happen at once, into steps_
   std::vector<Step> steps_;
   std::vector<std::string> names_;
+  std::vector<std::string> objects_;  // the problem's, by index
   size_t primitives_ = 0;
   State init_;
   std::vector<std::pair<size_t, std::vector<Target>>> options_;
-  std::vector<size_t> relevant_;                // indices into steps_
-  std::vector<std::vector<size_t>> needed_by_;  // literal -> indices into relevant_
+  std::vector<size_t> relevant_;                 // indices into steps_
+  std::vector<std::vector<size_t>> needed_by_;   // literal -> indices into relevant_
   std::vector<std::vector<size_t>> deleted_by_;  // literal -> indices into relevant_
-  std::vector<double> cost_, step_cost_, sum_;  // the heuristic's
+  std::vector<double> cost_, step_cost_, sum_;   // the heuristic's
   std::vector<size_t> remaining_;
 };
 

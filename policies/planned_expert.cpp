@@ -63,6 +63,18 @@ std::optional<bool> observe(const EnvState& env, const SymbolicProblem& p, const
   }
 }
 
+// What the hand holds, as the planner says it: (grasped agent X), or
+// (handempty); nullopt for a held object the planner does not know.
+std::optional<SymbolicLiteral> hand(const EnvState& env, const SymbolicProblem& p) {
+  const int held = env.world().grasped_object();
+  if (held < 0) return literal(kHandEmpty, {});
+  for (int i = 0; i < p.declared; ++i) {
+    const Binding& b = env.activity()->binding(p.objects[i].name);
+    if (b.kind == Binding::Kind::object && b.index == held) return literal("grasped", {agent_index(p.objects), i});
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) : options_(options) {
@@ -132,7 +144,13 @@ bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
     const std::optional<bool> holds = observe(env, problem_, l);
     if (holds ? *holds : problem_.init.count(l) > 0) now.init.insert(l);
   }
-  Plan plan = plan_task(now, steps_of_problem_, *goal_, options_);
+  GroundSteps steps = steps_of_problem_;
+  for (size_t i = 0; i < steps.primitives; ++i) {
+    for (const auto& [barred, plans] : failed_) {
+      if (plans >= kBarAfter && steps.steps[i].name == barred.first) steps.steps[i].needs_not.push_back(barred.second);
+    }
+  }
+  Plan plan = plan_task(now, steps, *goal_, options_);
   if (!plan.found) {
     failure_ = why + "; from the world as it is, no plan: " + plan.reason;
     return false;
@@ -143,6 +161,7 @@ bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
 void PlannedExpert::restart(const EnvState& env) {
   failure_.clear();
   replans_ = 0;
+  failed_.clear();
   if (unusable_.empty()) follow(env, initial_);
 }
 
@@ -155,6 +174,7 @@ std::optional<int> PlannedExpert::act(const EnvState& env, PrimitiveStatus last,
       ++tries_;
       return actions_[step];
     }
+    if (const std::optional<SymbolicLiteral> held = hand(env, problem_)) ++failed_[{plan_.steps[step].name, *held}];
     if (!replan(env, "step " + std::to_string(step + 1) + ", " + plan_.steps[step].name + ": " + to_string(last) +
                          ": " + last_reason))
       return std::nullopt;

@@ -8,8 +8,12 @@
 // again from the world as it finds it (each literal the planner knows read
 // from the world: the activity's predicates, the hand, the arm's reach), up
 // to kReplans times an episode, then gives up saying which step failed and why.
+// A step that has failed so in kBarAfter plans, with the hand as it was (what
+// it held, or empty), is left out of the plans that follow while the hand is
+// so: they look for another way (another place for the load, another order).
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +27,7 @@ class PlannedExpert {
  public:
   static constexpr int kRetries = 2;
   static constexpr int kReplans = 8;
+  static constexpr int kBarAfter = 2;
   // `env` must use the primitive action space and have an activity;
   // chore::Error otherwise.
   explicit PlannedExpert(const EnvState& env, const PlanOptions& options = {});
@@ -58,8 +63,11 @@ class PlannedExpert {
   size_t next_ = 0;            // into steps_
   int tries_ = 0;              // of steps_[next_ - 1]
   int replans_ = 0;            // this episode
-  std::string unusable_;       // why there is no plan from :init
-  std::string failure_;        // why this episode's stopped short
+  // Per primitive step and the hand's literal when it failed (grasped X, or
+  // handempty): the plans it failed in this episode.
+  std::map<std::pair<std::string, SymbolicLiteral>, int> failed_;
+  std::string unusable_;  // why there is no plan from :init
+  std::string failure_;   // why this episode's stopped short
 };
 
 }  // namespace chore

@@ -53,13 +53,34 @@ bool act(Executor& e) {
   return true;
 }
 
-// Symbolically: what the hand holds ends next to the object (either way round).
+// Symbolically: what the hand holds ends next to the object (either way
+// round), on what the object stands on: on the floor of its room where it is
+// furniture, else on what it lies on (a step for each; one for nothing).
 std::vector<SymbolicStep> model(const std::vector<SymbolicObject>& objects, const SymbolicArgs& a) {
+  using Kind = SymbolicObject::Kind;
   const int agent = agent_index(objects);
-  if (agent < 0 || a.held < 0 || a.held == a.target || objects[a.target].kind != SymbolicObject::Kind::object) {
-    return {};
+  const SymbolicObject& target = objects[a.target];
+  if (agent < 0 || a.held < 0 || a.held == a.target || target.kind != Kind::object) return {};
+  SymbolicStep beside =
+      setting_down(agent, a, {literal("nextto", {a.held, a.target}), literal("nextto", {a.target, a.held})});
+  if (target.fixed) {
+    for (int f = 0; f < static_cast<int>(objects.size()); ++f) {
+      if (objects[f].kind == Kind::floor && !target.room.empty() && objects[f].room == target.room)
+        beside.adds.push_back(literal("ontop", {a.held, f}));
+    }
+    return {beside};
   }
-  return {setting_down(agent, a, {literal("nextto", {a.held, a.target}), literal("nextto", {a.target, a.held})})};
+  std::vector<SymbolicStep> out;
+  for (int s = 0; s < static_cast<int>(objects.size()); ++s) {
+    if (s == a.target || s == a.held || (objects[s].kind != Kind::object && objects[s].kind != Kind::floor)) continue;
+    SymbolicStep on = beside;
+    on.needs.push_back(literal("ontop", {a.target, s}));
+    on.adds.push_back(literal("ontop", {a.held, s}));
+    out.push_back(std::move(on));
+    beside.needs_not.push_back(literal("ontop", {a.target, s}));
+  }
+  out.push_back(std::move(beside));
+  return out;
 }
 
 }  // namespace

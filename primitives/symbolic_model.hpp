@@ -26,6 +26,7 @@ struct SymbolicObject {
   std::map<std::string, std::vector<std::string>> removes;
   Kind kind = Kind::object;
   bool fixed = false;  // set in the scene by (inroom ...): furniture, appliances; never picked up
+  std::string room;    // a fixed object's or a floor's (inroom ...): BDDL's room type
   bool has(const char* property) const { return properties.count(property) > 0; }
   bool movable() const { return kind == Kind::object && !fixed; }
   double parameter(const char* property, const char* name, double fallback) const;
@@ -53,6 +54,9 @@ struct SymbolicArgs {
 struct SymbolicStep {
   std::string name;  // e.g. pick(apple.n.01_1)
   std::vector<SymbolicLiteral> needs, needs_not, deletes, adds;
+  // A world step that happens as soon as its conditions hold (a transition
+  // rule, a washer), as the world makes it, not when the planner chooses.
+  bool at_once = false;
 };
 
 // Steps are built with these.

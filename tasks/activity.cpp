@@ -12,6 +12,7 @@
 #include "base/json_file.hpp"
 #include "tasks/agent_roles.hpp"
 #include "tasks/initial_states.hpp"
+#include "tasks/intermediates.hpp"
 #include "world/object_geometry.hpp"
 #include "world/predicates.hpp"
 #include "world/sampling.hpp"
@@ -105,6 +106,7 @@ std::shared_ptr<const Activity> Activity::load(const std::string& name, const Sc
                         std::all_of(stem.begin() + 7, stem.end(), [](char c) { return c >= '0' && c <= '9'; });
   a->name_ = instance && file.has_parent_path() ? file.parent_path().filename().string() : file.stem().string();
   a->kb_ = kb ? std::move(kb) : dialect_knowledge_base(a->problem_.domain);
+  declare_intermediates(a->problem_, *a->kb_, behavior_transition_rules());
   const std::string where = "activity '" + a->name_ + "' in scene '" + scene.name() + "'";
 
   std::map<std::string, std::string> rooms;  // instance -> BDDL room

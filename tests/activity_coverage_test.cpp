@@ -177,7 +177,9 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   const nlohmann::json& never = c["activities"][2]["solve"];
   EXPECT_TRUE(never["built"].get<bool>());
   EXPECT_FALSE(never["found"].get<bool>());
-  EXPECT_EQ(never["reason"], "no plan: no sequence of the primitives and the world's steps reaches the goal");
+  EXPECT_EQ(never["reason"],
+            "no plan: no sequence of the primitives and the world's steps reaches the goal: "
+            "(inside apple.n.01_1 countertop.n.01_1): no step makes it");
   EXPECT_EQ(c["built"], 2);
   EXPECT_EQ(c["planned"], 1);
   EXPECT_EQ(c["solved"], 1);

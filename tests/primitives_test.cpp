@@ -122,6 +122,25 @@ TEST(PrimitiveActions, AreDerivedFromEachActivitysBddl) {
   for (const char* a : {"place(countertop.n.01_1)", "place(mug.n.04_1)", "place(cabinet.n.01_1)"})
     EXPECT_NE(std::find(coffee_actions.begin(), coffee_actions.end(), a), coffee_actions.end()) << a;
   EXPECT_EQ(std::find(coffee_actions.begin(), coffee_actions.end(), "place(tablespoon.n.02_1)"), coffee_actions.end());
+  // Where the activity's rules make something, in the place a rule needs the
+  // inputs (a blender the goal never names): things are put and poured in.
+  const auto dir = test::scratch_dir("transition_places");
+  test::write_file(dir / "smoothie.bddl",
+                   "(define (problem smoothie) (:domain omnigibson) (:objects strawberry.n.01_1 - strawberry.n.01 "
+                   "ice_cube.n.01_1 - ice_cube.n.01 lemon_juice.n.01_1 - lemon_juice.n.01 lemon_juice__bottle.n.01_1 "
+                   "- lemon_juice__bottle.n.01 blender.n.01_1 - blender.n.01 smoothie.n.02_1 - smoothie.n.02 "
+                   "countertop.n.01_1 - countertop.n.01 floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01) (:init "
+                   "(ontop strawberry.n.01_1 countertop.n.01_1) (ontop ice_cube.n.01_1 countertop.n.01_1) (filled "
+                   "lemon_juice__bottle.n.01_1 lemon_juice.n.01_1) (ontop lemon_juice__bottle.n.01_1 "
+                   "countertop.n.01_1) (ontop blender.n.01_1 countertop.n.01_1) (future smoothie.n.02_1) (inroom "
+                   "countertop.n.01_1 kitchen) (inroom floor.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)) "
+                   "(:goal (and (real smoothie.n.02_1))))");
+  EnvConfig smoothie_config = primitive_config((dir / "smoothie.bddl").string(), ExecutionMode::symbolic);
+  smoothie_config.reachable_instances = false;
+  const Env smoothie(smoothie_config);
+  const std::vector<std::string> smoothie_actions = action_names(smoothie);
+  for (const char* a : {"place(blender.n.01_1)", "pour(blender.n.01_1)", "toggle_on(blender.n.01_1)"})
+    EXPECT_NE(std::find(smoothie_actions.begin(), smoothie_actions.end(), a), smoothie_actions.end()) << a;
 }
 
 TEST(PrimitiveActions, BadActionsAndConfigsAreErrors) {
