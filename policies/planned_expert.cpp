@@ -145,12 +145,18 @@ bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
     if (holds ? *holds : problem_.init.count(l) > 0) now.init.insert(l);
   }
   GroundSteps steps = steps_of_problem_;
+  bool barred_any = false;
   for (size_t i = 0; i < steps.primitives; ++i) {
     for (const auto& [barred, plans] : failed_) {
-      if (plans >= kBarAfter && steps.steps[i].name == barred.first) steps.steps[i].needs_not.push_back(barred.second);
+      if (plans < kBarAfter || steps.steps[i].name != barred.first) continue;
+      steps.steps[i].needs_not.push_back(barred.second);
+      barred_any = true;
     }
   }
   Plan plan = plan_task(now, steps, *goal_, options_);
+  // No other way: the step again (from elsewhere it may work: a primitive
+  // that failed out of reach here, after a navigate).
+  if (!plan.found && barred_any) plan = plan_task(now, steps_of_problem_, *goal_, options_);
   if (!plan.found) {
     failure_ = why + "; from the world as it is, no plan: " + plan.reason;
     return false;

@@ -10,7 +10,8 @@
 // to kReplans times an episode, then gives up saying which step failed and why.
 // A step that has failed so in kBarAfter plans, with the hand as it was (what
 // it held, or empty), is left out of the plans that follow while the hand is
-// so: they look for another way (another place for the load, another order).
+// so: they look for another way (another place for the load, another order),
+// and where there is none, try it again.
 #pragma once
 
 #include <map>
