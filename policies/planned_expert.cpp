@@ -144,19 +144,18 @@ bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
     const std::optional<bool> holds = observe(env, problem_, l);
     if (holds ? *holds : problem_.init.count(l) > 0) now.init.insert(l);
   }
-  GroundSteps steps = steps_of_problem_;
-  bool barred_any = false;
-  for (size_t i = 0; i < steps.primitives; ++i) {
-    for (const auto& [barred, plans] : failed_) {
-      if (plans < kBarAfter || steps.steps[i].name != barred.first) continue;
-      steps.steps[i].needs_not.push_back(barred.second);
-      barred_any = true;
-    }
+  // The steps with the bars on; a copy only when some step is barred.
+  std::optional<GroundSteps> barred;
+  for (const auto& [step_and_hand, plans] : failed_) {
+    if (plans < kBarAfter) continue;
+    if (!barred) barred = steps_of_problem_;
+    for (size_t i = 0; i < barred->primitives; ++i)
+      if (barred->steps[i].name == step_and_hand.first) barred->steps[i].needs_not.push_back(step_and_hand.second);
   }
-  Plan plan = plan_task(now, steps, *goal_, options_);
+  Plan plan = plan_task(now, barred ? *barred : steps_of_problem_, *goal_, options_);
   // No other way: the step again (from elsewhere it may work: a primitive
   // that failed out of reach here, after a navigate).
-  if (!plan.found && barred_any) plan = plan_task(now, steps_of_problem_, *goal_, options_);
+  if (!plan.found && barred) plan = plan_task(now, steps_of_problem_, *goal_, options_);
   if (!plan.found) {
     failure_ = why + "; from the world as it is, no plan: " + plan.reason;
     return false;
