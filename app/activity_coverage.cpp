@@ -77,22 +77,31 @@ bool was_instantiated(const Result& r) {
   return r.stage == "instantiated" || r.stage == "run" || r.stage == "primitives" || r.stage == "solve";
 }
 
-constexpr int kSheetHead = 64, kSheetTop = 128, kSheetLabel = 12, kSheetColumns = 16;
+// An instance's head camera and view from above; a solved activity's final
+// state larger, its head camera showing what the last primitive acted on.
+constexpr int kSheetHead = 64, kSheetTop = 128, kSheetSolved = 160, kSheetLabel = 12, kSheetColumns = 16;
 
-// The instantiated activities' pictures in a grid, each under its name.
-void write_contact_sheet(const std::string& path, const std::vector<Result>& results) {
+// The pictures (all one size) in a grid, each under its activity's name.
+// None (nothing instantiated, or solved): no sheet, said in the log, the
+// report kept.
+void write_contact_sheet(const std::string& path, const std::vector<Result>& results, bool solved, std::ostream& log) {
   std::vector<const Result*> shown;
   for (const Result& r : results) {
     if (!r.picture.empty()) shown.push_back(&r);
   }
-  if (shown.empty()) throw Error("activity coverage: no activity instantiated for the contact sheet " + path);
-  const int width = kSheetHead + kSheetTop, height = kSheetTop + kSheetLabel;
+  if (shown.empty()) {
+    log << "activity " << (solved ? "solve" : "coverage") << ": no activity " << (solved ? "solved" : "instantiated")
+        << ", no contact sheet written to " << path << std::endl;
+    return;
+  }
+  const int width = shown[0]->picture.cols, picture_height = shown[0]->picture.rows,
+            height = picture_height + kSheetLabel;
   const int columns = std::min<int>(kSheetColumns, static_cast<int>(shown.size()));
   const int rows = (static_cast<int>(shown.size()) + columns - 1) / columns;
   cv::Mat sheet(rows * height, columns * width, CV_8UC3, cv::Scalar(255, 255, 255));
   for (size_t i = 0; i < shown.size(); ++i) {
     const int x = static_cast<int>(i % columns) * width, y = static_cast<int>(i / columns) * height;
-    shown[i]->picture.copyTo(sheet(cv::Rect(x, y + kSheetLabel, width, kSheetTop)));
+    shown[i]->picture.copyTo(sheet(cv::Rect(x, y + kSheetLabel, width, picture_height)));
     cv::putText(sheet, shown[i]->name.substr(0, 34), {x + 2, y + kSheetLabel - 3}, cv::FONT_HERSHEY_PLAIN, 0.7,
                 cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
@@ -187,7 +196,8 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
     r.stage = "instantiate";
     EnvConfig config;
     config.activity = file;
-    config.observations = {picture ? "rgb" : "proprio"};  // rendering only for the sheet
+    // Rendering only for the sheet (of the instance; a solve's draws its final state).
+    config.observations = {picture && !options.solve ? "rgb" : "proprio"};
     config.width = config.height = kSheetHead;
     config.reachable_instances = false;
     Env env(config);
@@ -195,7 +205,7 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
     r.stage = "instantiated";
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.out_of_reach = env.out_of_reach();
-    if (picture) r.picture = instance_picture(env, reset.obs, kSheetHead, kSheetTop);
+    if (picture && !options.solve) r.picture = instance_picture(env, reset.obs, kSheetHead, kSheetTop);
     if (options.steps > 0) {
       r.stage = "run";
       run_in_vector_env(config, env, options.seed, options.steps);
@@ -215,8 +225,10 @@ Result run_one(const std::string& file, const Vocabulary& vocabulary, const Cove
       // every seed's was, and why not the first seed's that was not.
       nlohmann::json seeds = nlohmann::json::array();
       for (uint64_t seed = options.seed; seed <= std::max(options.seed, options.last_seed); ++seed) {
-        const nlohmann::json one = solve_activity(config, seed, *options.solve);
-        if (r.solve.is_null()) r.solve = one;
+        const bool first = r.solve.is_null();
+        const nlohmann::json one =
+            solve_activity(config, seed, *options.solve, picture && first ? &r.picture : nullptr, kSheetSolved);
+        if (first) r.solve = one;
         if (!one["solved"].get<bool>() && r.solve["solved"].get<bool>()) {
           r.solve["solved"] = false;
           r.solve["reason"] = "seed " + std::to_string(seed) + ": " + one.value("reason", std::string());
@@ -369,7 +381,7 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   const Vocabulary vocabulary = load_vocabulary();
   const std::vector<Result> results = run_each_in_a_child(files, vocabulary, options, log);
 
-  if (!options.sheet.empty()) write_contact_sheet(options.sheet, results);
+  if (!options.sheet.empty()) write_contact_sheet(options.sheet, results, options.solve.has_value(), log);
 
   nlohmann::json activities = nlohmann::json::array();
   std::map<std::string, std::pair<int, std::string>> causes;  // "stage: cause" -> count, example

@@ -1,5 +1,6 @@
 #include "app/activity_solve.hpp"
 
+#include "app/activity_commands.hpp"
 #include "base/error.hpp"
 #include "policies/planned_expert.hpp"
 
@@ -8,16 +9,21 @@ namespace chore {
 // Episodes long enough for any plan the search returns, with its retries.
 constexpr int kSolveEpisodeSteps = 1000;
 
-nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mode) {
+nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mode, cv::Mat* final_state,
+                              int picture_size) {
   config.action_space = "primitives";
   config.primitive_mode = mode;
-  config.observations = {"proprio"};
+  config.observations = {final_state ? "rgb" : "proprio"};  // the head camera only for the picture
+  if (final_state) config.width = config.height = picture_size;
   config.reachable_instances = true;  // the env as a user gets it
   config.max_episode_steps = kSolveEpisodeSteps;
   Env env(config);
   Info info;
+  const ArrayDict* obs = nullptr;  // the env's, valid while it lives
   try {
-    info = env.reset(seed).info;
+    const Env::ResetResult reset = env.reset(seed);
+    info = reset.info;
+    obs = &reset.obs;
   } catch (const Error& e) {
     return {{"found", false}, {"built", false}, {"solved", false}, {"planning_seconds", 0.0}, {"reason", e.what()}};
   }
@@ -39,11 +45,13 @@ nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mod
     const Env::StepResult r = env.step({&a, 1});
     ++taken;
     info = r.info;
+    obs = &r.obs;
     last = static_cast<PrimitiveStatus>(info.primitive_status);
     reason = env.last_primitive().reason;
     if (r.terminated || r.truncated) break;
   }
   const bool solved = info.success && info.q >= 1.0;
+  if (final_state && solved) *final_state = instance_picture(env, *obs, picture_size, picture_size);
   out["solved"] = solved;
   out["q"] = info.q;
   out["steps_taken"] = taken;

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <opencv2/core.hpp>
+
 #include <cstdint>
 
 #include "env/env.hpp"
@@ -21,7 +23,11 @@ namespace chore {
 // "primitives" (the plan's), "solved", "q", "steps_taken" (actions the env
 // ran, retries included), "replans" (plans from the world after a failure),
 // "reason" (why not solved)}. The env is `config`
-// with the primitive action space in `mode`.
-nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mode);
+// with the primitive action space in `mode`. With `final_state`, a solved
+// activity's last state is drawn into it (the head camera beside the scene
+// from above, instance_picture, each `picture_size` pixels square), for
+// `activity solve --sheet`.
+nlohmann::json solve_activity(EnvConfig config, uint64_t seed, ExecutionMode mode, cv::Mat* final_state = nullptr,
+                              int picture_size = 0);
 
 }  // namespace chore

@@ -186,6 +186,8 @@ CommandLineParser::Impl::Impl() {
   solve_cmd->add_option("--threads", c.coverage.threads, "Files at once")
       ->check(integer_in(1, 64))
       ->capture_default_str();
+  solve_cmd->add_option("--sheet", c.coverage.sheet,
+                        "Contact sheet PNG: each solved activity's final state (head camera and top-down view)");
   solve_cmd->add_flag("--json", c.json, "Print the results as JSON (per activity too, with its plan)");
   CLI::App* scene_cmd = app.add_subcommand("scene", "BEHAVIOR-1K's scenes as analogs generated from their inventories");
   scene_cmd->require_subcommand(1);

@@ -83,6 +83,12 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   const bool heating = !heated.empty() || std::any_of(transitions.begin(), transitions.end(), [](const Transition& t) {
     return t.trigger == TransitionTrigger::heated;
   });
+  // Waiting serves what only time does: what those goals heat, cool or
+  // freeze, and what the rules that heat take in (butter melting in a pot).
+  std::set<int> warmed;
+  for (const Transition& t : transitions) {
+    if (t.trigger == TransitionTrigger::heated) warmed.insert(t.input_objects.begin(), t.input_objects.end());
+  }
   // What heats or cools only what is inside it, and only closed (an oven, a
   // microwave, a freezer): where the activity heats, it is put into, opened
   // and closed.
@@ -94,7 +100,8 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
   };
   // Goals that make something (real: a recipe's output) juggle a jar, a mug
   // and a spoon: place serves them too, onto what holds things at the start
-  // and into what the goal fills (a spoon put into the mug stirs it).
+  // and into what the goal fills (a spoon put into the mug stirs it); so do
+  // goals that heat or cool (frozen food taken out of the fridge to thaw).
   std::set<std::string> made;
   arguments_of(problem.goal, {"real"}, 0, made, scope);
   // The activity's transitions happen in places (a blender, a mixing bowl, a
@@ -154,7 +161,7 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (floor && type != PrimitiveType::navigate && type != PrimitiveType::place) continue;
       bool applies = primitive_applies(world, type, object);
       if (type == PrimitiveType::place) {
-        applies = ((!goal_supports.empty() || !made.empty()) && named(supports)) || named(touched) ||
+        applies = ((!goal_supports.empty() || !made.empty() || !heated.empty()) && named(supports)) || named(touched) ||
                   heats_inside(object) || (!made.empty() && named(receivers)) || transition_places.count(object);
       }
       if (type == PrimitiveType::push)
@@ -171,6 +178,7 @@ std::vector<PrimitiveAction> primitive_actions(const Activity& activity, const W
       if (type == PrimitiveType::dip) applies = applies && (named(filled_at_start) || gives_liquid(object));
       if (type == PrimitiveType::fold || type == PrimitiveType::unfold) applies = applies && named(folds);
       if (type == PrimitiveType::place_near_heating_element) applies = applies && heating;
+      if (type == PrimitiveType::wait) applies = applies && (named(heated) || warmed.count(object));
       if (mode == ExecutionMode::physical && !primitive_is_physical(type)) applies = false;
       if (applies) actions.push_back({type, object, decl.name});
     }

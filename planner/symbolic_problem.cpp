@@ -78,8 +78,8 @@ class WorldSteps {
   // Heat and cold: what lies on or in a working source is heated (chilled),
   // and so is what lies on or in something heated; a source that requires it
   // heats only what is inside. Heated objects become hot, cooked and on fire
-  // as the knowledge base says they can; chilled ones frozen. At room
-  // temperature, they cool and thaw.
+  // as the knowledge base says they can; chilled ones frozen. Off the
+  // sources, at room temperature, they cool and thaw.
   void temperature() {
     for (const auto& [property, state] : {std::pair{"heatSource", kHeated}, std::pair{"coldSource", kChilled}}) {
       for (const int source : with(property)) {
@@ -121,11 +121,19 @@ class WorldSteps {
       add(heat);
       if (o.has("freezable"))
         add({"freeze(" + o.name + ")", {literal(kChilled, {x})}, {}, {}, {literal("frozen", {x})}});
-      add({"room_temperature(" + o.name + ")",
-           {},
-           {},
-           {literal("hot", {x}), literal("frozen", {x}), literal("on_fire", {x})},
-           {}});
+      // Off every heat and cold source (a fridge keeps what is inside it
+      // frozen: thawing takes it out), however it stands (on, open).
+      SymbolicStep room{"room_temperature(" + o.name + ")"};
+      for (const char* property : {"heatSource", "coldSource"}) {
+        for (const int source : with(property)) {
+          if (source == x) continue;
+          room.needs_not.push_back(literal("inside", {x, source}));
+          if (p_.objects[source].parameter(property, "requires_inside", 0) <= 0)
+            room.needs_not.push_back(literal("ontop", {x, source}));
+        }
+      }
+      room.deletes = {literal("hot", {x}), literal("frozen", {x}), literal("on_fire", {x})};
+      add(room);
     }
   }
 

@@ -115,6 +115,7 @@ bool PlannedExpert::follow(const EnvState& env, Plan plan) {
   steps_.clear();
   next_ = 0;
   tries_ = 0;
+  still_.clear();
   const std::vector<PrimitiveAction>& actions = env.primitive_actions();
   for (size_t i = 0; i < plan_.steps.size(); ++i) {
     const PlanStep& s = plan_.steps[i];
@@ -163,9 +164,48 @@ bool PlannedExpert::replan(const EnvState& env, const std::string& why) {
   return follow(env, std::move(plan));
 }
 
+std::optional<int> PlannedExpert::wait_for_world(const EnvState& env) const {
+  if (waits_ >= kWaits) return std::nullopt;
+  const std::vector<PrimitiveAction>& actions = env.primitive_actions();
+  // Whether what a world step makes does not hold yet (what the world says
+  // of its literals; the planner's own heated and chilled it cannot say).
+  const auto pending = [&](const std::string& name) {
+    for (const SymbolicStep& step : steps_of_problem_.steps) {
+      if (step.name != name) continue;
+      for (const SymbolicLiteral& l : step.adds) {
+        if (l.predicate != kHeated && l.predicate != kChilled && observe(env, problem_, l) == false) return true;
+      }
+      for (const SymbolicLiteral& l : step.deletes) {
+        if (observe(env, problem_, l) == true) return true;
+      }
+    }
+    return false;
+  };
+  for (auto s = plan_.steps.rbegin(); s != plan_.steps.rend(); ++s) {
+    // A world step's name: "heat(raw_egg.n.01_1)", its objects in brackets.
+    const size_t open = s->name.find('('), close = s->name.rfind(')');
+    if (s->primitive || open == std::string::npos || close == std::string::npos || close < open || !pending(s->name))
+      continue;
+    std::string args = s->name.substr(open + 1, close - open - 1);
+    for (size_t from = 0; from <= args.size();) {
+      const size_t comma = std::min(args.find(',', from), args.size());
+      std::string arg = args.substr(from, comma - from);
+      arg.erase(0, arg.find_first_not_of(' '));
+      for (size_t a = 0; a < actions.size(); ++a) {
+        if (actions[a].type == PrimitiveType::wait && actions[a].instance == arg && !still_.count(static_cast<int>(a)))
+          return static_cast<int>(a);
+      }
+      from = comma + 1;
+    }
+  }
+  return std::nullopt;
+}
+
 void PlannedExpert::restart(const EnvState& env) {
   failure_.clear();
   replans_ = 0;
+  waits_ = 0;
+  waiting_ = -1;
   failed_.clear();
   if (unusable_.empty()) follow(env, initial_);
 }
@@ -173,7 +213,11 @@ void PlannedExpert::restart(const EnvState& env) {
 std::optional<int> PlannedExpert::act(const EnvState& env, PrimitiveStatus last, const std::string& last_reason) {
   if (!unusable_.empty() || !failure_.empty()) return std::nullopt;
   if (env.activity()->score(env.world()).success) return std::nullopt;
-  if (next_ > 0 && last != PrimitiveStatus::success) {
+  if (waiting_ >= 0) {
+    // A wait at the plan's end: where nothing changed, not that one again.
+    if (last != PrimitiveStatus::success) still_.insert(waiting_);
+    waiting_ = -1;
+  } else if (next_ > 0 && last != PrimitiveStatus::success) {
     const size_t step = steps_[next_ - 1];
     if (tries_ <= kRetries) {
       ++tries_;
@@ -195,7 +239,13 @@ std::optional<int> PlannedExpert::act(const EnvState& env, PrimitiveStatus last,
       tries_ = 1;
       return actions_[steps_[next_++]];
     }
-    // The plan is done and the goal does not hold (bounded: replan counts).
+    // The plan is done and the goal does not hold: what the world still has
+    // to do may take time; else plan again (bounded: waits and replans count).
+    if (const std::optional<int> wait = wait_for_world(env)) {
+      ++waits_;
+      waiting_ = *wait;
+      return *wait;
+    }
     if (!replan(env, "the plan ran to its end and the goal does not hold")) return std::nullopt;
   }
 }

@@ -11,11 +11,16 @@
 // A step that has failed so in kBarAfter plans, with the hand as it was (what
 // it held, or empty), is left out of the plans that follow while the hand is
 // so: they look for another way (another place for the load, another order),
-// and where there is none, try it again.
+// and where there is none, try it again. Where the plan is done and what its
+// world steps still have to make takes time (an egg set on a lit stove cooks
+// as time passes), it waits first (the wait primitive, on their objects, the
+// last first; up to kWaits times an episode), and plans again when the world
+// no longer changes.
 #pragma once
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -29,6 +34,7 @@ class PlannedExpert {
   static constexpr int kRetries = 2;
   static constexpr int kReplans = 8;
   static constexpr int kBarAfter = 2;
+  static constexpr int kWaits = 16;
   // `env` must use the primitive action space and have an activity;
   // chore::Error otherwise.
   explicit PlannedExpert(const EnvState& env, const PlanOptions& options = {});
@@ -51,6 +57,10 @@ class PlannedExpert {
   bool follow(const EnvState& env, Plan plan);
   // Plans again from the world as it is; false (failure_ set) without a plan.
   bool replan(const EnvState& env, const std::string& why);
+  // At the plan's end: a wait on an object of its world steps that have not
+  // made what they make yet, the last first, that has not failed since the
+  // plan began; nullopt for none.
+  std::optional<int> wait_for_world(const EnvState& env) const;
 
   SymbolicProblem problem_;
   GroundSteps steps_of_problem_;  // its ground steps, the same whatever :init
@@ -64,6 +74,9 @@ class PlannedExpert {
   size_t next_ = 0;            // into steps_
   int tries_ = 0;              // of steps_[next_ - 1]
   int replans_ = 0;            // this episode
+  int waits_ = 0;              // this episode
+  int waiting_ = -1;           // the wait action just given, else -1
+  std::set<int> still_;        // wait actions that failed since this plan began (nothing changes)
   // Per primitive step and the hand's literal when it failed (grasped X, or
   // handempty): the plans it failed in this episode.
   std::map<std::pair<std::string, SymbolicLiteral>, int> failed_;

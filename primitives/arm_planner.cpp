@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "primitives/base_planner.hpp"
 #include "primitives/rrt_connect.hpp"
 #include "world/object_geometry.hpp"
 
@@ -51,7 +52,7 @@ ArmCollisionChecker::ArmCollisionChecker(const World& world)
   for (int g = 0; g < m->ngeom; ++g) {
     if (mine[g] || (!m->geom_contype[g] && !m->geom_conaffinity[g])) continue;
     const Aabb box = geom_aabb(world, g);
-    others_.push_back({g, box.lo, box.hi});
+    others_.push_back({g, box.lo, box.hi, driven_over(world, g, box)});
   }
 }
 
@@ -87,10 +88,9 @@ bool ArmCollisionChecker::for_each_contact(const std::vector<int>& mine, int ign
     if ((other.lo.array() > hi.array()).any() || (other.hi.array() < lo.array()).any()) continue;
     const int o = other.geom;
     if (ignored_object >= 0 && world_.scene().object_of_geom(o) == ignored_object) continue;
-    const bool driven_over = other.hi.z() < Robot::kDrivesOver;  // as the base planner's map takes it
     for (int g : mine) {
       if (!((m->geom_contype[g] & m->geom_conaffinity[o]) || (m->geom_contype[o] & m->geom_conaffinity[g]))) continue;
-      if (driven_over && !moved_by_arm_[g]) continue;
+      if (other.driven_over && !moved_by_arm_[g]) continue;
       const double extra = moved_by_arm_[g] ? clearance : 0.0;
       const double r = m->geom_rbound[g] + extra;
       const Eigen::Vector3d c(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);

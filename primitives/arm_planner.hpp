@@ -51,6 +51,7 @@ class ArmCollisionChecker {
   struct Box {
     int geom;
     Eigen::Vector3d lo, hi;
+    bool driven_over;  // by the base (base_planner.hpp), as its map takes it
   };
   bool touches(const std::vector<int>& mine, int ignored_object, double clearance);
   // Each contact of `mine` (posed in data_) with the others, until `visit` returns true.

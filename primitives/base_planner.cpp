@@ -23,6 +23,13 @@ double wrap(double yaw) {
 
 }  // namespace
 
+bool driven_over(const World& world, int geom, const Aabb& box) {
+  if (box.hi.z() < Robot::kDrivesOver) return true;
+  if (box.hi.z() >= Robot::kDrivesOverCloth) return false;
+  const int object = world.scene().object_of_geom(geom);
+  return object >= 0 && !world.scene().objects()[object].keypoints.empty();
+}
+
 OccupancyMap::OccupancyMap(const World& world, double inflation, double above, int moving) {
   const mjModel* m = world.model();
   const Scene& scene = world.scene();
@@ -51,7 +58,7 @@ OccupancyMap::OccupancyMap(const World& world, double inflation, double above, i
     const int root = m->body_rootid[m->geom_bodyid[g]];
     if (root == robot || root == held || m->geom_bodyid[g] == moving) continue;  // they move along
     const Aabb box = geom_aabb(world, g);
-    if (box.hi.z() < std::max(Robot::kDrivesOver, above) || box.lo.z() > kRobotHeight) continue;
+    if (box.hi.z() < above || driven_over(world, g, box) || box.lo.z() > kRobotHeight) continue;
     const int i0 = std::max(0, static_cast<int>(std::floor((box.lo.x() - x0_) / kResolution)));
     const int i1 = std::min(width_ - 1, static_cast<int>(std::floor((box.hi.x() - x0_) / kResolution)));
     const int j0 = std::max(0, static_cast<int>(std::floor((box.lo.y() - y0_) / kResolution)));

@@ -11,9 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "world/aabb.hpp"
 #include "world/world.hpp"
 
 namespace chore {
+
+// Whether the base drives over `geom`, its world box `box`: lower than
+// Robot::kDrivesOver, or a cloth's lower than Robot::kDrivesOverCloth (a
+// dress folded where it lay, a tile of it under the base).
+bool driven_over(const World& world, int geom, const Aabb& box);
 
 class OccupancyMap {
  public:

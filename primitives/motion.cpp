@@ -20,6 +20,7 @@ namespace {
 constexpr int kSubsteps = 4;  // physics steps per control step, as the env's
 constexpr double kControlDt = kSubsteps / 120.0;
 constexpr double kLineSpacing = 0.01;                        // m between IK waypoints of a line
+constexpr double kBackOffSpeed = 0.2;                        // m/s of the hand drawn back from where it worked
 constexpr double kArmSpeed = 1.5, kArmAcceleration = 4.0;    // rad/s, rad/s^2 (torso: m/s, a tenth)
 constexpr double kBaseSpeed = 1.0, kBaseAcceleration = 1.0;  // m/s (the Tiago's top speed), m/s^2 (heading: 2x, rad)
 constexpr double kArmTolerance = 0.03;                       // rad: a motion has arrived
@@ -71,6 +72,15 @@ void hold_arm(World& world, const ArmConfiguration& q) {
 const ArmConfiguration kTuckedConfiguration = {Robot::kHomeTorso, 0.12, -1.45, -1.06, 2.13, 1.23, -1.26, -1.00};
 const ArmConfiguration kUntuckedConfiguration = {0.15, 0.74, -0.61, -0.28, 2.06, -0.63, -1.29, -0.07};
 const ArmConfiguration kCarryConfiguration = {0.35, 0.85, 0.20, -0.08, 2.19, 1.69, -1.39, -0.07};
+namespace {
+ArmConfiguration carry_turned(double shoulder) {
+  ArmConfiguration q = kCarryConfiguration;
+  q[1] = shoulder;  // arm_1, about the vertical (0.07 to 2.68 rad)
+  return q;
+}
+}  // namespace
+const std::array<ArmConfiguration, 5> kCarryConfigurations = {kCarryConfiguration, carry_turned(1.3), carry_turned(0.4),
+                                                              carry_turned(1.7), carry_turned(0.1)};
 // The low and high starts: solutions for the hand pointing down 0.5 m ahead
 // at 0.12 m and 0.7 m ahead at 1.15 m, found from random starts.
 const std::array<ArmConfiguration, 3> kReachStarts = {
@@ -201,7 +211,7 @@ bool Motion::arm_to(const ArmConfiguration& goal) {
     return true;
   }
   // Touching something (after a grasp or a stroke): back off along the approach first.
-  if (arm_in_collision(world_, arm_configuration(world_))) line(-hand_axis(0) * 0.05, false, 0.2, 0.0);
+  if (arm_in_collision(world_, arm_configuration(world_))) line(-hand_axis(0) * 0.05, false, kBackOffSpeed, 0.0);
   const Clock::time_point start = Clock::now();
   const ArmPath path = plan_arm_path(world_, goal, next_seed(), options_.arm_iterations);
   result_.planning_seconds += since(start);
@@ -473,7 +483,31 @@ void Motion::wait(double seconds) {
 }
 
 bool Motion::tuck() {
-  return arm_to(world_.carried_object() >= 0 ? kCarryConfiguration : kTuckedConfiguration);
+  if (world_.carried_object() < 0) return arm_to(kTuckedConfiguration);
+  const auto free_carry = [&]() -> const ArmConfiguration* {
+    for (const ArmConfiguration& q : kCarryConfigurations) {
+      if (!arm_in_collision(world_, q)) return &q;
+    }
+    return nullptr;
+  };
+  const ArmConfiguration* carry = free_carry();
+  if (!carry) {
+    // The hand still inside what it took the load from (a fridge's shelf, a
+    // cabinet): drawn back level towards the base, as far as the carry pose's
+    // reach or the first touch, first.
+    constexpr double kCarryReach = 0.45;  // m from the base's centre
+    const Pose2 base = world_.base_pose();
+    const Eigen::Vector3d hand = hand_position();
+    const Eigen::Vector3d back(base.x - hand.x(), base.y - hand.y(), 0.0);
+    if (back.norm() > kCarryReach + kLineSpacing) {
+      line(back.normalized() * (back.norm() - kCarryReach), false, kBackOffSpeed, 0.0);
+      if (result_.diverged) return false;
+      result_.status = PrimitiveStatus::success;
+      result_.reason.clear();
+      carry = free_carry();
+    }
+  }
+  return arm_to(carry ? *carry : kCarryConfiguration);  // failing, it says why
 }
 
 }  // namespace chore

@@ -61,7 +61,8 @@ class Motion {
   void gripper(bool open);
   // Holds still for `seconds` (physics runs; symbolic: the state rules run once over that time).
   void wait(double seconds);
-  // Tucked arm when the hand is empty; the carry pose while it holds something.
+  // Tucked arm when the hand is empty; while it holds something, the first
+  // carry pose (kCarryConfigurations) that touches nothing.
   bool tuck();
   // Points the head's camera at the object, as OmniGibson's Tiago primitives
   // track theirs, so that the robot sees what it acts on: physical motions
@@ -106,6 +107,11 @@ class Motion {
 extern const ArmConfiguration kTuckedConfiguration;
 extern const ArmConfiguration kUntuckedConfiguration;
 extern const ArmConfiguration kCarryConfiguration;
+// kCarryConfiguration, then the same pose turned about the shoulder (the hand
+// still pointing down, 0.3-0.45 m from the base's centre): where the robot
+// stopped beside furniture to pick (a fridge by the table), the elbow of the
+// first meets it, and the arm left out over where it picked walled the base in.
+extern const std::array<ArmConfiguration, 5> kCarryConfigurations;
 // Where reach() starts the IK, in turn: damped least squares converges to a
 // solution near its start, and from the untucked pose alone the hand points
 // down no lower than 0.2 m and no higher than 1.0 m above the floor, where

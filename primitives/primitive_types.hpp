@@ -13,7 +13,7 @@ namespace chore {
 // clang-format off
 #define CHORE_PRIMITIVES(X) \
   X(navigate) X(pick) X(place) X(push) X(dip) X(wipe) X(toggle_on) X(toggle_off) X(pour) X(place_next_to) \
-  X(cut) X(attach) X(fold) X(unfold) X(close) X(drape) X(place_under) X(place_near_heating_element)
+  X(cut) X(attach) X(fold) X(unfold) X(close) X(drape) X(place_under) X(place_near_heating_element) X(wait)
 // clang-format on
 
 #define CHORE_PRIMITIVE_ENUM(name) name,

@@ -170,12 +170,12 @@ TEST(Primitives, TheRegistryHoldsEachPrimitiveOnceUnderItsName) {
   }
   EXPECT_EQ(names, (std::set<std::string>{"navigate", "pick", "place", "push", "dip", "wipe", "toggle_on", "toggle_off",
                                           "pour", "place_next_to", "cut", "attach", "fold", "unfold", "close", "drape",
-                                          "place_under", "place_near_heating_element"}));
-  EXPECT_EQ(defs.size(), 18u);
+                                          "place_under", "place_near_heating_element", "wait"}));
+  EXPECT_EQ(defs.size(), 19u);
   EXPECT_EQ(test::error_of([] { parse_primitive_type("teleport"); }),
             "unknown primitive 'teleport' (known: navigate, pick, place, push, dip, wipe, toggle_on, toggle_off, "
             "pour, place_next_to, cut, attach, fold, unfold, close, drape, place_under, "
-            "place_near_heating_element)");
+            "place_near_heating_element, wait)");
   for (int t = 0; t < kPrimitiveTypes; ++t) {
     const auto type = static_cast<PrimitiveType>(t);
     const bool symbolic_only = type == PrimitiveType::fold || type == PrimitiveType::unfold ||
@@ -878,8 +878,10 @@ TEST(Primitives, PushLiftsTheJarsLidOpen) {
 }
 
 // OmniGibson's PLACE_NEAR_HEATING_ELEMENT: the steak set on the stove where
-// its heat reaches; it cooks once the stove is on. An oven heats only what is
-// inside it: there is no element to place near.
+// its heat reaches; it cooks once the stove is on, while the robot waits. An
+// oven heats only what is inside it: there is no element to place near.
+// Waiting while nothing heats the steak fails, as OmniGibson's wait for an
+// object to cook does.
 TEST(Primitives, PlaceNearHeatingElementSetsTheSteakWhereTheStoveCooksIt) {
   for (const ExecutionMode mode : {ExecutionMode::symbolic, ExecutionMode::physical}) {
     SCOPED_TRACE(to_string(mode));
@@ -901,9 +903,18 @@ TEST(Primitives, PlaceNearHeatingElementSetsTheSteakWhereTheStoveCooksIt) {
     EXPECT_TRUE(within_thermal_reach(w, stove, *w.states().abilities(stove)->heat_source, steak));
     EXPECT_GT(save_robot_view(w, std::string("place_near_heating_element_") + to_string(mode) + ".png"), 8);
     EXPECT_FALSE(cooked(w, steak));
+    const Env::Impl::Outcome cold = act(env, "wait(steak.n.01_1)");
+    EXPECT_EQ(cold.info.primitive_status, static_cast<int>(PrimitiveStatus::precondition_failure));
+    EXPECT_EQ(env.last_primitive().reason,
+              "'" + w.scene().objects()[steak].name + "' is not warming up or cooling down");
     sample_state(w, "toggled_on", stove, true);
-    for (int i = 0; i < 30 && !cooked(w, steak); ++i) w.step(4);
+    // It turns hot (40 C), then cooked (70 C): a wait ends at each.
+    for (int i = 0; i < 3 && !cooked(w, steak); ++i) {
+      ASSERT_EQ(act(env, "wait(steak.n.01_1)").info.primitive_status, 0) << env.last_primitive().reason;
+      EXPECT_TRUE(hot(w, steak));
+    }
     EXPECT_TRUE(cooked(w, steak));
+    EXPECT_TRUE(ontop(w, steak, stove)) << "it stood still";
   }
 }
 

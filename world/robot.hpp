@@ -45,8 +45,11 @@ struct Robot {
   // m from gripper_center to the fingertips along the hand's approach axis
   // (the site's x; the finger pads end at x 0.21 in tiago.xml, the site is at 0.17).
   static constexpr double kFingertips = 0.04;
-  // The base drives over what lies lower than this (m): floors, a rug, a rag.
+  // The base drives over what lies lower than this (m): floors, a rug, a rag;
+  // and over a cloth on the floor lower than kDrivesOverCloth (a towel folded
+  // in half, its hem and seams: soft, it gives way): base_planner.hpp's driven_over().
   static constexpr double kDrivesOver = 0.02;
+  static constexpr double kDrivesOverCloth = 0.05;
 };
 
 // Robot MJCF files are read up to this size.
