@@ -136,14 +136,19 @@ OccupancyMap OccupancyMap::flood(double x, double y, std::optional<double> stop_
 }
 
 std::optional<Pose2> free_pose_near(const Footprint& footprint, const Pose2& at) {
-  Pose2 pose = at;
-  for (double r = OccupancyMap::kResolution; !footprint.free(pose); r += OccupancyMap::kResolution) {
-    if (r > kMaxEscape) return std::nullopt;
-    for (int k = 0; k < 16 && !footprint.free(pose); ++k) {
-      pose = {at.x + r * std::cos(k * M_PI / 8), at.y + r * std::sin(k * M_PI / 8), at.yaw};
+  // As it stands first; then turned, the hand and its load (ahead of the
+  // base's centre) swung away from what they meet (a pizza box held by the
+  // fridge it came out of).
+  for (const double turn : {0.0, M_PI / 4, -M_PI / 4, M_PI / 2, -M_PI / 2, 3 * M_PI / 4, -3 * M_PI / 4, M_PI}) {
+    for (double r = 0; r <= kMaxEscape + 1e-9; r += OccupancyMap::kResolution) {
+      for (int k = 0; k < (r == 0 ? 1 : 16); ++k) {
+        const Pose2 pose{at.x + r * std::cos(k * M_PI / 8), at.y + r * std::sin(k * M_PI / 8),
+                         turn == 0 ? at.yaw : wrap(at.yaw + turn)};
+        if (footprint.free(pose)) return turn == 0 && r == 0 ? at : pose;
+      }
     }
   }
-  return pose;
+  return std::nullopt;
 }
 
 namespace {
@@ -332,7 +337,7 @@ BasePath plan_base_path(const World& world, const Footprint& footprint, const Po
     out.reason = "no collision-free base path found in " + std::to_string(iterations) + " iterations";
     return out;
   }
-  if (start.x != at.x || start.y != at.y) out.waypoints.push_back(at);
+  if (start.x != at.x || start.y != at.y || start.yaw != at.yaw) out.waypoints.push_back(at);
   for (const ob::State* s : setup.getSolutionPath().getStates()) {
     const auto* se2 = s->as<ob::SE2StateSpace::StateType>();
     out.waypoints.push_back({se2->getX(), se2->getY(), se2->getYaw()});

@@ -74,8 +74,8 @@ class Footprint {
 };
 
 // The base's pose, or where it is moved straight out (up to 0.4 m) when it
-// stands inside inflated obstacles (an opened drawer over it); none when it
-// is boxed in.
+// stands inside inflated obstacles (an opened drawer over it), or else turned
+// (by 45 degrees at a time) and moved so; none when it is boxed in.
 std::optional<Pose2> free_pose_near(const Footprint& footprint, const Pose2& at);
 
 struct BasePath {
