@@ -27,6 +27,9 @@ struct Block {
   std::vector<int> env_ids;
   std::vector<Info> infos, final_infos;
   int done = 0;  // rows written; guarded by the pool's mutex
+  // Rendering::batch with same_step: rows whose episode ended, their last
+  // frame not yet drawn and their env not yet reset; guarded by the mutex.
+  std::vector<int> ended;
 
   Block(const Space& space, int rows, bool with_final)
       : obs(space, rows), rewards(rows), terminated(rows), truncated(rows), env_ids(rows), infos(rows) {
@@ -58,6 +61,8 @@ struct VectorEnv::Impl {
   int num_envs, batch, action_size;
   bool same_step;
   int tile_count = 1;  // cameras per render pass
+  bool batch_rendering = false;
+  std::unique_ptr<Renderer> batch_renderer;  // Rendering::batch: the VectorEnv's one context
   std::vector<std::unique_ptr<Env>> envs;
   std::vector<std::vector<float>> actions;     // per env, set by send()
   std::vector<std::optional<uint64_t>> seeds;  // per env, set by reset()
@@ -96,7 +101,9 @@ struct VectorEnv::Impl {
     const int wanted = c.render_tiles > 0                              ? c.render_tiles
                        : std::string(Renderer::platform()) == "device" ? kMaxTiles
                                                                        : 1;
-    tile_count = std::max(1, std::min({wanted, num_envs, 8192 / std::max(1, c.env.width)}));
+    batch_rendering = c.rendering == Rendering::batch;
+    tile_count = std::max(1, std::min({batch_rendering ? num_envs : wanted, num_envs,
+                                       Renderer::tile_capacity(c.env.width, c.env.height)}));
     const EnvAssets assets = load_assets(c.env);
     envs.push_back(std::make_unique<Env>(c.env, assets));
     // Rows not yet returned span at most ceil(N/B) + 1 blocks; one more is held.
@@ -144,15 +151,16 @@ struct VectorEnv::Impl {
         task = std::move(queue.front());
         queue.pop_front();
       }
-      std::vector<Row> rows = claim(task);
+      std::vector<Row> rows = claim(task), ended;
       try {
-        run(task, rows, renderer);
+        run(task, rows, renderer, ended);
       } catch (...) {
         std::lock_guard<std::mutex> lock(mutex);
         if (!error) error = std::current_exception();
       }
       {
         std::lock_guard<std::mutex> lock(mutex);
+        for (const Row& row : ended) row.block->ended.push_back(row.index);
         for (size_t i = 0; i < rows.size(); ++i) {
           rows[i].block->done++;
         }
@@ -198,7 +206,11 @@ struct VectorEnv::Impl {
     views.clear();
   }
 
-  void run(const Task& task, const std::vector<Row>& rows, std::unique_ptr<Renderer>& renderer) {
+  // Steps (or resets) the task's envs and, rendering per thread, draws them;
+  // rendering in batches, the rows whose episode ended with same_step go to
+  // `deferred`, not yet reset (render_block() draws and resets them).
+  void run(const Task& task, const std::vector<Row>& rows, std::unique_ptr<Renderer>& renderer,
+           std::vector<Row>& deferred) {
     std::vector<CameraView> views;
     std::vector<size_t> ended;  // same_step: rows whose episode ended this step
     for (size_t i = 0; i < rows.size(); ++i) {
@@ -227,6 +239,10 @@ struct VectorEnv::Impl {
       b.truncated[r] = out.truncated;
       b.infos[r] = out.info;
     }
+    if (batch_rendering) {
+      for (size_t i : ended) deferred.push_back(rows[i]);
+      return;
+    }
     // same_step: observe the last state of ended episodes, then reset them.
     for (size_t i : ended) {
       Block& b = *rows[i].block;
@@ -250,12 +266,45 @@ struct VectorEnv::Impl {
     }
   }
 
+  // Rendering::batch, on the caller's thread once the workers have written
+  // the block's `rows`: the ended episodes' last frames in one pass, their
+  // resets, then every row's frame in one pass. The context is released
+  // after, for whichever thread calls next.
+  void render_block(Block& b, int rows) {
+    std::vector<CameraView> views;
+    if (!batch_renderer) {
+      batch_renderer =
+          std::make_unique<Renderer>(envs[0]->world().model(), config.env.width, config.env.height, tiles());
+    }
+    const auto draw = [&] {
+      if (!views.empty()) batch_renderer->render(views);
+      views.clear();
+    };
+    std::sort(b.ended.begin(), b.ended.end());  // the workers' order varies
+    for (int r : b.ended) add_views(views, b.env_ids[r], b.final_obs, r);
+    draw();
+    for (int r : b.ended) {
+      const int e = b.env_ids[r];
+      envs[e]->impl().finish_observation(b.final_obs, r);
+      b.final_infos[r] = b.infos[r];
+      Info info = envs[e]->impl().reset_state(std::nullopt);
+      info.env_id = e;
+      b.infos[r] = info;
+    }
+    b.ended.clear();
+    for (int r = 0; r < rows; ++r) add_views(views, b.env_ids[r], b.obs, r);
+    draw();
+    for (int r = 0; r < rows; ++r) envs[b.env_ids[r]]->impl().finish_observation(b.obs, r);
+    batch_renderer->release_thread();
+  }
+
   // Splits env ids into tasks of at most one render pass each (one env on
   // llvmpipe): idle workers take the next task, so an env that costs more
   // (a view with more geoms) does not hold up a whole share.
   void dispatch(std::span<const int> ids, bool reset) {
     const size_t per_worker = (ids.size() + config.num_threads - 1) / config.num_threads;
-    const size_t share = std::max<size_t>(1, std::min<size_t>(per_worker, tile_count));
+    // (Rendering in batches, a task is an env's physics alone.)
+    const size_t share = batch_rendering ? 1 : std::max<size_t>(1, std::min<size_t>(per_worker, tile_count));
     {
       std::lock_guard<std::mutex> lock(mutex);
       for (size_t first = 0; first < ids.size(); first += share) {
@@ -332,6 +381,11 @@ Batch VectorEnv::reset(std::span<const std::optional<uint64_t>> seeds) {
   std::unique_lock<std::mutex> lock(m.mutex);
   m.rows_done.wait(lock, [&] { return m.reset_block->done == m.num_envs; });
   m.rethrow_error();
+  if (m.batch_rendering) {
+    lock.unlock();
+    m.render_block(*m.reset_block, m.num_envs);
+    lock.lock();
+  }
   m.was_reset = true;
   return m.reset_block->view(false);
 }
@@ -379,6 +433,12 @@ Batch VectorEnv::recv() {
   Block* block = m.ring[m.returned % m.ring.size()].get();
   m.rows_done.wait(lock, [&] { return block->done == m.batch; });
   m.rethrow_error();
+  if (m.batch_rendering) {
+    // No worker writes this block now (its rows are all in); the others go on.
+    lock.unlock();
+    m.render_block(*block, m.batch);
+    lock.lock();
+  }
   m.returned++;
   m.pending -= m.batch;
   for (int e : block->env_ids) m.in_flight[e] = 0;

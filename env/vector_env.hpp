@@ -6,9 +6,11 @@
 //   recv()               ... the first batch_size to finish, with their env ids
 //
 // Workers write observations straight into batched buffers ((B, H, W, 3) uint8
-// RGB, (B, H, W) float32 depth, ...); a worker takes up to `render_tiles` envs
-// at a time and renders their cameras in one pass. Env i is seeded with seed + i, so
-// results do not depend on the thread count.
+// RGB, (B, H, W) float32 depth, ...). The cameras are drawn either by each
+// worker in a render context of its own, up to `render_tiles` envs in one
+// pass (Rendering::per_thread), or by one render context for the whole
+// VectorEnv, every env of a batch in one pass (Rendering::batch). Env i is
+// seeded with seed + i, so results do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +30,18 @@ namespace chore {
 //              observation and info of the old one are in final_obs/final_info.
 enum class AutoReset { next_step, same_step };
 
+// Who draws the cameras:
+//   per_thread: each worker, in an EGL context of its own, after stepping its
+//               envs (up to render_tiles of them per pass);
+//   batch:      one context for the VectorEnv (the scene's meshes and
+//               textures uploaded once), every env of a batch drawn in one
+//               pass as tiles of one offscreen buffer (env i in tile i) and
+//               read back once, on the thread that calls reset(), step() or
+//               recv(), after the workers have stepped the physics (with
+//               same_step, the ended episodes' last frames first, then their
+//               resets, on that thread too).
+enum class Rendering { per_thread, batch };
+
 struct VectorEnvConfig {
   EnvConfig env;
   int num_envs = 1;
@@ -38,7 +52,8 @@ struct VectorEnvConfig {
   // 0 chooses: 1 on llvmpipe, where per-geom draw calls dominate and wider
   // passes measured slower (docs/benchmarks.md); 16 on a GPU, where each
   // readback is a synchronisation.
-  int render_tiles = 0;
+  int render_tiles = 0;  // per_thread only
+  Rendering rendering = Rendering::per_thread;
 };
 
 class VectorEnv {

@@ -144,6 +144,38 @@ TEST(Render, ATileRendersTheSameWhateverElseIsInThePass) {
   EXPECT_EQ(std::memcmp(one["rgb"].item(0), together["rgb"].item(0), one["rgb"].item_bytes()), 0);
 }
 
+// Tiles fill rows of the offscreen buffer (8192 pixels wide: 64 tiles of
+// 128): tile 64 starts the second row. A pass spanning both rows reads back
+// each tile's own pixels, as a pass of that tile alone does.
+TEST(Render, TilesFillRowsOfTheBufferAndEachReadsBackItsOwn) {
+  EnvConfig c = test::box_room_config();
+  c.start_jitter = 0.1;
+  Env a(c), b(c);
+  a.reset(0);
+  b.reset(1);
+  Renderer renderer(a.world().model(), 128, 128, 66);
+  EXPECT_EQ(Renderer::tile_capacity(128, 128), 64 * 64);
+  ArrayDict alone(a.observation_space(), 2), together(a.observation_space(), 2);
+  const auto views = [](Env& env, ArrayDict& obs, int index, int tile) {
+    std::vector<CameraView> out = env.impl().camera_views(obs, index);
+    for (CameraView& v : out) v.tile = tile;
+    return out;
+  };
+  renderer.render(views(a, alone, 0, 3));
+  renderer.render(views(b, alone, 1, 65));
+  std::vector<CameraView> pass = views(a, together, 0, 3), second = views(b, together, 1, 65);
+  pass.insert(pass.end(), second.begin(), second.end());
+  renderer.render(pass);
+  EXPECT_EQ(alone["rgb"].bytes, together["rgb"].bytes);
+  EXPECT_EQ(alone["depth"].bytes, together["depth"].bytes);
+  EXPECT_NE(std::memcmp(alone["rgb"].item(0), alone["rgb"].item(1), alone["rgb"].item_bytes()), 0);
+  const Array& rgb = alone["rgb"];
+  EXPECT_GT(std::set<unsigned char>(rgb.bytes.begin() + rgb.item_bytes(), rgb.bytes.end()).size(), 20u)
+      << "the second row's tile is drawn";
+  EXPECT_EQ(test::error_of([&] { Renderer too_many(a.world().model(), 128, 128, 64 * 64 + 1); }),
+            "renderer: 4097 tiles of 128x128 exceed the 8192x8192 offscreen buffer");
+}
+
 TEST(Render, ApartmentPictures) {
   EnvConfig c;
   c.width = c.height = 256;

@@ -59,6 +59,68 @@ TEST(VectorEnv, ResultsDoNotDependOnTheThreadCount) {
   }
 }
 
+// Rendering::batch: one render context for the VectorEnv, env i in tile i of
+// one pass. Its results do not depend on the thread count, and are those of
+// per-thread rendering that puts env i in tile i too (render_tiles = N), bit
+// for bit, through autoresets of both kinds (same_step: the ended episodes'
+// last frames drawn before their resets).
+TEST(VectorEnv, BatchRenderingDrawsWhatPerThreadRenderingDraws) {
+  for (const AutoReset autoreset : {AutoReset::next_step, AutoReset::same_step}) {
+    VectorEnvConfig per_thread = config(4, 2, 5), one = config(4, 1, 5), two = config(4, 2, 5);
+    per_thread.render_tiles = 4;
+    one.rendering = two.rendering = Rendering::batch;
+    for (VectorEnvConfig* c : {&per_thread, &one, &two}) c->autoreset = autoreset;
+    VectorEnv reference(per_thread), batch_one(one), batch_two(two);
+    const auto expected = snapshot(reference.reset(7));
+    EXPECT_EQ(snapshot(batch_one.reset(7)), expected);
+    EXPECT_EQ(snapshot(batch_two.reset(7)), expected);
+    std::mt19937 rng(4);
+    for (int i = 0; i < 12; ++i) {
+      const auto actions = random_actions(rng, 4);
+      const Batch r = reference.step(actions);
+      const auto want = snapshot(r);
+      const Batch a = batch_one.step(actions), b = batch_two.step(actions);
+      EXPECT_EQ(snapshot(a), want) << "step " << i;
+      EXPECT_EQ(snapshot(b), want) << "step " << i;
+      if (autoreset == AutoReset::same_step && r.truncated[0]) {
+        ASSERT_NE(b.final_obs, nullptr);
+        for (const Array& f : b.final_obs->arrays()) {
+          const Array& g = (*r.final_obs)[f.name];
+          EXPECT_EQ(f.bytes, g.bytes) << f.name << ", step " << i;
+        }
+      }
+    }
+    // The frames are drawn: not one colour.
+    const Array& rgb = (*batch_two.step(random_actions(rng, 4)).obs)["rgb"];
+    EXPECT_GT(std::set<unsigned char>(rgb.bytes.begin(), rgb.bytes.end()).size(), 20u);
+  }
+}
+
+// Rendering::batch with send()/recv(): each batch of results drawn in one
+// pass as it is returned, env i in tile i whichever batch it comes in: every
+// env's frames are those of the synchronous VectorEnv.
+TEST(VectorEnv, BatchRenderingOfAsyncBatchesDrawsEachEnvAsTheSyncOneDoes) {
+  VectorEnvConfig sync = config(4, 2), async = config(4, 2);
+  sync.rendering = async.rendering = Rendering::batch;
+  async.batch_size = 2;
+  VectorEnv all(sync), halves(async);
+  all.reset(3);
+  halves.reset(3);
+  const std::vector<float> zero(4 * kLowLevelActionSize, 0.f);
+  const Batch b = all.step(zero);
+  const std::vector<int> ids = {0, 1, 2, 3};
+  halves.send(zero, ids);
+  for (int k = 0; k < 2; ++k) {
+    const Batch h = halves.recv();
+    for (int i = 0; i < h.size(); ++i) {
+      const int e = h.env_ids[i];
+      for (const Array& a : h.obs->arrays()) {
+        EXPECT_EQ(std::memcmp(a.item(i), (*b.obs)[a.name].item(e), a.item_bytes()), 0) << a.name << ", env " << e;
+      }
+    }
+  }
+}
+
 TEST(VectorEnv, EnvIIsTheSingleEnvSeededWithSeedPlusI) {
   VectorEnv vec(config(3, 2));
   Env env0(config(3, 2).env), env2(config(3, 2).env);

@@ -1,21 +1,28 @@
 // The C++ side of scripts/bench_python: env steps per second of a VectorEnv
 // stepped synchronously with zero actions, as python/chore steps it.
-//   chore_vector_rate ACTIVITY ENVS THREADS STEPS [OBSERVATION...]
+//   chore_vector_rate [--batch-rendering] ACTIVITY ENVS THREADS STEPS [OBSERVATION...]
+// --batch-rendering: VectorEnvConfig::rendering = Rendering::batch.
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "base/error.hpp"
 #include "env/vector_env.hpp"
 
 int main(int argc, char** argv) {
+  chore::VectorEnvConfig config;
+  if (argc > 1 && std::string(argv[1]) == "--batch-rendering") {
+    config.rendering = chore::Rendering::batch;
+    ++argv;
+    --argc;
+  }
   if (argc < 5) {
-    std::cerr << "usage: chore_vector_rate ACTIVITY ENVS THREADS STEPS [OBSERVATION...]\n";
+    std::cerr << "usage: chore_vector_rate [--batch-rendering] ACTIVITY ENVS THREADS STEPS [OBSERVATION...]\n";
     return 2;
   }
   try {
-    chore::VectorEnvConfig config;
     config.env.activity = argv[1];
     if (argc > 5) config.env.observations.assign(argv + 5, argv + argc);
     config.num_envs = std::atoi(argv[2]);

@@ -23,6 +23,8 @@ namespace chore {
 namespace {
 
 std::mutex egl_mutex;  // context creation and destruction are not thread-safe in Mesa
+// The offscreen buffer's largest side (pixels): tiles fill rows of it.
+constexpr int kMaxBufferSide = 8192;
 
 struct Display {
   EGLDisplay display = EGL_NO_DISPLAY;
@@ -93,6 +95,7 @@ const Display& display() {
 struct Renderer::State {
   EGLContext context = EGL_NO_CONTEXT;
   int width = 0, height = 0, tiles = 1;
+  int columns = 1;  // tiles per row of the offscreen buffer; tile t at column t % columns, row t / columns
   mjvScene scene;
   mjvOption option;
   mjvCamera camera;
@@ -121,9 +124,12 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles) :
   s.width = width;
   s.height = height;
   s.tiles = max_tiles;
-  if (max_tiles * width > 8192) {
-    throw Error("renderer: " + std::to_string(max_tiles) + " tiles of width " + std::to_string(width) +
-                " exceed the 8192-pixel offscreen buffer");
+  s.columns = std::min(max_tiles, kMaxBufferSide / width);
+  const int rows = (max_tiles + s.columns - 1) / s.columns;
+  if (rows * height > kMaxBufferSide) {
+    throw Error("renderer: " + std::to_string(max_tiles) + " tiles of " + std::to_string(width) + "x" +
+                std::to_string(height) + " exceed the " + std::to_string(kMaxBufferSide) + "x" +
+                std::to_string(kMaxBufferSide) + " offscreen buffer");
   }
   {
     std::lock_guard<std::mutex> lock(egl_mutex);
@@ -172,8 +178,8 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles) :
   // The offscreen buffer size is read from the model; a shallow copy of the
   // struct with our size leaves the shared model untouched.
   mjModel sized = *model;
-  sized.vis.global.offwidth = s.tiles * width;
-  sized.vis.global.offheight = height;
+  sized.vis.global.offwidth = s.columns * width;
+  sized.vis.global.offheight = rows * height;
   sized.vis.quality.offsamples = 0;
   mjr_defaultContext(&s.render_context);
   mjr_makeContext(&sized, &s.render_context, mjFONTSCALE_100);
@@ -181,8 +187,8 @@ Renderer::Renderer(const mjModel* model, int width, int height, int max_tiles) :
   if (s.render_context.currentBuffer != mjFB_OFFSCREEN) {
     throw Error("renderer: the offscreen framebuffer is not supported by this OpenGL context");
   }
-  s.rgb.resize(3 * size_t(s.tiles * width) * height);
-  s.depth.resize(size_t(s.tiles * width) * height);
+  s.rgb.resize(3 * size_t(s.columns * width) * rows * height);
+  s.depth.resize(size_t(s.columns * width) * rows * height);
 }
 
 Renderer::~Renderer() {
@@ -211,6 +217,9 @@ int Renderer::height() const {
 }
 int Renderer::max_tiles() const {
   return state_->tiles;
+}
+int Renderer::tile_capacity(int width, int height) {
+  return width <= 0 || height <= 0 ? 0 : (kMaxBufferSide / width) * (kMaxBufferSide / height);
 }
 const char* Renderer::platform() {
   return display().platform;
@@ -322,25 +331,30 @@ void Renderer::render_pass(const std::vector<Draw*>& pass) {
         d->segid_geom[g.segid] = g.objtype == mjOBJ_GEOM ? g.objid : -1;
       }
     }
-    const mjrRect viewport = {v->tile * s.width, 0, s.width, s.height};
+    const mjrRect viewport = {v->tile % s.columns * s.width, v->tile / s.columns * s.height, s.width, s.height};
     mjr_render(viewport, &s.scene, &s.render_context);
     first = std::min(first, v->tile);
     last = std::max(last, v->tile);
     want_rgb |= d->segment || v->rgb;
     want_depth |= reads_depth(*d);
   }
-  // One readback for the pass, of the span of tiles drawn.
-  const int read_width = (last - first + 1) * s.width;
-  const mjrRect read = {first * s.width, 0, read_width, s.height};
+  // One readback for the pass: of the span of tiles drawn within a row, or
+  // of the whole rows they span.
+  const int first_row = first / s.columns, last_row = last / s.columns;
+  const int first_column = first_row == last_row ? first % s.columns : 0;
+  const int read_width = (first_row == last_row ? last - first + 1 : s.columns) * s.width;
+  const int read_height = (last_row - first_row + 1) * s.height;
+  const mjrRect read = {first_column * s.width, first_row * s.height, read_width, read_height};
   mjr_readPixels(want_rgb ? s.rgb.data() : nullptr, want_depth ? s.depth.data() : nullptr, read, &s.render_context);
   for (const Draw* d : pass) {
     const CameraView* v = d->view;
-    const int x0 = (v->tile - first) * s.width;
+    const int x0 = (v->tile % s.columns - first_column) * s.width;
+    const int y0 = (v->tile / s.columns - first_row) * s.height;
     const double extent = v->model->stat.extent;
     const double near = v->model->vis.map.znear * extent, far = v->model->vis.map.zfar * extent;
     for (int row = 0; row < s.height; ++row) {
       // OpenGL rows run bottom-up.
-      const size_t src = size_t(s.height - 1 - row) * read_width + x0;
+      const size_t src = size_t(y0 + s.height - 1 - row) * read_width + x0;
       if (d->segment) {
         std::int32_t* out = v->segment + size_t(row) * s.width;
         const unsigned char* in = s.rgb.data() + 3 * src;

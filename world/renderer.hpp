@@ -2,9 +2,11 @@
 // else surfaceless Mesa (llvmpipe). One Renderer per thread: it owns an EGL
 // context current on the thread that made it, and MuJoCo's render context.
 //
-// Several cameras are drawn per pass as tiles of one offscreen buffer (a row of
-// tiles) and read back once: on llvmpipe rasterisation happens at readback, so
-// the per-frame overhead is paid once per pass rather than once per camera.
+// Several cameras are drawn per pass as tiles of one offscreen buffer (rows of
+// tiles, up to 8192 x 8192 pixels) and read back once: on llvmpipe
+// rasterisation happens at readback, so the per-frame overhead is paid once
+// per pass rather than once per camera; on a GPU each readback is a
+// synchronisation.
 #pragma once
 
 #include <cstdint>
@@ -56,6 +58,8 @@ class Renderer {
   int width() const;
   int height() const;
   int max_tiles() const;
+  // How many tiles of width x height the offscreen buffer holds at most.
+  static int tile_capacity(int width, int height);
   // "surfaceless" or "device": which EGL platform this process uses.
   static const char* platform();
 
