@@ -1,7 +1,8 @@
 // The C++ side of scripts/bench_python: env steps per second of a VectorEnv
 // stepped synchronously with zero actions, as python/chore steps it.
-//   chore_vector_rate [--batch-rendering] ACTIVITY ENVS THREADS STEPS [OBSERVATION...]
-// --batch-rendering: VectorEnvConfig::rendering = Rendering::batch.
+//   chore_vector_rate [--batch-rendering] [--size N] ACTIVITY ENVS THREADS STEPS [OBSERVATION...]
+// --batch-rendering: VectorEnvConfig::rendering = Rendering::batch; --size:
+// the images' width and height (default the env's, 128).
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -13,13 +14,21 @@
 
 int main(int argc, char** argv) {
   chore::VectorEnvConfig config;
-  if (argc > 1 && std::string(argv[1]) == "--batch-rendering") {
-    config.rendering = chore::Rendering::batch;
-    ++argv;
-    --argc;
+  for (;;) {
+    const std::string option = argc > 1 ? argv[1] : "";
+    if (option == "--batch-rendering") {
+      config.rendering = chore::Rendering::batch;
+    } else if (option == "--size" && argc > 2 && std::atoi(argv[2]) > 0) {
+      config.env.width = config.env.height = std::atoi(argv[2]);
+      ++argv, --argc;
+    } else {
+      break;
+    }
+    ++argv, --argc;
   }
   if (argc < 5) {
-    std::cerr << "usage: chore_vector_rate [--batch-rendering] ACTIVITY ENVS THREADS STEPS [OBSERVATION...]\n";
+    std::cerr << "usage: chore_vector_rate [--batch-rendering] [--size N] ACTIVITY ENVS THREADS STEPS "
+                 "[OBSERVATION...]\n";
     return 2;
   }
   try {
