@@ -49,8 +49,9 @@ class CallGuard {
     }
     std::unique_lock<std::mutex> lock(busy_, std::try_to_lock);
     if (!lock) {
-      throw Error(what_ + ": in use by another thread; it serves one call at a time (chore.VectorEnv steps envs in "
-                          "parallel)");
+      throw Error(what_ +
+                  ": in use by another thread; it serves one call at a time (chore.VectorEnv steps envs in "
+                  "parallel)");
     }
     return lock;
   }
@@ -136,7 +137,8 @@ std::vector<std::string> primitive_names(const std::vector<PrimitiveAction>& act
 
 class PyVectorEnv {
  public:
-  PyVectorEnv(const py::dict& config, int num_envs, int num_threads, int batch_size, const std::string& autoreset) {
+  PyVectorEnv(const py::dict& config, int num_envs, int num_threads, int batch_size, const std::string& autoreset,
+              const std::string& rendering) {
     VectorEnvConfig c;
     c.env = env_config(config);
     c.num_envs = num_envs;
@@ -145,6 +147,9 @@ class PyVectorEnv {
     if (autoreset != "next_step" && autoreset != "same_step")
       throw Error("autoreset_mode '" + autoreset + "': expected next_step or same_step");
     c.autoreset = autoreset == "same_step" ? AutoReset::same_step : AutoReset::next_step;
+    if (rendering != "per_thread" && rendering != "batch")
+      throw Error("rendering '" + rendering + "': expected per_thread or batch");
+    c.rendering = rendering == "batch" ? Rendering::batch : Rendering::per_thread;
     py::gil_scoped_release release;  // building envs compiles scenes
     envs_ = std::make_unique<VectorEnv>(c);
     action_size_ = envs_->single_action_space().element_count();
@@ -246,8 +251,9 @@ PYBIND11_MODULE(_chore, m) {
       .def("close", &PyEnv::close);
 
   py::class_<PyVectorEnv>(m, "VectorEnv")
-      .def(py::init<const py::dict&, int, int, int, const std::string&>(), py::arg("config"), py::arg("num_envs"),
-           py::arg("num_threads"), py::arg("batch_size"), py::arg("autoreset_mode"))
+      .def(py::init<const py::dict&, int, int, int, const std::string&, const std::string&>(), py::arg("config"),
+           py::arg("num_envs"), py::arg("num_threads"), py::arg("batch_size"), py::arg("autoreset_mode"),
+           py::arg("rendering"))
       .def(
           "reset",
           [](py::object self, const std::vector<std::optional<uint64_t>>& seeds) {

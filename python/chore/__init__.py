@@ -130,15 +130,19 @@ class VectorEnv(_Closing, _VectorEnvBase):
     send(actions, env_ids) / recv() when batch_size < num_envs. Autoreset as
     Gymnasium's NEXT_STEP or SAME_STEP (metadata["autoreset_mode"]); with
     SAME_STEP, info["final_obs"] and info["final_info"] hold the ended
-    episodes' last observations (rows where info["_final_obs"] is True)."""
+    episodes' last observations (rows where info["_final_obs"] is True).
+    rendering: "per_thread" (each worker draws its envs in a render context
+    of its own) or "batch" (one context draws every env of a batch in one
+    pass, on the calling thread)."""
 
     def __init__(self, task=None, *, scene=None, num_envs=1, num_threads=1, batch_size=None,
                  action_space="low_level", mode="physical", observations=None, autoreset_mode="next_step",
-                 seed=None, copy=True, **options):
+                 rendering="per_thread", seed=None, copy=True, **options):
         autoreset_mode = getattr(autoreset_mode, "name", autoreset_mode)  # gymnasium.vector.AutoresetMode
         autoreset_mode = str(autoreset_mode).lower()
         config = _config(task, scene, action_space, mode, observations, options)
-        self._envs = _VectorEnv(config, int(num_envs), int(num_threads), int(batch_size or 0), autoreset_mode)
+        self._envs = _VectorEnv(config, int(num_envs), int(num_threads), int(batch_size or 0), autoreset_mode,
+                                str(rendering))
         self._copy = copy
         self._seed = _seed(seed)
         self.num_envs = self._envs.num_envs
@@ -246,13 +250,14 @@ def make(task=None, *, num_envs=None, **kwargs):
     """EnvPool's entry point: a VectorEnv of num_envs envs, or a single Env
     when num_envs is None. kwargs: scene, num_threads, batch_size,
     observations, action_space ("low_level" | "primitives"), mode ("physical"
-    | "symbolic"), autoreset_mode ("next_step" | "same_step"), seed, copy, and
+    | "symbolic"), autoreset_mode ("next_step" | "same_step"), rendering
+    ("per_thread" | "batch"), seed, copy, and
     the env options width, height, max_episode_steps, reward,
     reachable_instances, policy_failure_rule ("none" | "precondition" |
     "paper"), policy_failure_repeats, instances ("resample" | "fixed"),
     instance, robot, object_states, cloth."""
     if num_envs is None:
-        for vector_only in ("num_threads", "batch_size", "autoreset_mode", "seed"):
+        for vector_only in ("num_threads", "batch_size", "autoreset_mode", "rendering", "seed"):
             if vector_only in kwargs:
                 raise Error(f"make: {vector_only} needs num_envs")
         return Env(task, **kwargs)
