@@ -22,6 +22,7 @@
 #include "base/error.hpp"
 #include "base/json_file.hpp"
 #include "base/random.hpp"
+#include "base/temp_file.hpp"
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
 #include "planner/reachability.hpp"
@@ -294,13 +295,18 @@ Result read_result(const fs::path& path) {
   return r;
 }
 
+constexpr const char* kScratchName = "chore-coverage";  // the children's results, in a temporary folder
+
 // Each activity in a child process, `threads` at a time: an activity that
 // crashes the simulator (a signal inside MuJoCo) is reported as crashed, with
 // its signal, and the others go on. The parent forks before it starts any
 // thread of its own, and a child renders in an EGL context of its own.
 std::vector<Result> run_each_in_a_child(const std::vector<std::string>& files, const Vocabulary& vocabulary,
                                         const CoverageOptions& options, std::ostream& log) {
-  const fs::path scratch = fs::temp_directory_path() / ("chore-coverage-" + std::to_string(::getpid()));
+  // Named as a temporary of this process's (base/temp_file.hpp): those of
+  // runs that were killed go now.
+  remove_dead_writers_temps(fs::temp_directory_path(), [](const std::string& name) { return name == kScratchName; });
+  const fs::path scratch = temp_path_for(fs::temp_directory_path() / kScratchName);
   fs::create_directories(scratch);
   std::vector<Result> results(files.size());
   std::map<pid_t, size_t> running;

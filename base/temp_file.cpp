@@ -46,7 +46,9 @@ void remove_dead_writers_temps(const std::filesystem::path& dir,
     const std::string final_name = dead_writers_final_name(it->path().filename().string());
     if (final_name.empty() || !is_ours(final_name)) continue;
     std::error_code ignored;
-    if (it->is_regular_file(ignored)) std::filesystem::remove(it->path(), ignored);
+    const std::filesystem::file_status status = it->symlink_status(ignored);
+    if (std::filesystem::is_regular_file(status)) std::filesystem::remove(it->path(), ignored);
+    if (std::filesystem::is_directory(status)) std::filesystem::remove_all(it->path(), ignored);
   }
 }
 

@@ -21,8 +21,10 @@ std::filesystem::path temp_path_for(const std::filesystem::path& final_path);
 std::string dead_writers_final_name(const std::string& file_name);
 
 // Removes the files in `dir` (not below) that are temporaries of writers that
-// no longer run and whose FINAL `is_ours` accepts. Errors are ignored: what
-// cannot be removed now is left for the next start.
+// no longer run and whose FINAL `is_ours` accepts, and such folders with what
+// is in them (a scratch folder named by temp_path_for; never through a
+// symbolic link). Errors are ignored: what cannot be removed now is left for
+// the next start.
 void remove_dead_writers_temps(const std::filesystem::path& dir,
                                const std::function<bool(const std::string& final_name)>& is_ours);
 

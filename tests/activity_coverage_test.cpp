@@ -1,6 +1,7 @@
 // `chore activity coverage`: the stages each file reaches and the failures
 // grouped by cause.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -113,8 +114,18 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
                        "apple.n.01_1 - apple.n.01 floor.n.01_1 - floor.n.01) (:init (ontop agent.n.01_1 "
                        "floor.n.01_1) (future apple.n.01_1) (inroom floor.n.01_1 kitchen)) (:goal (real "
                        "apple.n.01_1)))");
+  // The scratch folder a killed run left (its children's results) goes at
+  // the next start; this run's goes at its end.
+  const std::filesystem::path stale = std::filesystem::temp_directory_path() / "chore-coverage.tmp.999999999.0";
+  std::filesystem::create_directories(stale);
+  test::write_file(stale / "0", "{}");
   std::ostringstream log;
   const nlohmann::json c = activity_coverage({.dir = dir.string(), .goals_only = true}, log);
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path())) {
+    EXPECT_NE(entry.path().filename().string().rfind("chore-coverage.tmp." + std::to_string(::getpid()) + ".", 0), 0u)
+        << entry.path();
+  }
   EXPECT_EQ(c["parsed"], 2);
   EXPECT_EQ(c["instantiated"], 0);
   EXPECT_EQ(c["goal_literals"], 3);

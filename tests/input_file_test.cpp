@@ -59,11 +59,13 @@ TEST(InputFile, AReadStopsAtItsBound) {
 TEST(Utf8, InvalidBytesAreEscapedAndValidTextIsKept) {
   EXPECT_EQ(valid_utf8("plain ascii"), "plain ascii");
   EXPECT_EQ(valid_utf8("caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x8D\xB4"), "caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x8D\xB4");
-  EXPECT_EQ(valid_utf8("a\xFF" "b"), "a\\xFFb");                       // never a lead byte
-  EXPECT_EQ(valid_utf8("\xC0\x80"), "\\xC0\\x80");                     // overlong NUL
-  EXPECT_EQ(valid_utf8("\xED\xA0\x80"), "\\xED\\xA0\\x80");            // a UTF-16 surrogate
-  EXPECT_EQ(valid_utf8("\xF4\x90\x80\x80"), "\\xF4\\x90\\x80\\x80");   // past U+10FFFF
-  EXPECT_EQ(valid_utf8("\xE2\x82"), "\\xE2\\x82");                     // cut short at the end
+  EXPECT_EQ(valid_utf8("a\xFF"
+                       "b"),
+            "a\\xFFb");                                               // never a lead byte
+  EXPECT_EQ(valid_utf8("\xC0\x80"), "\\xC0\\x80");                    // overlong NUL
+  EXPECT_EQ(valid_utf8("\xED\xA0\x80"), "\\xED\\xA0\\x80");           // a UTF-16 surrogate
+  EXPECT_EQ(valid_utf8("\xF4\x90\x80\x80"), "\\xF4\\x90\\x80\\x80");  // past U+10FFFF
+  EXPECT_EQ(valid_utf8("\xE2\x82"), "\\xE2\\x82");                    // cut short at the end
   EXPECT_EQ(valid_utf8(std::string("a\0b", 3)), std::string("a\0b", 3));
 }
 
@@ -88,24 +90,32 @@ TEST(TempFile, OnlyDeadWritersTemporariesOfOwnFilesAreRemoved) {
   EXPECT_EQ(dead_writers_final_name("a.tmp.b.tmp.999999999.12"), "a.tmp.b");
   EXPECT_EQ(dead_writers_final_name("checkpoint.pt.tmp." + pid + ".0"), "") << "a live writer's";
   EXPECT_EQ(dead_writers_final_name("checkpoint.pt.tmp.1.0"), "") << "PID 1 runs (init)";
-  for (const char* other : {"checkpoint.pt", "checkpoint.pt.tmp.999999999", "checkpoint.pt.tmp.9999999999.0",
-                            "checkpoint.pt.tmp.12x.0", "checkpoint.pt.tmp..0", ".tmp.999999999.0",
-                            "checkpoint.pt.tmp.999999999.0.bak"}) {
+  for (const char* other :
+       {"checkpoint.pt", "checkpoint.pt.tmp.999999999", "checkpoint.pt.tmp.9999999999.0", "checkpoint.pt.tmp.12x.0",
+        "checkpoint.pt.tmp..0", ".tmp.999999999.0", "checkpoint.pt.tmp.999999999.0.bak"}) {
     EXPECT_EQ(dead_writers_final_name(other), "") << other;
   }
 
   const fs::path dir = test::scratch_dir("temp_file");
   for (const std::string& name : std::vector<std::string>{"checkpoint.pt.tmp.999999999.0", "notes.txt.tmp.999999999.0",
-                                                         "checkpoint.pt.tmp." + pid + ".3", "checkpoint.pt"}) {
+                                                          "checkpoint.pt.tmp." + pid + ".3", "checkpoint.pt"}) {
     std::ofstream(dir / name) << "x";
   }
-  fs::create_directory(dir / "checkpoint_dir.pt.tmp.999999999.0");
+  // A dead writer's scratch folder goes with what is in it (activity
+  // coverage's); a link of such a name stays, and what it points to.
+  fs::create_directories(dir / "scratch.pt.tmp.999999999.0" / "inner");
+  std::ofstream(dir / "scratch.pt.tmp.999999999.0" / "inner" / "result") << "x";
+  const fs::path elsewhere = test::scratch_dir("temp_file_elsewhere");
+  std::ofstream(elsewhere / "kept") << "x";
+  fs::create_directory_symlink(elsewhere, dir / "linked.pt.tmp.999999999.0");
   remove_dead_writers_temps(dir, [](const std::string& final_name) { return final_name.ends_with(".pt"); });
   EXPECT_FALSE(fs::exists(dir / "checkpoint.pt.tmp.999999999.0"));
   EXPECT_TRUE(fs::exists(dir / "notes.txt.tmp.999999999.0")) << "not the caller's";
   EXPECT_TRUE(fs::exists(dir / ("checkpoint.pt.tmp." + pid + ".3"))) << "still being written";
   EXPECT_TRUE(fs::exists(dir / "checkpoint.pt"));
-  EXPECT_TRUE(fs::is_directory(dir / "checkpoint_dir.pt.tmp.999999999.0")) << "only files go";
+  EXPECT_FALSE(fs::exists(dir / "scratch.pt.tmp.999999999.0"));
+  EXPECT_TRUE(fs::is_symlink(dir / "linked.pt.tmp.999999999.0"));
+  EXPECT_TRUE(fs::exists(elsewhere / "kept"));
 }
 
 }  // namespace
