@@ -484,9 +484,12 @@ void Motion::wait(double seconds) {
 
 bool Motion::tuck() {
   if (world_.carried_object() < 0) return arm_to(kTuckedConfiguration);
+  // One checker for the five (what it checks against stands still while the
+  // arm alone moves): tuck ends every manipulation.
   const auto free_carry = [&]() -> const ArmConfiguration* {
+    ArmCollisionChecker checker(world_);
     for (const ArmConfiguration& q : kCarryConfigurations) {
-      if (!arm_in_collision(world_, q)) return &q;
+      if (!checker.collides(q.data())) return &q;
     }
     return nullptr;
   };
