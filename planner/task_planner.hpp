@@ -2,10 +2,14 @@
 // which order, over the primitives' symbolic models and the world's steps
 // (planner/symbolic_problem.hpp: the same models the primitives' files state
 // beside their execution). Greedy best-first search with deferred
-// evaluation and the additive heuristic (h_add, Bonet and Geffner 2001)
-// over the goal's options (tasks/goal.hpp: or, exists, forall, forn
-// expanded), bounded by a number of expansions: running out of it is an
-// outcome, never a hang.
+// evaluation over the goal's options (tasks/goal.hpp: or, exists, forall,
+// forn expanded), as Fast Downward's lazy greedy search: the FF heuristic
+// (the relaxed plan read back from the additive heuristic's cheapest steps,
+// Bonet and Geffner 2001, Hoffmann and Nebel 2001) with what steps need
+// absent kept in the relaxation, the goal's literals that must go again on
+// the way counted as missing, and a second open list of the children by
+// helpful steps, taking turns with the first. Bounded by a number of
+// expansions: running out of it is an outcome, never a hang.
 //
 //   const Plan p = plan_task(symbolic_problem(problem, kb, rules), ground_goal(problem));
 //   for (const PlanStep& s : p.steps) if (s.primitive) ... s.name ("pick(apple.n.01_1)")

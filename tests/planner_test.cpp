@@ -519,5 +519,37 @@ TEST(TaskPlanner, GoesToWhatADoorShutsInOnlyOnceItIsOpen) {
   EXPECT_LT(at("push(oven.n.01_1)"), at("navigate(fruitcake.n.02_1)"));
 }
 
+// boxing_food_after_dinner: three kabobs into a tupperware, the tupperware
+// into the closed fridge, the fridge closed again. Picking the tupperware up
+// leaves what is in it behind, so the kabobs go in once it is in the fridge.
+// The search found no plan in 200,000 expansions (greedy on h_add: opening
+// the fridge and picking anything up raise it, and a tupperware in the closed
+// fridge looked as near as one on the table, the relaxation blind to what a
+// step needs absent); now 3,646, within the default budget.
+TEST(TaskPlanner, PutsTheTupperwareAwayBeforeFillingIt) {
+  std::string objects =
+      "tupperware.n.01_1 - tupperware.n.01 electric_refrigerator.n.01_1 - electric_refrigerator.n.01 "
+      "breakfast_table.n.01_1 - breakfast_table.n.01 floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01";
+  std::string init =
+      "(ontop tupperware.n.01_1 breakfast_table.n.01_1) (inroom electric_refrigerator.n.01_1 kitchen) "
+      "(inroom breakfast_table.n.01_1 dining_room) (inroom floor.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)";
+  for (const char* n : {"1", "2", "3"}) {
+    objects += std::string(" kabob.n.01_") + n + " - kabob.n.01 plate.n.04_" + n + " - plate.n.04";
+    init += std::string(" (ontop kabob.n.01_") + n + " plate.n.04_" + n + ") (ontop plate.n.04_" + n +
+            " breakfast_table.n.01_1)";
+  }
+  const Case boxing = solve(objects, init,
+                            "(and (forall (?kabob.n.01 - kabob.n.01) (inside ?kabob.n.01 ?tupperware.n.01_1)) "
+                            "(inside ?tupperware.n.01_1 ?electric_refrigerator.n.01_1) "
+                            "(not (open ?electric_refrigerator.n.01_1)))");
+  const Plan out = plan_task(boxing.symbolic, ground_goal(boxing.problem));
+  ASSERT_TRUE(out.found) << out.reason;
+  const std::vector<std::string> steps = names(out);
+  const auto at = [&](const char* step) { return position(steps, step); };
+  EXPECT_LT(at("place(electric_refrigerator.n.01_1)"), at("place(tupperware.n.01_1)"));
+  EXPECT_EQ(steps.back(), "close(electric_refrigerator.n.01_1)");
+  EXPECT_EQ(std::count(steps.begin(), steps.end(), "place(tupperware.n.01_1)"), 3);
+}
+
 }  // namespace
 }  // namespace chore
