@@ -233,7 +233,14 @@ void support_sizes(const Problem& problem, const CategoryModels& models, AnalogE
       if (l.predicate != "inside" && l.predicate != "ontop") continue;
       Load& load = loads[l.args[1]];
       const double diagonal = s.head<2>().norm() + 0.02;
-      load.inside |= l.predicate == "inside";
+      // On a bowl is in it (pea pods on a mixing bowl): a container grows
+      // both ways for what it holds either way. Grown along its width
+      // alone, a bowl for five pea pods was 0.94 m across, and the counter
+      // under it as deep, its middle out of the arm's reach. (Not a basin:
+      // a sink grown deeper for the plates on it put its tap out of reach.)
+      const Archetype held_by = models.archetype(support);
+      load.inside |=
+          l.predicate == "inside" || held_by == Archetype::open_container || held_by == Archetype::lidded_container;
       load.area += diagonal * diagonal;
       load.diagonal = std::max(load.diagonal, diagonal);
       if (l.predicate == "inside") load.height = std::max(load.height, s.z());

@@ -8,8 +8,9 @@
 // Bonet and Geffner 2001, Hoffmann and Nebel 2001) with what steps need
 // absent kept in the relaxation, the goal's literals that must go again on
 // the way counted as missing, and a second open list of the children by
-// helpful steps, taking turns with the first. Bounded by a number of
-// expansions: running out of it is an outcome, never a hang.
+// helpful steps, taking turns with the first; the way found without the
+// steps it can do without (greedy action elimination). Bounded by a number
+// of expansions: running out of it is an outcome, never a hang.
 //
 //   const Plan p = plan_task(symbolic_problem(problem, kb, rules), ground_goal(problem));
 //   for (const PlanStep& s : p.steps) if (s.primitive) ... s.name ("pick(apple.n.01_1)")

@@ -492,6 +492,39 @@ TEST(SceneAnalogs, AGardenHasItsLawnAndContainersHoldTheirContents) {
   EXPECT_GT(object_aabb(world, static_cast<int>(box - scene.objects().data())).extent().x(), chorizo.head<2>().norm());
 }
 
+// clean_snap_peas: five pea pods on a mixing bowl on a counter. On a bowl
+// is in it: the bowl grows both ways for them, as for what goes inside.
+// Grown along its width alone it was 0.94 x 0.76 m, and the counter under it
+// 1.05 m deep, the pods at its middle out of the arm's reach.
+TEST(SceneAnalogs, ABowlGrowsBothWaysForWhatLiesOnIt) {
+  const fs::path file = write_activity("analog_bowl", "pea_pods_on_a_bowl", R"((define (problem pea_pods_on_a_bowl-0)
+    (:domain omnigibson)
+    (:objects
+        pea_pod.n.01_1 pea_pod.n.01_2 pea_pod.n.01_3 pea_pod.n.01_4 pea_pod.n.01_5 - pea_pod.n.01
+        mixing_bowl.n.01_1 - mixing_bowl.n.01
+        countertop.n.01_1 - countertop.n.01
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (ontop pea_pod.n.01_1 mixing_bowl.n.01_1)
+        (ontop pea_pod.n.01_2 mixing_bowl.n.01_1)
+        (ontop pea_pod.n.01_3 mixing_bowl.n.01_1)
+        (ontop pea_pod.n.01_4 mixing_bowl.n.01_1)
+        (ontop pea_pod.n.01_5 mixing_bowl.n.01_1)
+        (ontop mixing_bowl.n.01_1 countertop.n.01_1)
+        (inroom countertop.n.01_1 kitchen)
+        (inroom floor.n.01_1 kitchen)
+        (ontop agent.n.01_1 floor.n.01_1))
+    (:goal (and (ontop ?pea_pod.n.01_1 ?countertop.n.01_1))))
+)");
+  Env env(unpictured(file));
+  env.reset(0);
+  const World& world = env.world();
+  const Eigen::Vector3d bowl = object_aabb(world, env.activity()->object("mixing_bowl.n.01_1")).extent();
+  EXPECT_LT(std::max(bowl.x(), bowl.y()), 1.05 * std::min(bowl.x(), bowl.y())) << bowl.transpose();
+  EXPECT_LT(std::max(bowl.x(), bowl.y()), 0.85) << bowl.transpose();
+}
+
 // BDDL's attached: a rod attached to a wall nail is welded where it was
 // sampled, stays there as the world steps, and is let go at the next reset.
 TEST(SceneAnalogs, AttachedObjectsAreWeldedWhereSampled) {
