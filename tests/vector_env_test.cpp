@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cstring>
 #include <random>
@@ -63,13 +66,18 @@ TEST(VectorEnv, ResultsDoNotDependOnTheThreadCount) {
 // one pass. Its results do not depend on the thread count, and are those of
 // per-thread rendering that puts env i in tile i too (render_tiles = N), bit
 // for bit, through autoresets of both kinds (same_step: the ended episodes'
-// last frames drawn before their resets).
+// last frames drawn before their resets), every image modality (the second
+// autoreset with segmentation, normals and flow beside RGB-D).
 TEST(VectorEnv, BatchRenderingDrawsWhatPerThreadRenderingDraws) {
   for (const AutoReset autoreset : {AutoReset::next_step, AutoReset::same_step}) {
     VectorEnvConfig per_thread = config(4, 2, 5), one = config(4, 1, 5), two = config(4, 2, 5);
     per_thread.render_tiles = 4;
     one.rendering = two.rendering = Rendering::batch;
-    for (VectorEnvConfig* c : {&per_thread, &one, &two}) c->autoreset = autoreset;
+    for (VectorEnvConfig* c : {&per_thread, &one, &two}) {
+      c->autoreset = autoreset;
+      if (autoreset == AutoReset::same_step)
+        c->env.observations = {"rgb", "depth", "seg_semantic", "seg_instance", "normal", "flow", "proprio"};
+    }
     VectorEnv reference(per_thread), batch_one(one), batch_two(two);
     const auto expected = snapshot(reference.reset(7));
     EXPECT_EQ(snapshot(batch_one.reset(7)), expected);
@@ -90,10 +98,55 @@ TEST(VectorEnv, BatchRenderingDrawsWhatPerThreadRenderingDraws) {
         }
       }
     }
-    // The frames are drawn: not one colour.
-    const Array& rgb = (*batch_two.step(random_actions(rng, 4)).obs)["rgb"];
+    // The frames are drawn: not one colour; segments and normals of more
+    // than one surface.
+    const Batch last = batch_two.step(random_actions(rng, 4));
+    const Array& rgb = (*last.obs)["rgb"];
     EXPECT_GT(std::set<unsigned char>(rgb.bytes.begin(), rgb.bytes.end()).size(), 20u);
+    if (autoreset == AutoReset::same_step) {
+      const Array& seg = (*last.obs)["seg_instance"];
+      const auto* ids = reinterpret_cast<const std::int32_t*>(seg.bytes.data());
+      EXPECT_GT(std::set<std::int32_t>(ids, ids + seg.bytes.size() / 4).size(), 3u);
+      const Array& normal = (*last.obs)["normal"];
+      const auto* n = reinterpret_cast<const float*>(normal.bytes.data());
+      EXPECT_GT(std::set<float>(n, n + normal.bytes.size() / 4).size(), 3u);
+    }
   }
+}
+
+// Sixteen envs of StoreDecoration in the apartment, drawn in one batch pass:
+// each env's RGB is that of per-thread rendering with the env in the same
+// tile, and the sheet of the sixteen views (build/test_output/
+// batch_rendering_16_envs.png) shows sixteen instances of the activity.
+TEST(VectorEnv, SixteenEnvsOfAnActivityInOneBatchPass) {
+  VectorEnvConfig batch, per_thread;
+  for (VectorEnvConfig* c : {&batch, &per_thread}) {
+    c->env.activity = "store_decoration";
+    c->env.width = c->env.height = 128;
+    c->env.observations = {"rgb"};
+    c->num_envs = 16;
+    c->num_threads = 2;
+  }
+  batch.rendering = Rendering::batch;
+  per_thread.render_tiles = 16;
+  VectorEnv a(batch), b(per_thread);
+  const Batch drawn = a.reset(11), expected = b.reset(11);
+  const Array& rgb = (*drawn.obs)["rgb"];
+  EXPECT_EQ(rgb.bytes, (*expected.obs)["rgb"].bytes);
+  cv::Mat sheet(4 * 128, 4 * 128, CV_8UC3);
+  for (int e = 0; e < 16; ++e) {
+    const cv::Mat view(128, 128, CV_8UC3, const_cast<std::uint8_t*>(rgb.bytes.data()) + e * 128 * 128 * 3);
+    cv::Mat bgr;
+    cv::cvtColor(view, bgr, cv::COLOR_RGB2BGR);
+    bgr.copyTo(sheet(cv::Rect(e % 4 * 128, e / 4 * 128, 128, 128)));
+    // Each view drawn: more than a handful of colours.
+    EXPECT_GT(
+        std::set<unsigned char>(rgb.bytes.begin() + e * 128 * 128 * 3, rgb.bytes.begin() + (e + 1) * 128 * 128 * 3)
+            .size(),
+        20u)
+        << "env " << e;
+  }
+  cv::imwrite((test::output_dir() / "batch_rendering_16_envs.png").string(), sheet);
 }
 
 // Rendering::batch with send()/recv(): each batch of results drawn in one
