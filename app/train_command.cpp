@@ -147,6 +147,14 @@ TrainConfig new_run_config(const TrainOptions& o) {
   return config;
 }
 
+// A rank other than 0: the same updates as rank 0's, in step with it, and
+// nothing written (rank 0's checkpoints stand for the run).
+void train_beside(Trainer& trainer, int64_t total, const RankInfo& rank, std::ostream& log) {
+  trainer.train(total, [](const MetricsRow&) {});
+  log << "train: rank " << rank.rank << " of " << rank.world_size << ": " << trainer.env_steps()
+      << " steps done (rank 0 writes the run)" << std::endl;
+}
+
 void run_train(const TrainOptions& o, std::ostream& log) {
   const std::string dir = o.out.empty() ? o.resume : o.out;
   if (dir.empty()) throw Error("train: give --out DIR (or --resume DIR)");
@@ -155,6 +163,11 @@ void run_train(const TrainOptions& o, std::ostream& log) {
   if (o.steps && *o.steps < 1) throw Error("train: --steps must be at least 1");
   if (o.checkpoint_every && *o.checkpoint_every < 1) throw Error("train: --checkpoint-every must be at least 1");
   const fs::path checkpoint = fs::path(dir) / "checkpoint.pt";
+  // One rank of a data-parallel run when the launcher says so (torchrun's
+  // or Slurm's variables): rank 0 keeps the run folder (config, metrics,
+  // checkpoints), the others train beside it and write nothing.
+  const RankInfo rank = rank_from_environment();
+  const bool writes = rank.rank == 0;
 
   std::unique_ptr<Trainer> trainer;
   std::optional<RunFolder> made;  // what a new run made, removed if it fails before its first checkpoint
@@ -163,8 +176,8 @@ void run_train(const TrainOptions& o, std::ostream& log) {
       throw Error("train: --resume continues in its own folder; drop --out or make it the same");
     }
     if (!fs::exists(checkpoint)) throw Error("train: --resume " + o.resume + ": no checkpoint.pt there");
-    remove_stale_checkpoint_temps(dir);
-    trainer = resume_trainer(checkpoint.string());
+    if (writes) remove_stale_checkpoint_temps(dir);
+    trainer = resume_trainer(checkpoint.string(), rank);
     // The run's own config holds; only --steps may change (extend) it.
     if (!o.settings.empty()) throw Error("train: --set changes a new run; --resume continues one as it was");
     const TrainConfig& saved = trainer->config();
@@ -176,13 +189,15 @@ void run_train(const TrainOptions& o, std::ostream& log) {
                   " steps; --resume continues it as it was");
     }
   } else {
-    if (fs::exists(checkpoint)) {
+    if (writes && fs::exists(checkpoint)) {
       throw Error("train: " + dir + " already holds a run (checkpoint.pt); --resume " + dir +
                   " continues it, or choose another --out");
     }
     // The trainer (its envs, the activity) first: a bad setting leaves no folder behind.
-    const TrainConfig config = new_run_config(o);
+    TrainConfig config = new_run_config(o);
+    config.rank = rank;
     trainer = make_trainer(config);
+    if (!writes) return train_beside(*trainer, o.steps.value_or(config.total_steps), rank, log);
     made.emplace(dir);
     remove_stale_checkpoint_temps(dir);
     // The run's settings, readable without the checkpoint (the names --set takes).
@@ -192,6 +207,7 @@ void run_train(const TrainOptions& o, std::ostream& log) {
   }
   TrainConfig config = trainer->config();
   const int64_t total = o.steps.value_or(config.total_steps);
+  if (!writes) return train_beside(*trainer, total, rank, log);
 
   std::string header = kMetricsHeader;
   for (const std::string& name : trainer->extra_metric_names()) header += "," + name;

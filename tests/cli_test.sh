@@ -156,6 +156,28 @@ expect 2 "not a chore checkpoint" -- "$chore" eval --checkpoint "$run_dir/checkp
 expect 2 "excludes" -- "$chore" eval --checkpoint "$run_dir/checkpoint.pt" --expert
 expect 2 "sample requires --checkpoint" -- "$chore" eval --expert --activity store_decoration --sample
 
+# chore train as two ranks of a data-parallel run (torchrun's variables,
+# Gloo over loopback): rank 0 writes the run, rank 1 trains beside it and
+# writes nothing; both resume from rank 0's checkpoint. A bad rank variable
+# is exit 2 naming it.
+ranks_dir="$(mktemp -d)/run"
+port=$((20000 + RANDOM % 20000))
+ranked() {  # ranked RANK PORT train-arguments...
+  local r="$1" p="$2"
+  shift 2
+  env WORLD_SIZE=2 RANK="$r" MASTER_ADDR=127.0.0.1 MASTER_PORT="$p" "$chore" train "$@"
+}
+ranked 1 "$port" --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 600 --set ppo.epochs=3 --out "$ranks_dir" > "$ranks_dir.rank1" 2>&1 &
+expect 0 "600 steps done; checkpoint" -- ranked 0 "$port" --activity collect_trash --baseline rl-prim --mode symbolic --observations is_grasping --steps 600 --set ppo.epochs=3 --out "$ranks_dir"
+wait
+expect 0 "rank 1 of 2: 600 steps done (rank 0 writes the run)" -- cat "$ranks_dir.rank1"
+expect 0 "^600," -- tail -1 "$ranks_dir/metrics.csv"
+ranked 1 $((port + 1)) --resume "$ranks_dir" --steps 1200 > "$ranks_dir.rank1" 2>&1 &
+expect 0 "1200 steps done; checkpoint" -- ranked 0 $((port + 1)) --resume "$ranks_dir" --steps 1200
+wait
+expect 0 "rank 1 of 2: 1200 steps done" -- cat "$ranks_dir.rank1"
+expect 2 "distributed: RANK='2' is not a whole number in \[0, 1\]" -- ranked 2 "$port" --resume "$ranks_dir" --steps 1800
+
 # chore reproduce: bad arguments exit 2 before any run starts (the table itself
 # is tested in tests/reproduce_test.cpp).
 reproduce_out="$(mktemp -d)"

@@ -3,32 +3,15 @@
 // this process), with a rank that never comes or goes away.
 #include <gtest/gtest.h>
 
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <thread>
 
 #include "base/error.hpp"
+#include "test_util.hpp"
 #include "training/distributed.hpp"
 
 namespace chore {
 namespace {
-
-// A TCP port free on loopback now (the kernel's choice for port 0).
-int free_port() {
-  const int s = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = 0;
-  socklen_t n = sizeof a;
-  const bool ok = bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
-                  getsockname(s, reinterpret_cast<sockaddr*>(&a), &n) == 0;
-  close(s);
-  return ok ? ntohs(a.sin_port) : 29500;
-}
 
 TEST(Distributed, TheRankComesFromTorchrunsOrSlurmsVariables) {
   EXPECT_EQ(rank_from_environment(std::map<std::string, std::string>{}).world_size, 1);
@@ -71,7 +54,7 @@ TEST(Distributed, TheRankComesFromTorchrunsOrSlurmsVariables) {
 // Two ranks: the mean of what each holds, rank 0's broadcast, and whether
 // they hold the same.
 TEST(Distributed, TwoRanksOverLoopbackAverageBroadcastAndCompare) {
-  const int port = free_port();
+  const int port = test::free_port();
   float means[2][3];
   bool same_before[2], same_after[2];
   const auto rank = [&](int r) {
@@ -101,7 +84,7 @@ TEST(Distributed, TwoRanksOverLoopbackAverageBroadcastAndCompare) {
 TEST(Distributed, ARankThatNeverComesFailsTheOthersWithinTheTimeout) {
   const auto start = std::chrono::steady_clock::now();
   try {
-    Ranks ranks({0, 2, "127.0.0.1", free_port(), "torchrun"}, std::chrono::milliseconds(1500));
+    Ranks ranks({0, 2, "127.0.0.1", test::free_port(), "torchrun"}, std::chrono::milliseconds(1500));
     FAIL() << "met a rank that does not exist";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("distributed: rank 0 of 2 (127.0.0.1:"), std::string::npos) << e.what();
@@ -113,7 +96,7 @@ TEST(Distributed, ARankThatNeverComesFailsTheOthersWithinTheTimeout) {
 // A rank that goes away after meeting: the all-reduce of the other fails
 // within the timeout, a chore::Error, never a hang.
 TEST(Distributed, ARankThatGoesAwayFailsTheOthersCollective) {
-  const int port = free_port();
+  const int port = test::free_port();
   std::string error;
   std::thread zero([&] {
     Ranks ranks({0, 2, "127.0.0.1", port, "torchrun"}, std::chrono::milliseconds(3000));

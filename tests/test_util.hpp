@@ -1,6 +1,10 @@
 // Shared helpers for the test suites: test data paths and scratch directories.
 #pragma once
 
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -13,6 +17,20 @@ namespace chore::test {
 
 inline std::string data_path(const std::string& relative) {
   return std::string(CHORE_TEST_DATA) + "/" + relative;
+}
+
+// A TCP port free on loopback now (the kernel's choice for port 0).
+inline int free_port() {
+  const int s = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = 0;
+  socklen_t n = sizeof a;
+  const bool ok = bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
+                  getsockname(s, reinterpret_cast<sockaddr*>(&a), &n) == 0;
+  close(s);
+  return ok ? ntohs(a.sin_port) : 29500;
 }
 
 inline std::string box_room() {

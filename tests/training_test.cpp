@@ -125,6 +125,61 @@ TEST_P(PpoLearns, ToPutABottleInTheBin) {
 
 INSTANTIATE_TEST_SUITE_P(Baselines, PpoLearns, ::testing::Values("rl-prim", "rl-prim-hist"));
 
+// DD-PPO: two ranks (threads of this process, over loopback) of one env each
+// learn the bottle task as one rank does (the same steps in all, each rank
+// collecting and learning from half of every rollout and minibatch), their
+// parameters the same bit for bit after every update (the trainer checks
+// it) and at the end.
+TEST(Training, TwoRanksOfPpoLearnToPutABottleInTheBin) {
+  TrainConfig config = one_bottle_config();
+  config.ppo.lr = 1e-3;
+  const double random = random_return(config.env, 40, 1000);
+  const int port = test::free_port();
+  std::vector<MetricsRow> rows[2];
+  std::vector<float> parameters[2];
+  int64_t steps[2];
+  const auto rank = [&](int r) {
+    TrainConfig mine = config;
+    mine.rank = {r, 2, "127.0.0.1", port, "torchrun"};
+    auto trainer = make_trainer(mine);
+    rows[r] = train(*trainer, 4000);
+    parameters[r] = trainer->parameters();
+    steps[r] = trainer->env_steps();
+  };
+  std::thread one(rank, 1);
+  rank(0);
+  one.join();
+  EXPECT_EQ(steps[0], steps[1]);
+  EXPECT_GE(steps[0], 4000);
+  EXPECT_EQ(parameters[0], parameters[1]);
+  for (const auto& r : rows) {
+    EXPECT_GT(r.back().mean_return, random + 0.4) << "random " << random;
+    EXPECT_GT(r.back().success_rate, 0.6);
+  }
+}
+
+// Over ranks: a rollout and minibatch that do not split evenly, and SAC, are
+// errors saying why.
+TEST(Training, RanksNeedEvenSharesAndPpo) {
+  TrainConfig config = one_bottle_config();
+  config.rank = {0, 7, "127.0.0.1", 1, "torchrun"};
+  EXPECT_THROW(
+      {
+        try {
+          make_trainer(config);
+        } catch (const Error& e) {
+          EXPECT_STREQ(e.what(),
+                       "ppo: over 7 ranks, ppo.buffer (300) and ppo.batch (64) must be multiples of it: each rank "
+                       "collects and learns from its share");
+          throw;
+        }
+      },
+      Error);
+  TrainConfig sac = reach_config();
+  sac.rank = {0, 2, "127.0.0.1", 1, "torchrun"};
+  EXPECT_THROW(make_trainer(sac), Error);
+}
+
 // GAE by hand: two envs, three steps, a value network that answers 0.5
 // everywhere (final observations and the one after the rollout included),
 // gamma 0.9, lambda 0.8. Env 0 terminates at step 1; env 1 is truncated at
@@ -136,7 +191,7 @@ INSTANTIATE_TEST_SUITE_P(Baselines, PpoLearns, ::testing::Values("rl-prim", "rl-
 TEST(Training, PpoLossOfAHandComputedMinibatch) {
   const torch::Tensor logits = torch::tensor({{0.0f, 0.0f}, {std::log(3.0f), 0.0f}});  // probs (.5, .5), (.75, .25)
   const torch::Tensor actions = torch::tensor({0, 1}, torch::kInt64);
-  const torch::Tensor old_log_probs = torch::full({2}, std::log(0.5f));                // ratios 1 and 0.5
+  const torch::Tensor old_log_probs = torch::full({2}, std::log(0.5f));  // ratios 1 and 0.5
   const torch::Tensor values = torch::tensor({0.5f, 0.0f}), returns = torch::tensor({1.5f, -1.0f});
   const PpoLoss l = ppo_loss(logits, values, actions, old_log_probs, torch::tensor({1.0f, -1.0f}), returns,
                              /*clip=*/0.2, /*value_coef=*/0.5, /*entropy_coef=*/0.01, /*normalize_advantage=*/false);
@@ -148,8 +203,8 @@ TEST(Training, PpoLossOfAHandComputedMinibatch) {
   EXPECT_NEAR(l.approx_kl, (0.0 + (0.5 - 1 - std::log(0.5))) / 2, 1e-6);
   EXPECT_DOUBLE_EQ(l.clip_fraction, 0.5);
   // Normalised over the minibatch: advantages +-1/sqrt(2) (torch's unbiased std of +-1 is sqrt(2)).
-  const PpoLoss n = ppo_loss(logits, values, actions, old_log_probs, torch::tensor({1.0f, -1.0f}), returns, 0.2, 0.5,
-                             0.01, true);
+  const PpoLoss n =
+      ppo_loss(logits, values, actions, old_log_probs, torch::tensor({1.0f, -1.0f}), returns, 0.2, 0.5, 0.01, true);
   EXPECT_NEAR(n.policy.item<double>(), (-1.0 + 0.8) / 2 / std::sqrt(2.0), 1e-6);
 }
 
@@ -192,7 +247,8 @@ TEST(Training, FrameStackKeepsTheLastKObservationsNewestFirst) {
   EXPECT_TRUE(torch::equal(three.state, torch::tensor({{4.0f, 4.0f, 2.0f, 2.0f, 1.0f, 1.0f}})));
   const ObsTensors four = stack.push(env1, frame(50, 5.0f));  // the oldest falls out
   EXPECT_TRUE(torch::equal(four.state, torch::tensor({{5.0f, 5.0f, 4.0f, 4.0f, 2.0f, 2.0f}})));
-  EXPECT_TRUE(torch::equal(stack.push(env0, frame(7, 7.0f)).state, torch::tensor({{7.0f, 7.0f, 0.0f, 0.0f, 0.0f, 0.0f}})));
+  EXPECT_TRUE(
+      torch::equal(stack.push(env0, frame(7, 7.0f)).state, torch::tensor({{7.0f, 7.0f, 0.0f, 0.0f, 0.0f, 0.0f}})));
   stack.reset(env1);
   const ObsTensors fresh = stack.push(env1, frame(60, 6.0f));
   EXPECT_TRUE(torch::equal(fresh.state, torch::tensor({{6.0f, 6.0f, 0.0f, 0.0f, 0.0f, 0.0f}})));
@@ -587,7 +643,8 @@ TEST(Checkpoint, CorruptTruncatedAndIncompatibleFilesAreErrors) {
   std::string corrupt = bytes;
   corrupt[bytes.size() - 8 - 16] ^= 0x5a;
   const std::string corrupt_path = write("corrupt.pt", corrupt);
-  EXPECT_NE(load_error(corrupt_path).find("corrupt (checksum mismatch)"), std::string::npos) << load_error(corrupt_path);
+  EXPECT_NE(load_error(corrupt_path).find("corrupt (checksum mismatch)"), std::string::npos)
+      << load_error(corrupt_path);
   // A byte of the framing (a tensor's shape) is named as such.
   std::string reshaped = bytes;
   reshaped[bytes.size() / 2] ^= 0x5a;

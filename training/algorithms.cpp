@@ -32,9 +32,10 @@ std::unique_ptr<Trainer> make_trainer(const TrainConfig& config) {
   return algorithm_of(config.baseline).make(config, nullptr);  // names an unknown baseline
 }
 
-std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint) {
+std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint, const RankInfo& rank) {
   const CheckpointFile file = read_checkpoint(checkpoint);
-  const TrainConfig config = read_checkpoint_meta(file).config;
+  TrainConfig config = read_checkpoint_meta(file).config;
+  config.rank = rank;
   try {
     return algorithm_of(config.baseline).make(config, &file);
   } catch (const nlohmann::json::exception& e) {

@@ -8,6 +8,10 @@
 // by truncation bootstrap from the value of the final observation
 // (training/gae.hpp). RL-Prim.Hist.'s policy sees its last K observations
 // (FrameStack); rl-prim-action-hist's its last K primitives (History).
+// Over several ranks (TrainConfig::rank) it is DD-PPO (Wijmans et al. 2020):
+// each rank collects its share of the rollout with envs of its own, and the
+// ranks average each minibatch's gradients (training/distributed.hpp) before
+// the step, so that their parameters stay the same (checked after each update).
 #include <chrono>
 #include <numeric>
 #include <optional>
@@ -16,6 +20,7 @@
 #include "base/memory.hpp"
 #include "policies/networks.hpp"
 #include "training/checkpoint.hpp"
+#include "training/distributed.hpp"
 #include "training/gae.hpp"
 #include "training/ppo_loss.hpp"
 #include "training/torch_support.hpp"
@@ -25,6 +30,10 @@ namespace chore {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Apart from rank 0's, each rank's seeds (envs, actions, minibatches) start
+// this far from the previous rank's: streams that never meet in a run.
+constexpr uint64_t kRankStreams = uint64_t{1} << 40;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -65,6 +74,12 @@ class PpoTrainer : public Trainer {
       throw Error("ppo: needs the primitive (Discrete) action space, got " + env_.single_action_space().to_string());
     }
     if (p.buffer < 1 || p.batch < 1 || p.epochs < 1) throw Error("ppo: buffer, batch and epochs must be positive");
+    const int ranks = config_.rank.world_size;
+    if (p.buffer % ranks != 0 || p.batch % ranks != 0) {
+      throw Error("ppo: over " + std::to_string(ranks) + " ranks, ppo.buffer (" + std::to_string(p.buffer) +
+                  ") and ppo.batch (" + std::to_string(p.batch) +
+                  ") must be multiples of it: each rank collects and learns from its share");
+    }
     if (p.frames < 1 || p.frames > 64) throw Error("ppo: frames must be 1..64, got " + std::to_string(p.frames));
     if (p.history < 0 || p.history > 64) throw Error("ppo: history must be 0..64, got " + std::to_string(p.history));
     check_fits_in_memory(p.buffer * spec_.observation_bytes(),
@@ -72,17 +87,25 @@ class PpoTrainer : public Trainer {
     if (!(p.target_kl >= 0))
       throw Error("ppo: target_kl must be 0 (off) or positive, got " + std::to_string(p.target_kl));
     generator_ = seed_torch(config_.seed, config_.threads);
-    net_ = ActorCritic(spec_);
+    net_ = ActorCritic(spec_);  // drawn from the seed alone: the same on every rank
     optimizer_.emplace(net_->parameters(), torch::optim::AdamOptions(p.lr).eps(1e-5));
     if (spec_.history > 0) history_.emplace(spec_.history, spec_.num_actions);
     if (spec_.frames > 1) frames_.emplace(spec_.frames);
     env_ids_.resize(config_.num_envs);
     std::iota(env_ids_.begin(), env_ids_.end(), 0);
-    steps_per_rollout_ = (p.buffer + config_.num_envs - 1) / config_.num_envs;
+    steps_per_rollout_ = (p.buffer / ranks + config_.num_envs - 1) / config_.num_envs;
     if (resume) load(*resume);
+    // Another rank's envs, actions and minibatches follow streams of its own
+    // (rank 0's are the single-process run's).
+    const uint64_t stream = config_.seed + static_cast<uint64_t>(config_.rank.rank) * kRankStreams;
+    if (config_.rank.rank > 0) generator_ = at::detail::createCPUGenerator(stream + static_cast<uint64_t>(steps_));
     // A resumed run restarts its envs; seed + steps keeps it reproducible.
-    obs_ = observe(*env_.reset(config_.seed + static_cast<uint64_t>(steps_)).obs);
+    obs_ = observe(*env_.reset(stream + static_cast<uint64_t>(steps_)).obs);
     if (!resume) net_->encoder->update_normalizers(obs_);
+    if (ranks > 1) {
+      ranks_.emplace(config_.rank);
+      ranks_->broadcast(state());  // rank 0's parameters and normalisers everywhere
+    }
   }
 
   void train(int64_t until, const Report& report) override {
@@ -94,7 +117,7 @@ class PpoTrainer : public Trainer {
       const double period_s = seconds_since(start);
       wall_s_ += period_s;
       MetricsRow row = stats_.row(steps_, wall_s_);
-      const double steps = static_cast<double>(steps_per_rollout_ * config_.num_envs);
+      const double steps = static_cast<double>(steps_per_rollout_ * config_.num_envs * config_.rank.world_size);
       row.extras = {steps / period_s, steps / collect_s, u.update_ms, u.policy_loss,
                     u.value_loss,     u.entropy,         u.approx_kl, u.clip_fraction};
       report(row);
@@ -197,7 +220,7 @@ class PpoTrainer : public Trainer {
       if (history_) history_->reset(ended);
       if (frames_) frames_->reset(ended);
       obs_ = observe(*batch.obs);
-      steps_ += n;
+      steps_ += n * config_.rank.world_size;  // the run's steps: every rank steps alike
     }
   }
 
@@ -224,22 +247,27 @@ class PpoTrainer : public Trainer {
     int updates = 0;
     bool stopped_early = false;  // by target_kl
     const auto start = Clock::now();
+    const int64_t batch = p.batch / config_.rank.world_size;  // this rank's share of a minibatch
     for (int epoch = 0; epoch < p.epochs && !stopped_early; ++epoch) {
       const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
-      for (int64_t begin = 0; begin < rows; begin += p.batch) {
-        const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(p.batch, rows - begin));
+      for (int64_t begin = 0; begin < rows; begin += batch) {
+        const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(batch, rows - begin));
         const ActorCriticOutput out = net_->forward(obs.index(idx), history_ ? history.index_select(0, idx) : history);
-        const PpoLoss l = ppo_loss(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
-                                   advantages.index_select(0, idx), returns.index_select(0, idx), p.clip, p.value_coef,
-                                   p.entropy_coef, p.normalize_advantage);
+        const PpoLoss l =
+            ppo_loss(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
+                     advantages.index_select(0, idx), returns.index_select(0, idx), p.clip, p.value_coef,
+                     p.entropy_coef, p.normalize_advantage);
         // As SB3: the policy has moved far enough from the rollout's; this
-        // minibatch and the rest of the update are skipped.
-        if (p.target_kl > 0 && l.approx_kl > 1.5 * p.target_kl) {
+        // minibatch and the rest of the update are skipped (over ranks, by
+        // their mean, so that all stop together).
+        const double approx_kl = ranks_ ? mean_over_ranks(l.approx_kl) : l.approx_kl;
+        if (p.target_kl > 0 && approx_kl > 1.5 * p.target_kl) {
           stopped_early = true;
           break;
         }
         optimizer_->zero_grad();
         l.total.backward();
+        if (ranks_) ranks_->mean(gradients());
         torch::nn::utils::clip_grad_norm_(net_->parameters(), p.max_grad_norm);
         optimizer_->step();
 
@@ -257,7 +285,37 @@ class PpoTrainer : public Trainer {
     s.update_ms = 1000 * seconds_since(start) / stepped;
     for (double* v : {&s.policy_loss, &s.value_loss, &s.entropy, &s.approx_kl, &s.clip_fraction}) *v /= stepped;
     net_->encoder->update_normalizers(obs);
+    if (ranks_) {
+      // Each rank's normalisers took in its own rollout: their mean everywhere.
+      ranks_->mean(net_->buffers());
+      if (!ranks_->same(state()))
+        throw Error("ppo: rank " + std::to_string(config_.rank.rank) +
+                    "'s parameters differ from another rank's after an update");
+    }
     return s;
+  }
+
+  // Parameters and buffers (the normalisers' statistics).
+  std::vector<torch::Tensor> state() const {
+    std::vector<torch::Tensor> out = net_->parameters();
+    for (const torch::Tensor& b : net_->buffers()) out.push_back(b);
+    return out;
+  }
+
+  // Every parameter's gradient (zeros where the loss did not reach it).
+  std::vector<torch::Tensor> gradients() const {
+    std::vector<torch::Tensor> out;
+    for (torch::Tensor& w : net_->parameters()) {
+      if (!w.grad().defined()) w.mutable_grad() = torch::zeros_like(w);
+      out.push_back(w.grad());
+    }
+    return out;
+  }
+
+  double mean_over_ranks(double value) {
+    const torch::Tensor t = torch::tensor({value}, torch::kFloat64);
+    ranks_->mean({t});
+    return t.item<double>();
   }
 
   torch::Tensor cat_field(torch::Tensor ObsTensors::*field) const {
@@ -279,7 +337,8 @@ class PpoTrainer : public Trainer {
   ObsTensors obs_;  // the envs' current observations
   int steps_per_rollout_ = 0;
   at::Generator generator_;
-  int64_t steps_ = 0;
+  std::optional<Ranks> ranks_;  // over several ranks
+  int64_t steps_ = 0;           // the run's, over all ranks
   double wall_s_ = 0;
 };
 

@@ -100,6 +100,12 @@ class SacTrainer : public Trainer {
         stats_(config.num_envs),
         replay_(checked_capacity(spec_, config.sac.buffer)) {
     const SacConfig& s = config_.sac;
+    // Data-parallel training is PPO's (DD-PPO averages on-policy gradients);
+    // SAC's replay and its one update per step would need a design of their
+    // own (a shared replay, or DDP over the critics), not chosen yet.
+    if (config_.rank.world_size > 1)
+      throw Error("sac: trains on one rank; " + std::to_string(config_.rank.world_size) +
+                  " ranks are for PPO's baselines (rl-prim, rl-prim-hist, rl-prim-action-hist)");
     if (env_.single_action_space().kind != Space::Kind::box || spec_.action_size == 0) {
       throw Error("sac: needs the low-level (Box) action space, got " + env_.single_action_space().to_string());
     }

@@ -27,6 +27,7 @@
 #include "env/env.hpp"
 #include "env/vector_env.hpp"
 #include "policies/policy.hpp"
+#include "training/rank.hpp"
 
 namespace chore {
 
@@ -72,6 +73,12 @@ struct TrainConfig {
   int64_t checkpoint_every = 3000;  // env steps between the checkpoints chore train writes
   PpoConfig ppo;
   SacConfig sac;
+  // This process's place in a data-parallel run (DD-PPO: training/
+  // distributed.hpp; chore train reads it from the launcher's environment).
+  // Where the run is, not what it is: not among its settings (to_json).
+  // The run's steps, buffer and minibatch are over all ranks: each steps
+  // num_envs envs of its own and learns from its share.
+  RankInfo rank;
 };
 
 // The paper's setup for a baseline on an activity: observations, action space
@@ -178,6 +185,6 @@ std::unique_ptr<Trainer> make_trainer(const TrainConfig& config);
 // Continues the run saved in `checkpoint`: networks, optimizers, normalisers,
 // RNG state, step count and episode statistics. Its envs restart, seeded with
 // seed + steps. Throws chore::Error for a bad checkpoint.
-std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint);
+std::unique_ptr<Trainer> resume_trainer(const std::string& checkpoint, const RankInfo& rank = {});
 
 }  // namespace chore
