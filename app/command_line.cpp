@@ -94,6 +94,7 @@ struct CommandLineParser::Impl {
     std::string sample_seeds, expert_mode = "physical", eval_seeds = "0-0", generalisation_seeds = "100-119",
                               solve_mode = "symbolic", solve_seeds = "0";
     std::vector<std::string> reproduce_seeds = {"0", "1", "2"}, reproduce_seeds_for, compare_methods;
+    int64_t reproduce_cell = -1;
     int64_t train_steps = 0;
     std::string model_cache = default_model_cache_dir();
   } values;
@@ -363,6 +364,18 @@ CommandLineParser::Impl::Impl() {
   reproduce_cmd->add_option(
       "--set", c.reproduce.settings,
       "KEY=VALUE for every new run's chore train --set (ppo.* for the PPO methods, sac.* for SAC)");
+  reproduce_cmd
+      ->add_option(
+          "--launcher", c.reproduce.launcher,
+          "local: runs here, --jobs at a time; slurm: one Slurm job array of the runs not done (sbatch --wait), "
+          "then the report")
+      ->check(CLI::IsMember({"local", "slurm"}))
+      ->capture_default_str();
+  reproduce_cmd->add_option(
+      "--sbatch", c.reproduce.sbatch_args,
+      "With --launcher slurm: an argument for sbatch as it is (--partition=cpu, --time=04:00:00)");
+  reproduce_cmd->add_option("--cell", values.reproduce_cell, "One run of the table alone (a Slurm array task's)")
+      ->group("");
 }
 
 ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* argv, std::ostream& out,
@@ -438,8 +451,16 @@ ParsedCommandLine CommandLineParser::Impl::parse(int argc, const char* const* ar
         if (eq == std::string::npos) throw Error("--seeds-for '" + text + "': expected METHOD=SEEDS, e.g. rl-vmc=0-2");
         const std::string method = text.substr(0, eq);
         if (c.reproduce.seeds_for.contains(method)) throw Error("--seeds-for " + method + ": given twice");
-        c.reproduce.seeds_for[method] = table_seeds({text.substr(eq + 1)}, "--seeds-for " + method);
+        // Seeds and ranges, comma-separated (rl-vmc=0-2,5).
+        std::vector<std::string> seeds;
+        for (size_t from = eq + 1; from <= text.size();) {
+          const size_t comma = std::min(text.find(',', from), text.size());
+          seeds.push_back(text.substr(from, comma - from));
+          from = comma + 1;
+        }
+        c.reproduce.seeds_for[method] = table_seeds(seeds, "--seeds-for " + method);
       }
+      if (values.reproduce_cell >= 0) c.reproduce.cell = static_cast<size_t>(values.reproduce_cell);
       for (const std::string& text : values.compare_methods) {
         const size_t eq = text.find('=');
         if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {

@@ -139,10 +139,16 @@ bool cell_done(const Cell& c, const ReproduceOptions& o) {
   }
 }
 
-// A child process of this executable: `args` after the program name, stdout
-// to `out` (truncated) and stderr appended to `log`.
-pid_t spawn(const std::vector<std::string>& args, const fs::path& out, const fs::path& log) {
+const std::string& self_path() {
   static const std::string self = fs::read_symlink("/proc/self/exe").string();
+  return self;
+}
+
+// A child process of `program` (this executable by default): `args` after
+// the program name, stdout to `out` (truncated) and stderr appended to `log`.
+pid_t spawn(const std::vector<std::string>& args, const fs::path& out, const fs::path& log,
+            const std::string& program = self_path()) {
+  const std::string& self = program;
   std::vector<std::string> all = {self};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -154,7 +160,9 @@ pid_t spawn(const std::vector<std::string>& args, const fs::path& out, const fs:
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   pid_t pid = 0;
-  const int error = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
+  const int error = self.find('/') == std::string::npos
+                        ? posix_spawnp(&pid, self.c_str(), &actions, nullptr, argv.data(), environ)
+                        : posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) throw Error("reproduce: cannot start " + self + ": " + std::strerror(error));
   return pid;
@@ -251,9 +259,21 @@ class CellRun {
       return;
     }
     const TrainOptions t = train_options(cell_, o_);
-    std::vector<std::string> args = {"train",  "--activity", t.activity, "--baseline", t.baseline,
-                                     "--seed", std::to_string(t.seed), "--steps", steps, "--mode",
-                                     t.mode,   "--threads", std::to_string(t.threads), "--out", t.out};
+    std::vector<std::string> args = {"train",
+                                     "--activity",
+                                     t.activity,
+                                     "--baseline",
+                                     t.baseline,
+                                     "--seed",
+                                     std::to_string(t.seed),
+                                     "--steps",
+                                     steps,
+                                     "--mode",
+                                     t.mode,
+                                     "--threads",
+                                     std::to_string(t.threads),
+                                     "--out",
+                                     t.out};
     for (const std::string& setting : t.settings) args.insert(args.end(), {"--set", setting});
     pid_ = spawn(args, "/dev/null", log);
   }
@@ -268,12 +288,11 @@ class CellRun {
   }
 
   void write_summary() {
-    nlohmann::json summary = {
-        {"spec", cell_spec(cell_, o_)},
-        {"train_wall_s", last_metric(cell_.dir / "metrics.csv", "wall_s", 0.0)},
-        {"eval_wall_s", std::chrono::duration<double>(Clock::now() - eval_started_).count()},
-        {"seed0", evaluation_summary(cell_.dir / "eval_seed0.json")},
-        {"generalisation", evaluation_summary(cell_.dir / "eval_generalisation.json")}};
+    nlohmann::json summary = {{"spec", cell_spec(cell_, o_)},
+                              {"train_wall_s", last_metric(cell_.dir / "metrics.csv", "wall_s", 0.0)},
+                              {"eval_wall_s", std::chrono::duration<double>(Clock::now() - eval_started_).count()},
+                              {"seed0", evaluation_summary(cell_.dir / "eval_seed0.json")},
+                              {"generalisation", evaluation_summary(cell_.dir / "eval_generalisation.json")}};
     if (o_.greedy_eval) summary["seed0_greedy"] = evaluation_summary(cell_.dir / "eval_seed0_greedy.json");
     // The appendix's protocol as chore read it before issue 53: ten sampled episodes.
     summary["seed0_first10"] = first_episodes(cell_.dir / "eval_seed0.json", 10);
@@ -314,6 +333,8 @@ void validate(const ReproduceOptions& o) {
   if (o.mode != "physical" && o.mode != "symbolic") throw Error("reproduce: --mode is physical or symbolic");
   if (o.steps < 1) throw Error("reproduce: --steps must be at least 1");
   if (o.jobs < 1) throw Error("reproduce: --jobs must be at least 1");
+  if (o.launcher != "local" && o.launcher != "slurm") throw Error("reproduce: --launcher is local or slurm");
+  if (!o.sbatch_args.empty() && o.launcher != "slurm") throw Error("reproduce: --sbatch is for --launcher slurm");
   if (o.eval_episodes < 1) throw Error("reproduce: --eval-episodes must be at least 1");
   if (o.generalisation_last < o.generalisation_first) throw Error("reproduce: --generalisation-seeds: B is below A");
   for (const std::string& m : o.methods) {
@@ -335,8 +356,9 @@ std::vector<Cell> cells_of(const ReproduceOptions& o) {
   return cells;
 }
 
-// Runs the cells that are not done, `jobs` at a time; returns the failures.
-nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions& o, std::ostream& log) {
+// The cells that are not done; their folders checked (a run to resume must be
+// this table's, a folder chore did not make is left alone).
+std::deque<Cell> cells_to_run(const std::vector<Cell>& cells, const ReproduceOptions& o, std::ostream& log) {
   std::deque<Cell> todo;
   for (const Cell& c : cells) {
     if (cell_done(c, o)) {
@@ -351,6 +373,12 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
       todo.push_back(c);
     }
   }
+  return todo;
+}
+
+// Runs the cells that are not done, `jobs` at a time; returns the failures.
+nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions& o, std::ostream& log) {
+  std::deque<Cell> todo = cells_to_run(cells, o, log);
   nlohmann::json failures = nlohmann::json::array();
   std::map<pid_t, std::unique_ptr<CellRun>> running;
   const size_t total = todo.size();
@@ -394,22 +422,106 @@ nlohmann::json run_cells(const std::vector<Cell>& cells, const ReproduceOptions&
   return failures;
 }
 
+// The arguments of `chore reproduce` that make this table again: a Slurm
+// array task derives its cell from them (cells_of is a function of them).
+std::vector<std::string> table_arguments(const ReproduceOptions& o) {
+  std::vector<std::string> a = {"reproduce", "--activities"};
+  a.insert(a.end(), o.activities.begin(), o.activities.end());
+  a.push_back("--methods");
+  a.insert(a.end(), o.methods.begin(), o.methods.end());
+  a.push_back("--seeds");
+  for (const uint64_t seed : o.seeds) a.push_back(std::to_string(seed));
+  for (const auto& [method, seeds] : o.seeds_for) {
+    std::string list;
+    for (const uint64_t seed : seeds) list += (list.empty() ? "" : ",") + std::to_string(seed);
+    a.insert(a.end(), {"--seeds-for", method + "=" + list});
+  }
+  a.insert(a.end(), {"--steps", std::to_string(o.steps), "--mode", o.mode, "--eval-episodes",
+                     std::to_string(o.eval_episodes), "--generalisation-seeds",
+                     std::to_string(o.generalisation_first) + "-" + std::to_string(o.generalisation_last), "--out",
+                     fs::absolute(o.out).string(), "--jobs", "1"});
+  if (!o.videos) a.push_back("--no-videos");
+  if (!o.greedy_eval) a.push_back("--no-greedy-eval");
+  for (const std::string& setting : o.settings) a.insert(a.end(), {"--set", setting});
+  return a;
+}
+
+std::string shell_quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// --launcher slurm: the cells not done as one Slurm job array (each task
+// `chore reproduce ... --cell I`, I its index in cells_of), submitted with
+// sbatch --wait; returns the failures (the cells still not done after it).
+nlohmann::json run_cells_on_slurm(const std::vector<Cell>& cells, const ReproduceOptions& o, std::ostream& log) {
+  const std::deque<Cell> todo = cells_to_run(cells, o, log);
+  nlohmann::json failures = nlohmann::json::array();
+  if (todo.empty()) return failures;
+  const fs::path dir = fs::absolute(o.out) / "slurm";
+  fs::create_directories(dir);
+  std::string indices;
+  for (const Cell& c : todo) {
+    const size_t i = static_cast<size_t>(
+        std::find_if(cells.begin(), cells.end(), [&](const Cell& d) { return d.dir == c.dir; }) - cells.begin());
+    indices += (indices.empty() ? "" : ",") + std::to_string(i);
+    fs::create_directories(c.dir);
+    mark_run_folder(c.dir);
+  }
+  // Each task one core (a run's torch and env threads are one); requeued
+  // after a preemption or a node's failure, it resumes from its checkpoint.
+  std::string script =
+      "#!/bin/bash\n#SBATCH --job-name=chore-reproduce\n#SBATCH --array=" + indices +
+      "\n#SBATCH --cpus-per-task=1\n#SBATCH --requeue\n#SBATCH --output=" + (dir / "cell_%a.log").string() + "\nexec " +
+      shell_quoted(self_path());
+  for (const std::string& a : table_arguments(o)) script += " " + shell_quoted(a);
+  script += " --cell \"$SLURM_ARRAY_TASK_ID\"\n";
+  const fs::path file = dir / "reproduce_array.sh";
+  write_text(file, script);
+  std::vector<std::string> args = {"--wait", "--parsable"};
+  args.insert(args.end(), o.sbatch_args.begin(), o.sbatch_args.end());
+  args.push_back(file.string());
+  log << "reproduce: " << todo.size() << " run(s) as a Slurm job array (" << file.string() << "), waiting for it"
+      << std::endl;
+  const pid_t pid = spawn(args, dir / "sbatch.out", dir / "sbatch.log", "sbatch");
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) throw Error(std::string("reproduce: waitpid: ") + std::strerror(errno));
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+    throw Error("reproduce: --launcher slurm: no sbatch on PATH (Slurm's client; see " + (dir / "sbatch.log").string() +
+                ")");
+  for (const Cell& c : todo) {
+    if (cell_done(c, o)) continue;
+    const size_t i = static_cast<size_t>(
+        std::find_if(cells.begin(), cells.end(), [&](const Cell& d) { return d.dir == c.dir; }) - cells.begin());
+    const fs::path task_log = dir / ("cell_" + std::to_string(i) + ".log");
+    const std::string last = fs::exists(task_log) ? tail(task_log, 5) : tail(dir / "sbatch.log", 5);
+    log << "reproduce: " << c.label() << ": FAILED (see " << task_log.string() << "):\n" << last << std::flush;
+    failures.push_back({{"cell", c.label()}, {"log", task_log.string()}, {"last_lines", last}});
+  }
+  return failures;
+}
+
 // Videos: per activity, the run with the best Q at seed 0 whose checkpoint is here;
 // the other activities keep the videos an earlier invocation made.
 nlohmann::json make_videos(const nlohmann::json& runs, const ReproduceOptions& o, std::ostream& log) {
   const fs::path out(o.out);
   const std::string table = (out / "baselines.json").string();
-  nlohmann::json videos = fs::exists(table) ? reading_json(table, [&] {
-    nlohmann::json earlier = read_json_file(table).value("videos", nlohmann::json::object());
-    // ...while their file and their run are still here (a run moved away takes its video's entry along).
-    for (auto it = earlier.begin(); it != earlier.end();) {
-      const bool here =
-          fs::exists(it->value("file", "")) && fs::exists(fs::path(it->value("run", "")) / "cell.json");
-      it = here ? std::next(it) : earlier.erase(it);
-    }
-    return earlier;
-  })
-                                            : nlohmann::json::object();
+  nlohmann::json videos =
+      fs::exists(table)
+          ? reading_json(table,
+                         [&] {
+                           nlohmann::json earlier = read_json_file(table).value("videos", nlohmann::json::object());
+                           // ...while their file and their run are still here (a run moved away takes its video's entry
+                           // along).
+                           for (auto it = earlier.begin(); it != earlier.end();) {
+                             const bool here = fs::exists(it->value("file", "")) &&
+                                               fs::exists(fs::path(it->value("run", "")) / "cell.json");
+                             it = here ? std::next(it) : earlier.erase(it);
+                           }
+                           return earlier;
+                         })
+          : nlohmann::json::object();
   if (o.videos && !o.report_only) {
     fs::create_directories(out / "videos");
     for (const std::string& a : o.activities) {
@@ -455,9 +567,10 @@ void run_expert(const ReproduceOptions& o, const EnvConfig& env, std::ostream& l
     fs::create_directories(file.parent_path());
     log << "reproduce: the scripted expert on " << a << std::endl;
     const fs::path part = file.string() + ".part", elog = file.string() + ".log";
-    const pid_t pid = spawn({"eval", "--expert", "--activity", a, "--mode", o.mode, "--instances", env.instances,
-                             "--seeds", "0-0", "--episodes", std::to_string(o.eval_episodes), "--threads", "1", "--json"},
-                            part, elog);
+    const pid_t pid =
+        spawn({"eval", "--expert", "--activity", a, "--mode", o.mode, "--instances", env.instances, "--seeds", "0-0",
+               "--episodes", std::to_string(o.eval_episodes), "--threads", "1", "--json"},
+              part, elog);
     int status = 0;
     waitpid(pid, &status, 0);
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
@@ -475,11 +588,17 @@ nlohmann::json reproduce(const ReproduceOptions& o, std::ostream& log) {
   const auto start = Clock::now();
   std::vector<Cell> cells = cells_of(o);
   nlohmann::json failures = nlohmann::json::array();
+  if (o.cell) {  // a Slurm array task: its run alone
+    if (*o.cell >= cells.size())
+      throw Error("reproduce: --cell " + std::to_string(*o.cell) + ": the table has " + std::to_string(cells.size()) +
+                  " runs");
+    return {{"failures", run_cells({cells[*o.cell]}, o, log)}};
+  }
   // The rule and instances as the runs' own config builder sets them
   // (defaults, then --set): the same for every cell of a table.
   const EnvConfig env = new_run_config(train_options(cells.front(), o)).env;
   if (!o.report_only) {
-    failures = run_cells(cells, o, log);
+    failures = o.launcher == "slurm" ? run_cells_on_slurm(cells, o, log) : run_cells(cells, o, log);
     run_expert(o, env, log);
   }
   for (Cell& c : cells) c.done = cell_done(c, o);

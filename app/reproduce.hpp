@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -36,11 +37,11 @@ struct ReproduceOptions {
   // A method's own training seeds where they differ from `seeds` (`--seeds-for
   // rl-vmc=0-2`: a method whose runs all score 0 may stay at fewer seeds).
   std::map<std::string, std::vector<uint64_t>> seeds_for;
-  int64_t steps = 30000;                                           // training env steps per run (the paper's)
-  std::string mode = "physical";                                   // primitive execution (the paper's)
-  int jobs = 2;                                                    // runs at once
-  int eval_episodes = 100;                                         // episodes at evaluation seed 0, each policy
-  bool greedy_eval = true;  // evaluate at seed 0 greedily as well as sampling (the table's Q)
+  int64_t steps = 30000;          // training env steps per run (the paper's)
+  std::string mode = "physical";  // primitive execution (the paper's)
+  int jobs = 2;                   // runs at once
+  int eval_episodes = 100;        // episodes at evaluation seed 0, each policy
+  bool greedy_eval = true;        // evaluate at seed 0 greedily as well as sampling (the table's Q)
   uint64_t generalisation_first = 100, generalisation_last = 119;  // one episode each
   std::string out = "results";
   bool videos = true;
@@ -56,6 +57,15 @@ struct ReproduceOptions {
   std::string compare_with;
   std::map<std::string, std::string> compare_methods;
   std::string command_line;  // as typed, for the report
+  // Where the runs run: "local" (this host, `jobs` at a time) or "slurm" (the
+  // runs not done as one Slurm job array, `sbatch --wait`ed, each task one
+  // run; resubmitted, the command runs only those still not done), with
+  // `sbatch_args` given to sbatch as they are (--partition=..., --time=...).
+  std::string launcher = "local";
+  std::vector<std::string> sbatch_args;
+  // An array task's run: cells_of(options)[cell] alone, no report (internal:
+  // the script --launcher slurm writes passes it).
+  std::optional<size_t> cell;
 };
 
 // The training seeds of `method`'s runs.
