@@ -177,6 +177,25 @@ expect 0 "1200 steps done; checkpoint" -- ranked 0 $((port + 1)) --resume "$rank
 wait
 expect 0 "rank 1 of 2: 1200 steps done" -- cat "$ranks_dir.rank1"
 expect 2 "distributed: RANK='2' is not a whole number in \[0, 1\]" -- ranked 2 "$port" --resume "$ranks_dir" --steps 1800
+# A rank killed mid-run: the other stops with an error naming it (exit 2, at
+# its next all-reduce), and both resume from rank 0's last checkpoint.
+killed_dir="$(mktemp -d)/run"
+train_killed=(--activity collect_trash --baseline rl-prim --mode symbolic --steps 6000 --checkpoint-every 600
+  --set ppo.epochs=3 --out "$killed_dir")  # RGB: ~10 s a checkpoint, killed long before the end
+env WORLD_SIZE=2 RANK=1 MASTER_ADDR=127.0.0.1 MASTER_PORT=$((port + 2)) "$chore" train "${train_killed[@]}" >/dev/null 2>&1 &
+killed=$!  # chore's own pid (a function in the background would be a subshell's)
+ranked 0 $((port + 2)) "${train_killed[@]}" >"$killed_dir.rank0" 2>&1 &
+survivor=$!
+for _ in $(seq 240); do [[ -e "$killed_dir/checkpoint_600.pt" ]] && break; sleep 0.25; done
+kill -9 "$killed"
+wait "$killed" 2>/dev/null
+wait "$survivor"
+survivor_code=$?
+expect 0 "all-reduce failed (a rank gone?)" -- cat "$killed_dir.rank0"
+if [[ $survivor_code -ne 2 ]]; then echo "FAIL: rank 0 beside a killed rank exited $survivor_code (want 2)"; failures=$((failures + 1)); fi
+ranked 1 $((port + 3)) --resume "$killed_dir" --steps 2400 >/dev/null 2>&1 &
+expect 0 "2400 steps done; checkpoint" -- ranked 0 $((port + 3)) --resume "$killed_dir" --steps 2400
+wait
 
 # chore reproduce: bad arguments exit 2 before any run starts (the table itself
 # is tested in tests/reproduce_test.cpp).

@@ -2,7 +2,8 @@
 # A real Slurm cluster (scripts/slurm_local: one node, this machine) runs a
 # two-task training job (srun: two ranks of chore train, DD-PPO over Gloo) and
 # the table's runs as a job array (chore reproduce --launcher slurm), whose runs
-# are those of --launcher local bit for bit.
+# are those of --launcher local bit for bit; a cancelled array task resumes
+# when the command runs again.
 set -uo pipefail
 chore="$1"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -44,6 +45,24 @@ q() { python3 -c 'import json,sys; print(sorted((r["seed"], r["q_seed0"]) for r 
 # Again: every run done, nothing submitted.
 "$chore" reproduce "${table[@]}" --launcher slurm --out "$work/slurm" >"$work/again.log" 2>&1 || fail "the second reproduce failed"
 grep -q "Slurm job array" "$work/again.log" && fail "runs done were submitted again"
+
+# An array task cancelled mid-run (its checkpoint at 600 of 3,000 steps): the
+# command reports the run failed (exit 1); run again, it submits that run
+# alone, which resumes from its checkpoint, and the table is whole.
+long=(--activities collect_trash --methods rl-prim --seeds 0-1 --steps 3000 --mode symbolic --eval-episodes 2
+  --generalisation-seeds 100-100 --no-videos --set ppo.epochs=3 --set checkpoint_every=600 --launcher slurm
+  --out "$work/cancel")
+"$chore" reproduce "${long[@]}" >"$work/cancel.log" 2>&1 &
+submitter=$!
+for _ in $(seq 240); do [[ -e "$work/cancel/runs/symbolic/collect_trash/rl-prim_seed0/checkpoint_600.pt" ]] && break; sleep 0.5; done
+scancel "$(cut -d';' -f1 "$work/cancel/slurm/sbatch.out")_0"
+wait "$submitter"
+code=$?
+[[ $code -eq 1 ]] || fail "reproduce beside a cancelled task exited $code (want 1): $(tail -3 "$work/cancel.log")"
+grep -q "1/2 runs done" "$work/cancel.log" || fail "the cancelled run was reported done: $(tail -3 "$work/cancel.log")"
+"$chore" reproduce "${long[@]}" >"$work/resumed.log" 2>&1 || fail "the resubmitted table failed: $(tail -3 "$work/resumed.log")"
+grep -q "1 run(s) as a Slurm job array" "$work/resumed.log" || fail "not the cancelled run alone resubmitted"
+grep -q "2/2 runs done" "$work/resumed.log" || fail "the table is not whole after resubmitting"
 
 echo "slurm: $failures failure(s)"
 [[ $failures -eq 0 ]]
