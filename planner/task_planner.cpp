@@ -459,20 +459,21 @@ class Search {
       for (const Target& t : targets) {
         if (t.id >= 0 && !t.negated && in[t.id]) wanted[t.id] = 1;
       }
+      // What the missing literals force, walked once for them all (what one
+      // forces undoes the same whichever literal led to it).
+      std::vector<char> forced(literals_.size(), 0);
+      std::vector<int> todo;
       for (const Target& t : targets) {
-        if (t.id < 0 || t.negated || in[t.id]) continue;
-        std::vector<char> forced(literals_.size(), 0);
-        std::vector<int> todo = {t.id};
-        forced[t.id] = 1;
-        while (!todo.empty()) {
-          const int f = todo.back();
-          todo.pop_back();
-          for (const int d : forced_deletes_[f]) {
-            if (wanted[d]) undone[d] = 1, any = true;
-          }
-          for (const int n : forced_needs_[f]) {
-            if (!in[n] && !forced[n]) forced[n] = 1, todo.push_back(n);
-          }
+        if (t.id >= 0 && !t.negated && !in[t.id] && !forced[t.id]) forced[t.id] = 1, todo.push_back(t.id);
+      }
+      while (!todo.empty()) {
+        const int f = todo.back();
+        todo.pop_back();
+        for (const int d : forced_deletes_[f]) {
+          if (wanted[d]) undone[d] = 1, any = true;
+        }
+        for (const int n : forced_needs_[f]) {
+          if (!in[n] && !forced[n]) forced[n] = 1, todo.push_back(n);
         }
       }
     }

@@ -117,7 +117,8 @@ bool Ranks::same(const std::vector<torch::Tensor>& tensors) {
 }
 
 int64_t Ranks::bytes(const std::vector<torch::Tensor>& tensors) {
-  return flattened(tensors).numel() * flattened(tensors).element_size();
+  const torch::Tensor flat = flattened(tensors);
+  return flat.numel() * flat.element_size();
 }
 
 }  // namespace chore
