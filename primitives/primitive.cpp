@@ -395,10 +395,14 @@ Eigen::Vector3d contact_point(const World& w, int object, const Approach& a) {
 std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const World& w, int object,
                            const std::vector<Approach>& candidates, const Pose2& base, PrimitiveType type, double load,
                            size_t starts) {
+  const PrimitiveDef& def = primitive_def(type);
   for (const Approach& a : candidates) {
     if (a.last_resort && starts < kReachStarts.size()) continue;
     if (std::hypot(a.point.x() - base.x, a.point.y() - base.y) > kArmReachBound) continue;
-    const IkTarget pre = pre_pose(a, load, primitive_def(type).clearance);
+    const double off_facing =
+        std::remainder(std::atan2(a.point.y() - base.y, a.point.x() - base.x) - base.yaw, 2 * M_PI);
+    if (std::abs(off_facing) > def.yaw_spread) continue;
+    const IkTarget pre = pre_pose(a, load, def.clearance);
     for (size_t k = 0; k < std::min(starts, kReachStarts.size()); ++k) {
       IkOptions options;
       options.base = base;
@@ -407,11 +411,11 @@ std::optional<Reach> reach(IkSolver& ik, ArmCollisionChecker& checker, const Wor
       const IkResult r = ik.solve(pre, options);
       if (!r.success || checker.collides(r.joints.data(), &base)) continue;
       bool clear = true;
-      if (primitive_def(type).touches) {
+      if (def.touches) {
         options.start = r.joints;
         // As Motion::line follows it: the approach axis held, the roll free.
         IkTarget along{pre.position, pre.approach, std::nullopt};
-        const Eigen::Vector3d end = line_end(w, primitive_def(type), object, a, base, load);
+        const Eigen::Vector3d end = line_end(w, def, object, a, base, load);
         const int steps = std::max(1, static_cast<int>(std::ceil((end - pre.position).norm() / kCorridorStep)));
         for (int i = 1; i <= steps && clear; ++i) {
           along.position = pre.position + (end - pre.position) * (static_cast<double>(i) / steps);
@@ -487,13 +491,15 @@ bool sample_base_poses(const World& w, IkSolver& ik, ArmCollisionChecker& checke
           if (std::abs(d) > 1e-9) exit = std::min(exit, std::max(0.0, ((d > 0 ? hi : lo) - from) / d));
         }
         // Clear of the object's box by the body's radius, within the arm's
-        // reach of the point (0.6 m at the floor, 1 m at table height). In
+        // reach of the point (0.62 m at the floor, 1 m from 0.45 m up, and
+        // between: a teddy 0.23 m up in a packing box 0.8 m across is
+        // reached from 0.65 m, beyond the floor's bound). In
         // the last pass clear of what it stands on or in too: from the first
         // cell along (c, s) where the base fits (a tupperware in a fridge is
         // left where the fridge ends, not where the tupperware does: 2,000
         // draws of 2,000 fell inside the fridge), none along (c, s) if that
         // cell lies beyond reach (a draw in collision).
-        const double reach = a.point.z() < 0.45 ? 0.62 : 1.0;
+        const double reach = 0.62 + 0.38 * std::clamp(a.point.z() / 0.45, 0.0, 1.0);
         double near = exit + 0.25;
         while (pass.clear_of_support && near <= reach &&
                !footprint.body_map().free(a.point.x() + c * near, a.point.y() + s * near)) {

@@ -234,13 +234,16 @@ struct PrimitiveDef {
   // Why out_of_reach() fails: null for the default, no base pose reaching
   // one of approaches().
   std::string (*out_of_reach)(ReachSearch& search) = nullptr;
-  bool about_substance = false;   // the model takes a substance (dip: the liquid; wipe: the dirt)
-  bool touches = true;            // the hand follows the approach into contact with the object
-  bool with_tool = false;         // acts with a tool in hand (reach checks count one hanging below it)
-  bool opens = false;             // opens an articulated object: the base stands in front of it, room to pull
-  bool drives = false;            // moves the base: checks its own precondition, no tuck after failing
-  bool symbolic_only = false;     // no physical execution (act fails it); offered in symbolic action spaces only
-  double yaw_spread = M_PI;       // rad: base poses face the target within +-half this (side-on: pi)
+  bool about_substance = false;  // the model takes a substance (dip: the liquid; wipe: the dirt)
+  bool touches = true;           // the hand follows the approach into contact with the object
+  bool with_tool = false;        // acts with a tool in hand (reach checks count one hanging below it)
+  bool opens = false;            // opens an articulated object: the base stands in front of it, room to pull
+  bool drives = false;           // moves the base: checks its own precondition, no tuck after failing
+  bool symbolic_only = false;    // no physical execution (act fails it); offered in symbolic action spaces only
+  // rad: base poses drawn face the target within +-half this (side-on: pi);
+  // reach() takes an approach from a base facing its point within +-this
+  // (the base arrives a little turned).
+  double yaw_spread = M_PI;
   double clearance = kClearance;  // m the pre-pose keeps above the approach point (fingertips or load first)
 };
 
