@@ -158,6 +158,47 @@ TEST(Training, TwoRanksOfPpoLearnToPutABottleInTheBin) {
   }
 }
 
+// DD-PPO's preemption: rank 1 steps the bottle task physically, far slower
+// than rank 0 symbolically; with ppo.sync_fraction = 0.5 it stops its rollout
+// as soon as rank 0 has its whole share (after a quarter of its own), and
+// the update still steps both ranks alike (their parameters checked the
+// same after each). Without it, every update adds the whole buffer.
+TEST(Training, PpoPreemptsAStragglingRank) {
+  for (const double sync_fraction : {0.5, 0.0}) {
+    TrainConfig config = one_bottle_config();
+    config.ppo.epochs = 2;
+    config.ppo.sync_fraction = sync_fraction;
+    const int port = test::free_port();
+    std::vector<MetricsRow> rows[2];
+    std::vector<float> parameters[2];
+    const auto rank = [&](int r) {
+      TrainConfig mine = config;
+      mine.rank = {r, 2, "127.0.0.1", port, "torchrun"};
+      if (r == 1) mine.env.primitive_mode = ExecutionMode::physical;
+      auto trainer = make_trainer(mine);
+      rows[r] = train(*trainer, 3 * config.ppo.buffer);
+      parameters[r] = trainer->parameters();
+    };
+    std::thread one(rank, 1);
+    rank(0);
+    one.join();
+    EXPECT_EQ(parameters[0], parameters[1]);
+    ASSERT_EQ(rows[0].size(), rows[1].size());
+    int64_t last = 0;
+    for (const MetricsRow& row : rows[0]) {
+      const int64_t added = row.env_steps - last;
+      last = row.env_steps;
+      // Rank 0's half, and at least a quarter of rank 1's.
+      if (sync_fraction > 0) {
+        EXPECT_LT(added, config.ppo.buffer) << "update ending at " << row.env_steps;
+        EXPECT_GE(added, config.ppo.buffer / 2 + config.ppo.buffer / 8);
+      } else {
+        EXPECT_EQ(added, config.ppo.buffer);
+      }
+    }
+  }
+}
+
 // Over ranks: a rollout and minibatch that do not split evenly, and SAC, are
 // errors saying why.
 TEST(Training, RanksNeedEvenSharesAndPpo) {
@@ -320,6 +361,7 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   c = with_setting(c, "ppo.normalize_advantage=false");
   c = with_setting(c, "ppo.epochs=4");
   c = with_setting(c, "ppo.target_kl=0.01");
+  c = with_setting(c, "ppo.sync_fraction=0.6");
   c = with_setting(c, "env.max_episode_steps=30");
   EXPECT_EQ(c.ppo.entropy_coef, 0.01);
   EXPECT_FALSE(c.ppo.normalize_advantage);
@@ -333,6 +375,7 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   expected["ppo"]["normalize_advantage"] = false;
   expected["ppo"]["epochs"] = 4;
   expected["ppo"]["target_kl"] = 0.01;
+  expected["ppo"]["sync_fraction"] = 0.6;
   expected["env"]["max_episode_steps"] = 30;
   EXPECT_EQ(to_json(c), expected);
   for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
@@ -346,6 +389,7 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
            // Ranges, and numbers that would not fit their field.
            {"ppo.lr=-1", "--set ppo.lr=-1: ppo.lr = -1 is outside [1e-12, 1]"},
            {"ppo.lr=1e308", "ppo.lr = 1e+308 is outside [1e-12, 1]"},
+           {"ppo.sync_fraction=1.5", "ppo.sync_fraction = 1.5 is outside [0, 1]"},
            {"seed=1000000000001", "seed = 1000000000001 is outside"},
            {"sac.buffer=4294967297",
             "sac.buffer = 4294967297 does not fit the setting (it would "
@@ -356,8 +400,10 @@ TEST(Training, SettingReplacesOneFieldOfItsType) {
   nlohmann::json old = to_json(c);
   old["ppo"].erase("normalize_advantage");
   old["ppo"].erase("target_kl");
+  old["ppo"].erase("sync_fraction");
   EXPECT_TRUE(train_config_from_json(old).ppo.normalize_advantage);
   EXPECT_EQ(train_config_from_json(old).ppo.target_kl, 0.0);
+  EXPECT_EQ(train_config_from_json(old).ppo.sync_fraction, 0.0);
   // Any activity trains on instances as drawn with this; runs from before
   // it was a setting had everything within reach.
   EXPECT_TRUE(base.env.reachable_instances);

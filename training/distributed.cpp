@@ -116,6 +116,14 @@ bool Ranks::same(const std::vector<torch::Tensor>& tensors) {
   return v[0] == -v[2] && v[1] == -v[3];
 }
 
+int64_t Ranks::add(const std::string& key, int64_t amount) {
+  try {
+    return state_->store->add(key, amount);
+  } catch (const std::exception& e) {
+    throw Error(where() + ": the store did not answer (rank 0 gone?): " + e.what());
+  }
+}
+
 int64_t Ranks::bytes(const std::vector<torch::Tensor>& tensors) {
   const torch::Tensor flat = flattened(tensors);
   return flat.numel() * flat.element_size();

@@ -44,6 +44,9 @@ class Ranks {
   // Whether every rank holds the same bytes in `tensors` (a hash of them,
   // its greatest and least over the ranks compared).
   bool same(const std::vector<torch::Tensor>& tensors);
+  // Adds `amount` to the counter `key` in the ranks' store and returns its
+  // value after (0: reads it); DD-PPO's count of the ranks done collecting.
+  int64_t add(const std::string& key, int64_t amount);
   // Bytes sent per all-reduce of `tensors` (what mean() moves per rank, before
   // the ring's factor 2 (n - 1) / n).
   static int64_t bytes(const std::vector<torch::Tensor>& tensors);

@@ -11,8 +11,11 @@
 // Over several ranks (TrainConfig::rank) it is DD-PPO (Wijmans et al. 2020):
 // each rank collects its share of the rollout with envs of its own, and the
 // ranks average each minibatch's gradients (training/distributed.hpp) before
-// the step, so that their parameters stay the same (checked after each update).
+// the step, so that their parameters stay the same (checked after each update);
+// with ppo.sync_fraction, a straggler stops its rollout early (DD-PPO's
+// preemption).
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <optional>
 
@@ -94,6 +97,12 @@ class PpoTrainer : public Trainer {
     env_ids_.resize(config_.num_envs);
     std::iota(env_ids_.begin(), env_ids_.end(), 0);
     steps_per_rollout_ = (p.buffer / ranks + config_.num_envs - 1) / config_.num_envs;
+    // DD-PPO: a straggler collects at least a quarter of its share, and a
+    // row for each minibatch.
+    const int64_t full_rows = int64_t{steps_per_rollout_} * config_.num_envs, batch = p.batch / ranks;
+    minibatches_ = (full_rows + batch - 1) / batch;
+    least_steps_ =
+        std::max<int64_t>((steps_per_rollout_ + 3) / 4, (minibatches_ + config_.num_envs - 1) / config_.num_envs);
     if (resume) load(*resume);
     // Another rank's envs, actions and minibatches follow streams of its own
     // (rank 0's are the single-process run's).
@@ -111,13 +120,14 @@ class PpoTrainer : public Trainer {
   void train(int64_t until, const Report& report) override {
     while (steps_ < until) {
       const auto start = Clock::now();
+      const int64_t before = steps_;
       collect();
       const double collect_s = seconds_since(start);
       const UpdateStats u = update();
       const double period_s = seconds_since(start);
       wall_s_ += period_s;
       MetricsRow row = stats_.row(steps_, wall_s_);
-      const double steps = static_cast<double>(steps_per_rollout_ * config_.num_envs * config_.rank.world_size);
+      const double steps = static_cast<double>(steps_ - before);
       row.extras = {steps / period_s, steps / collect_s, u.update_ms, u.policy_loss,
                     u.value_loss,     u.entropy,         u.approx_kl, u.clip_fraction};
       report(row);
@@ -172,13 +182,21 @@ class PpoTrainer : public Trainer {
     return frames_ ? frames_->push(env_ids_, now) : now;
   }
 
-  // Runs the policy for steps_per_rollout_ vector steps, filling rollout_.
+  // Runs the policy for steps_per_rollout_ vector steps, filling rollout_;
+  // with DD-PPO's preemption, until enough ranks have collected their whole
+  // share (counted in the ranks' store under a key the ranks share: the
+  // run's steps so far).
   void collect() {
     torch::NoGradGuard no_grad;
     rollout_.clear();
-    const int n = config_.num_envs;
+    const int n = config_.num_envs, ranks = config_.rank.world_size;
+    const bool preempting = ranks_ && config_.ppo.sync_fraction > 0;
+    const std::string collected = "collected@" + std::to_string(steps_);
+    const auto enough = static_cast<int64_t>(std::ceil(config_.ppo.sync_fraction * ranks));
     std::vector<float> action_values(n);
-    for (int t = 0; t < steps_per_rollout_; ++t) {
+    int t = 0;
+    for (; t < steps_per_rollout_; ++t) {
+      if (preempting && t >= least_steps_ && ranks_->add(collected, 0) >= enough) break;
       const torch::Tensor history = history_rows(env_ids_);
       const ActorCriticOutput out = net_->forward(obs_, history);
       const torch::Tensor log_probs = torch::log_softmax(out.logits, 1);
@@ -220,8 +238,15 @@ class PpoTrainer : public Trainer {
       if (history_) history_->reset(ended);
       if (frames_) frames_->reset(ended);
       obs_ = observe(*batch.obs);
-      steps_ += n * config_.rank.world_size;  // the run's steps: every rank steps alike
     }
+    if (!preempting) {
+      steps_ += int64_t{t} * n * ranks;  // the run's steps: every rank steps alike
+      return;
+    }
+    if (t == steps_per_rollout_) ranks_->add(collected, 1);
+    const torch::Tensor steps = torch::tensor({static_cast<double>(t)}, torch::kFloat64);
+    ranks_->mean({steps});
+    steps_ += std::llround(steps.item<double>() * ranks) * n;
   }
 
   // GAE over the rollout, then minibatch epochs; the normalisers then take in
@@ -248,10 +273,15 @@ class PpoTrainer : public Trainer {
     bool stopped_early = false;  // by target_kl
     const auto start = Clock::now();
     const int64_t batch = p.batch / config_.rank.world_size;  // this rank's share of a minibatch
+    const bool whole = rows == int64_t{steps_per_rollout_} * config_.num_envs;
     for (int epoch = 0; epoch < p.epochs && !stopped_early; ++epoch) {
       const torch::Tensor order = torch::randperm(rows, generator_, torch::kInt64);
-      for (int64_t begin = 0; begin < rows; begin += batch) {
-        const torch::Tensor idx = order.narrow(0, begin, std::min<int64_t>(batch, rows - begin));
+      for (int64_t k = 0; k < minibatches_; ++k) {
+        // A preempted rollout is cut into as many minibatches as a whole
+        // one: every rank steps, and all-reduces, as often.
+        const int64_t begin = whole ? k * batch : k * rows / minibatches_;
+        const int64_t end = whole ? std::min(begin + batch, rows) : (k + 1) * rows / minibatches_;
+        const torch::Tensor idx = order.narrow(0, begin, end - begin);
         const ActorCriticOutput out = net_->forward(obs.index(idx), history_ ? history.index_select(0, idx) : history);
         const PpoLoss l =
             ppo_loss(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
@@ -336,6 +366,7 @@ class PpoTrainer : public Trainer {
   Rollout rollout_;
   ObsTensors obs_;  // the envs' current observations
   int steps_per_rollout_ = 0;
+  int64_t minibatches_ = 0, least_steps_ = 0;  // per epoch; the fewest vector steps a preempted rollout has
   at::Generator generator_;
   std::optional<Ranks> ranks_;  // over several ranks
   int64_t steps_ = 0;           // the run's, over all ranks

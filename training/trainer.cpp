@@ -144,7 +144,8 @@ nlohmann::json to_json(const TrainConfig& c) {
             {"frames", p.frames},
             {"history", p.history},
             {"normalize_advantage", p.normalize_advantage},
-            {"target_kl", p.target_kl}}},
+            {"target_kl", p.target_kl},
+            {"sync_fraction", p.sync_fraction}}},
           {"sac",
            {{"lr", s.lr},
             {"buffer", s.buffer},
@@ -168,7 +169,8 @@ void check_read_back(const nlohmann::json& given, const nlohmann::json& read, co
       if (read.contains(key)) check_read_back(value, read.at(key), path.empty() ? key : path + "." + key);
     }
   } else if (given != read) {
-    throw Error(path + " = " + json_text(given) + " does not fit the setting (it would read as " + json_text(read) + ")");
+    throw Error(path + " = " + json_text(given) + " does not fit the setting (it would read as " + json_text(read) +
+                ")");
   }
 }
 
@@ -197,6 +199,7 @@ void validate(const TrainConfig& c) {
   within("ppo.frames", p.frames, 1, 64);
   within("ppo.history", p.history, 0, 64);
   within("ppo.target_kl", p.target_kl, 0.0, 1e3);
+  within("ppo.sync_fraction", p.sync_fraction, 0.0, 1.0);
   within("sac.lr", s.lr, 1e-12, 1.0);
   within("sac.buffer", s.buffer, 1, 1000000);
   within("sac.batch", s.batch, 1, 100000);
@@ -224,9 +227,10 @@ TrainConfig train_config_from_json(const nlohmann::json& j) {
     c.ppo = {p.at("lr").get<double>(), p.at("buffer").get<int>(), p.at("batch").get<int>(), p.at("epochs").get<int>(),
              p.at("gamma").get<double>(), p.at("gae_lambda").get<double>(), p.at("clip").get<double>(),
              p.at("entropy_coef").get<double>(), p.at("value_coef").get<double>(), p.at("max_grad_norm").get<double>(),
-             // Runs saved before these fields existed saw one frame, normalised and never stopped early.
+             // Runs saved before these fields existed saw one frame, normalised, never stopped early and waited for
+             // every rank.
              p.value("frames", 1), p.at("history").get<int>(), p.value("normalize_advantage", true),
-             p.value("target_kl", 0.0)};
+             p.value("target_kl", 0.0), p.value("sync_fraction", 0.0)};
     const nlohmann::json& s = j.at("sac");
     c.sac = {s.at("lr").get<double>(),
              s.at("buffer").get<int>(),

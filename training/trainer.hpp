@@ -49,6 +49,13 @@ struct PpoConfig {
   // SB3's target_kl: an update stops before a minibatch whose approx-KL from
   // the rollout's policy exceeds 1.5x this; 0: never (SB3's None, the default).
   double target_kl = 0;
+  // DD-PPO's preemption of stragglers (Wijmans et al. 2020; over several
+  // ranks): a rank stops collecting once this fraction of the ranks has
+  // collected its whole share (and it has a quarter of its own), so that
+  // the fast ones do not wait for the slowest. 0: off (the default); DD-PPO
+  // used 0.6. Which rank stops where depends on timing: a run with it is
+  // not reproducible bit for bit.
+  double sync_fraction = 0;
 };
 
 // Table A.11 (RL-VMC); the rest from SB3/CleanRL's defaults.
