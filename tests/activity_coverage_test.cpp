@@ -288,6 +288,18 @@ TEST(ActivitySolve, ASpongeSaturatedWithRubbingAlcoholWipesTheMarkerOff) {
   EXPECT_LT(dip, wipe);
 }
 
+// A tool wipes what is thinner than the tool hangs below the hand: the
+// reach check's hand stops short by what would be past the bracelet (2 cm),
+// the sponge (6 cm below the fingers) on the counter under it, not in it
+// (no pose reached the bracelet before, nor the necklace).
+TEST(ActivitySolve, ASpongeWipesABraceletThinnerThanItHangs) {
+  const nlohmann::json s = solve_test_activity("clean_gold");
+  ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
+  const std::vector<std::string> plan = s["plan"];
+  EXPECT_NE(std::find(plan.begin(), plan.end(), "wipe(bracelet.n.02_1)"), plan.end());
+  EXPECT_NE(std::find(plan.begin(), plan.end(), "wipe(necklace.n.01_1)"), plan.end());
+}
+
 // A fridge, closed on top, is filled through its open door: each bottle
 // is put on a shelf from the front (place's through_open_side), not on top,
 // 1.8 m up, where the arm reaches nothing, as before.
