@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "tasks/vocabulary.hpp"
 
@@ -168,21 +169,52 @@ class WorldSteps {
 
   // Each rule grounded on the objects: each input synset bound to one object
   // that is-a it (relaxed: the counts are not enforced), outputs made real.
+  // A rule of one input object (slicing, dicing, melting) as the world binds
+  // it (Activity::configure_transitions): one step per input object, each
+  // making the next of the outputs by instance name, as many as the rule
+  // makes of each (the first log's slicing makes two half logs, not the
+  // eight the activity names: the plan cut one log and ended short).
   void rule(const TransitionRule& r) {
     std::vector<std::vector<int>> inputs;
     for (const SynsetCount& in : r.inputs) {
       inputs.push_back(matching(in.synset));
       if (inputs.back().empty()) return;  // the activity has none of it: the rule cannot fire
     }
-    std::vector<int> outputs;
-    for (const SynsetCount& out : r.outputs) {
-      for (const int o : matching(out.synset)) outputs.push_back(o);
+    const bool per_input =
+        r.inputs.size() == 1 && (r.family == TransitionFamily::slicing || r.family == TransitionFamily::dicing ||
+                                 r.family == TransitionFamily::melting);
+    if (!per_input) {
+      std::vector<int> outputs;
+      for (const SynsetCount& out : r.outputs) {
+        for (const int o : matching(out.synset)) outputs.push_back(o);
+      }
+      if (outputs.empty()) return;  // makes nothing the activity names
+      // The input objects in one binding: the first of each (relaxed: any would do).
+      std::vector<int> bound;
+      for (const auto& candidates : inputs) bound.push_back(candidates.front());
+      ground(r, bound, outputs);
+      return;
     }
-    if (outputs.empty()) return;  // makes nothing the activity names
-    // The input objects in one binding: the first of each (relaxed: any would do).
-    std::vector<int> bound;
-    for (const auto& candidates : inputs) bound.push_back(candidates.front());
+    for (const int in : by_name(inputs[0])) {
+      if (p_.objects[in].kind != Kind::object) continue;
+      std::vector<int> outputs;
+      for (const SynsetCount& out : r.outputs) {
+        int wanted = out.count;
+        for (const int o : by_name(matching(out.synset))) {
+          if (p_.objects[o].kind == Kind::substance) {
+            outputs.push_back(o);
+          } else if (p_.init.count({"future", {o}}) && wanted > 0 && made_.insert(o).second) {
+            outputs.push_back(o);
+            --wanted;
+          }
+        }
+      }
+      if (!outputs.empty()) ground(r, {in}, outputs);
+    }
+  }
 
+  // The rule's steps with its inputs bound to `bound`, making `outputs` real.
+  void ground(const TransitionRule& r, const std::vector<int>& bound, const std::vector<int>& outputs) {
     SymbolicStep s{std::string(to_string(r.family)) + ":" + r.name};
     s.at_once = true;  // the world fires a transition as soon as its trigger holds
     for (const int o : outputs) s.adds.push_back(literal("real", {o}));
@@ -197,9 +229,11 @@ class WorldSteps {
       for (const StateCondition& c : r.input_states) {
         std::vector<int> args;
         for (const std::string& synset : c.synsets) {
+          // A bound input where it is one (the log this step slices), else the first.
           const auto m = matching(synset);
+          const auto in = std::find_first_of(bound.begin(), bound.end(), m.begin(), m.end());
           if (m.empty()) return false;
-          args.push_back(m.front());
+          args.push_back(in != bound.end() ? *in : m.front());
         }
         (c.value ? step.needs : step.needs_not).push_back(literal(c.predicate.c_str(), args));
       }
@@ -392,8 +426,15 @@ class WorldSteps {
   }
 
  private:
+  // The objects in the order of their instance names (the world's bindings).
+  std::vector<int> by_name(std::vector<int> objects) const {
+    std::sort(objects.begin(), objects.end(), [&](int a, int b) { return p_.objects[a].name < p_.objects[b].name; });
+    return objects;
+  }
+
   SymbolicProblem& p_;
   const KnowledgeBase& kb_;
+  std::set<int> made_;  // future objects a one-input rule's step already makes
 };
 
 }  // namespace

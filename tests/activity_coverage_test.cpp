@@ -288,6 +288,19 @@ TEST(ActivitySolve, ASpongeSaturatedWithRubbingAlcoholWipesTheMarkerOff) {
   EXPECT_LT(dip, wipe);
 }
 
+// The planner binds a rule of one input object as the world does: one step
+// per log, each making the next two half logs by name. It made all eight of
+// the first log's slicing, and the plan cut one log and ended with the goal
+// not holding.
+TEST(ActivitySolve, EachLogChoppedMakesTwoHalvesOfItsOwn) {
+  const nlohmann::json s = solve_test_activity("chopping_wood");
+  ASSERT_TRUE(s["solved"].get<bool>()) << s.dump(1);
+  const std::vector<std::string> plan = s["plan"];
+  for (const char* log : {"cut(log.n.01_1)", "cut(log.n.01_2)", "cut(log.n.01_3)", "cut(log.n.01_4)"}) {
+    EXPECT_EQ(std::count(plan.begin(), plan.end(), log), 1) << log;
+  }
+}
+
 // A tool wipes what is thinner than the tool hangs below the hand: the
 // reach check's hand stops short by what would be past the bracelet (2 cm),
 // the sponge (6 cm below the fingers) on the counter under it, not in it
