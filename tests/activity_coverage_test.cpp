@@ -207,29 +207,30 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_GT(mean[0] + mean[1] + mean[2], 3 * 30) << "not black";
   EXPECT_GT(spread[0] + spread[1] + spread[2], 3 * 10) << "not one colour";
 
-  // From three seeds' instances (--seeds 3-5) of collecting cans into a
-  // bucket: solved from seeds 3 and 4; at seed 5 navigate finds no base pose
+  // From three seeds' instances (--seeds 7-9) of collecting cans into a
+  // bucket: solved from seeds 7 and 8; at seed 9 navigate finds no base pose
   // by the bucket with a can in hand, so the activity is not solved, saying
   // where. (This part ran putting a shoe under a table at seeds 4-5 before:
   // since the base drives over a folded cloth and the carry pose turns aside,
-  // seeds 0-12 all solve.)
+  // seeds 0-12 all solve. Then seeds 3-5, until the base poses' reach grew
+  // between the floor and 0.45 m: of seeds 0-12, 6 solve, 5 before, others.)
   const auto cans_dir = test::scratch_dir("solve_seeds");
   std::filesystem::copy_file(test::data_path("bddl/behavior-1k/collecting_aluminum_cans.bddl"),
                              cans_dir / "collecting_aluminum_cans.bddl");
   const nlohmann::json range =
-      activity_coverage({.dir = cans_dir.string(), .seed = 3, .solve = ExecutionMode::symbolic, .last_seed = 5}, log);
+      activity_coverage({.dir = cans_dir.string(), .seed = 7, .solve = ExecutionMode::symbolic, .last_seed = 9}, log);
   const nlohmann::json& cans = range["activities"][0]["solve"];
   ASSERT_EQ(cans["seeds"].size(), 3u);
   for (int s = 0; s < 3; ++s) {
-    EXPECT_EQ(cans["seeds"][s]["seed"], 3 + s);
+    EXPECT_EQ(cans["seeds"][s]["seed"], 7 + s);
     EXPECT_EQ(cans["seeds"][s]["solved"].get<bool>(), s < 2) << cans["seeds"][s].dump();
   }
   EXPECT_EQ(range["solved"], 0);
   EXPECT_EQ(
-      cans["reason"].get<std::string>().rfind("seed 5: step 1, navigate(bucket.n.01_1): motion_planning_failure: ", 0),
+      cans["reason"].get<std::string>().rfind("seed 9: step 1, navigate(bucket.n.01_1): motion_planning_failure: ", 0),
       0u)
       << cans["reason"];
-  EXPECT_NE(format_solve(range).find("collecting_aluminum_cans: 2 of 3 seeds; not solved: seed 5"), std::string::npos)
+  EXPECT_NE(format_solve(range).find("collecting_aluminum_cans: 2 of 3 seeds; not solved: seed 9"), std::string::npos)
       << format_solve(range);
 }
 
