@@ -77,7 +77,7 @@ void sample_activity(const std::string& activity, const std::string& scene, uint
   write_png(png, instance_picture(env, reset.obs, kHead, kTop), "activity sample");
   out << activity << " seed " << seed << " in " << env.world().scene().name() << ": Q " << reset.info.q << ", "
       << reset.info.satisfied << "/" << reset.info.total << " goal literals hold; "
-      << (out_of_reach.empty() ? "all the primitives act on is within the robot's reach"
+      << (out_of_reach.empty() ? "what a plan for the goal acts on is within the robot's reach"
                                : "out of the robot's reach: " + out_of_reach)
       << "; picture: " << png << "\n";
 }
@@ -93,7 +93,8 @@ void sample_activity_seeds(const std::string& activity, const std::string& scene
   // and a seed up to Env::kInstanceAttempts instances.
   out << activity << " in " << env.world().scene().name() << " (" << env.world().scene().objects().size()
       << " objects): instantiating seeds " << first << "-" << last << ", each resampled up to "
-      << Env::kInstanceAttempts << " times until all the primitives act on is within the robot's reach" << std::endl;
+      << Env::kInstanceAttempts << " times until what a plan for the goal acts on is within the robot's reach"
+      << std::endl;
   const auto start = std::chrono::steady_clock::now();
   for (uint64_t seed = first; seed <= last; ++seed) env.impl().reset_state(seed);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -563,7 +563,7 @@ std::string format_solve(const nlohmann::json& c) {
   out << std::fixed << "solve of " << c["dir"].get<std::string>() << " (" << c["solve_mode"].get<std::string>()
       << ", seeds " << c["seed"] << "-" << c["last_seed"] << "): " << c["total"] << " activities, " << c["instantiated"]
       << " instantiated, " << c["built"] << " (" << 100 * c["built"].get<double>() / instantiated
-      << "%) with an instance that has everything in reach; a plan found for " << c["planned"] << " ("
+      << "%) with an instance that has what a plan acts on in reach; a plan found for " << c["planned"] << " ("
       << 100 * c["planned"].get<double>() / instantiated << "%), solved (executed to Q = 1) " << c["solved"] << " ("
       << 100 * c["solved"].get<double>() / instantiated << "%); planning median "
       << c["median_planning_seconds"].get<double>() << " s, slowest " << c["max_planning_seconds"].get<double>()

@@ -3,8 +3,8 @@
 // grounded against its dialect, then instantiated at one seed in an Env (its
 // scene: tasks/activities/scenes.json, else the analog of a BEHAVIOR-1K
 // scene); the report gives the share at each stage, the seconds each took,
-// how many have all the primitives act on within the robot's reach, how many
-// ran in a VectorEnv (CoverageOptions::steps) and ran random primitives
+// how many have what a plan for the goal acts on (env/task_plan.hpp) within
+// the robot's reach, how many ran in a VectorEnv (CoverageOptions::steps) and ran random primitives
 // (CoverageOptions::primitive_steps), and the failures grouped by
 // cause (the error with its names and numbers blanked), each with an example.
 // For every parsed activity it also judges which ground goal literals some

@@ -9,6 +9,7 @@
 #include "env/env_impl.hpp"
 #include "env/observations.hpp"
 #include "env/rewards.hpp"
+#include "env/task_plan.hpp"
 #include "primitives/primitive.hpp"
 #include "tasks/intermediates.hpp"
 #include "tasks/vocabulary.hpp"
@@ -57,6 +58,7 @@ EnvAssets load_assets(const EnvConfig& config) {
   }
   if (!config.activity.empty()) {
     assets.activity = Activity::load(config.activity, *assets.scene);
+    if (config.robot) assets.needed_actions = actions_a_plan_needs(*assets.activity, *assets.scene);
   }
   return assets;
 }
@@ -182,10 +184,13 @@ Env::Impl::Impl(const EnvConfig& config, const EnvAssets& assets)
     throw Error("env config: unknown action space '" + config_.action_space + "' (known: low_level, primitives)");
   }
   if (activity_ && config_.robot) {
-    // (What lies inside a container is checked with the containers push
-    // opens pulled open: first_out_of_reach.)
+    // What a plan for the goal acts on, not every object the action space
+    // names: a distractor out of reach is an action that fails, not a task
+    // that cannot be done. (What lies inside a container is checked with the
+    // containers push opens pulled open: first_out_of_reach.)
     for (const PrimitiveAction& a : chore::primitive_actions(*activity_, *world_, config_.primitive_mode)) {
-      if (primitive_touches(a.type)) reach_checks_.push_back(a);
+      if (primitive_touches(a.type) && (!assets.needed_actions || assets.needed_actions->count(to_string(a))))
+        reach_checks_.push_back(a);
     }
   }
   // A fixed order, whatever the config's: the layout of batched buffers.
@@ -261,7 +266,7 @@ Info Env::Impl::reset_state(std::optional<uint64_t> seed) {
   }
   if (!out_of_reach.empty()) {
     throw Error("env: no instance of activity '" + activity_->name() + "' in " + std::to_string(kInstanceAttempts) +
-                " samples had everything within the robot's reach; the last: " + out_of_reach +
+                " samples had what a plan for its goal acts on within the robot's reach; the last: " + out_of_reach +
                 " (EnvConfig::reachable_instances = false, `--set env.reachable_instances=false` for chore train,"
                 " accepts such instances)");
   }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -69,8 +70,10 @@ struct EnvConfig {
   // times, then chore::Error) while something the robot must act on lies out
   // of its reach from every base pose it can drive to: first_out_of_reach
   // (primitives/primitive.hpp) over each pick, push, dip and wipe of the
-  // primitive action space, but picks of what :init puts inside something.
-  // Whatever the action space, so that both see the same instances.
+  // primitive action space that a plan for the goal takes
+  // (EnvAssets::needed_actions: an object nothing needs may lie out of reach,
+  // as in a real home). Whatever the action space, so that both see the same
+  // instances.
   bool reachable_instances = true;
   // The policy failure of the seed's real-robot setup (appendix G: "we
   // consider policy failures when the policy selects the same invalid action
@@ -110,6 +113,10 @@ struct EnvConfig {
 struct EnvAssets {
   std::shared_ptr<const Scene> scene;
   std::shared_ptr<const Activity> activity;  // null without an activity
+  // With an activity and the robot: the primitive actions a plan for its goal
+  // takes (actions_a_plan_needs, env/task_plan.hpp), what reachable_instances
+  // checks; nullopt: every one.
+  std::optional<std::set<std::string>> needed_actions;
 };
 EnvAssets load_assets(const EnvConfig& config);
 

@@ -203,7 +203,14 @@ class Search {
       const State estimated = undone_on_the_way(state);
       if (heuristic(estimated) == kInfinity) continue;  // a dead end: no option is reachable from here
       double h = 0;
-      const std::vector<char> helpful = helpful_steps(estimated, &h);
+      std::vector<char> relaxed;
+      const std::vector<char> helpful = helpful_steps(estimated, &h, &relaxed);
+      if (node == 0) {
+        for (size_t k = 0; k < relevant_.size(); ++k) {
+          const size_t r = relevant_[k];
+          if (relaxed[k] && steps_[r].source < primitives_) plan.relaxed.push_back(names_[r]);
+        }
+      }
       any_finite = true;
       std::vector<char> in(literals_.size(), 0);
       for (const int l : state) in[l] = 1;
@@ -555,8 +562,9 @@ class Search {
   // the relaxed plan to its cheapest option that apply in `state`, the plan
   // read back from each literal's cheapest supporter (Hoffmann and Nebel's
   // helpful actions, over h_add's supporters); `length`, its number of
-  // steps (h_FF).
-  std::vector<char> helpful_steps(const State& state, double* length = nullptr) const {
+  // steps (h_FF); `relaxed_plan`, its steps.
+  std::vector<char> helpful_steps(const State& state, double* length = nullptr,
+                                  std::vector<char>* relaxed_plan = nullptr) const {
     const std::vector<char> in = relaxed_state(state);
     std::vector<char> marked(relaxed_size_, 0), in_plan(relevant_.size(), 0);
     std::vector<int> todo;
@@ -576,6 +584,7 @@ class Search {
     }
     std::vector<char> helpful(relevant_.size(), 0);
     if (length) *length = static_cast<double>(std::count(in_plan.begin(), in_plan.end(), 1));
+    if (relaxed_plan) *relaxed_plan = in_plan;
     for (size_t i = 0; i < relevant_.size(); ++i) {
       helpful[i] =
           in_plan[i] && std::all_of(relaxed_needs_[i].begin(), relaxed_needs_[i].end(), [&](int l) { return in[l]; });

@@ -41,7 +41,12 @@ struct Plan {
   size_t option = 0;  // the goal option the plan makes hold
   size_t expansions = 0;
   double seconds = 0;
-  std::string reason;         // why there is none
+  std::string reason;  // why there is none
+  // The primitive steps of the relaxed plan from the start to the goal
+  // option it finds cheapest (the heuristic's, read back before any search):
+  // what a plan would act on, known without searching; empty where no
+  // option is reachable even relaxed.
+  std::vector<std::string> relaxed;
   size_t primitives() const;  // steps that are primitives
 };
 

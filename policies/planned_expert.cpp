@@ -4,11 +4,11 @@
 
 #include "base/error.hpp"
 #include "env/env.hpp"
+#include "env/task_plan.hpp"
 #include "planner/reachability.hpp"
 #include "planner/symbolic_problem.hpp"
 #include "primitives/primitive.hpp"
 #include "tasks/activity.hpp"
-#include "tasks/vocabulary.hpp"
 
 namespace chore {
 namespace {
@@ -83,16 +83,7 @@ PlannedExpert::PlannedExpert(const EnvState& env, const PlanOptions& options) : 
   const Activity* activity = env.activity();
   if (!activity) throw Error("planned expert: the env has no activity");
   goal_ = &activity->goal();
-  const auto kb = dialect_knowledge_base(activity->problem().domain);
-  problem_ = symbolic_problem(activity->problem(), *kb, behavior_transition_rules());
-  // What the knowledge base calls openable but the scene's object has no
-  // joint to open (a bin without a lid) is open as it stands.
-  for (int i = 0; i < problem_.declared; ++i) {
-    SymbolicObject& o = problem_.objects[i];
-    const Binding& b = activity->binding(o.name);
-    if (b.kind == Binding::Kind::object && env.world().scene().objects()[b.index].joints.empty())
-      o.properties.erase("openable");
-  }
+  problem_ = symbolic_problem(*activity, env.world().scene());
   for (const PrimitiveAction& a : env.primitive_actions()) options_.actions.insert(to_string(a));
   steps_of_problem_ = ground_steps(problem_);
   std::set<SymbolicLiteral> known(problem_.init.begin(), problem_.init.end());

@@ -778,7 +778,14 @@ ReachProblem first_out_of_reach(World& w, const std::vector<PrimitiveType>& type
     pulled = true;
   }
   for (size_t i = 0; i < types.size(); ++i) {
-    if (!primitive_def(types[i]).opens && !check(i)) break;
+    const PrimitiveDef& def = primitive_def(types[i]);
+    if (def.opens) continue;
+    const auto own = def.own_doors_as_they_are && pulled ? articulation(w, objects[i]) : std::nullopt;
+    const double pulled_to = own ? own->value : 0;
+    if (own) set_articulation(w, *own, saved[w.model()->jnt_qposadr[own->joint]]);
+    const bool reached = check(i);
+    if (own) set_articulation(w, *own, pulled_to);
+    if (!reached) break;
   }
   if (pulled) {
     std::copy(saved.begin(), saved.end(), w.data()->qpos);

@@ -238,8 +238,13 @@ struct PrimitiveDef {
   bool touches = true;           // the hand follows the approach into contact with the object
   bool with_tool = false;        // acts with a tool in hand (reach checks count one hanging below it)
   bool opens = false;            // opens an articulated object: the base stands in front of it, room to pull
-  bool drives = false;           // moves the base: checks its own precondition, no tuck after failing
-  bool symbolic_only = false;    // no physical execution (act fails it); offered in symbolic action spaces only
+  // Reach checks (first_out_of_reach) leave its object's own doors as the
+  // world has them, not pulled open as the other checks have them: a plan
+  // shuts them first where it must (an oven heats shut), and an oven's door,
+  // open, stands where the base would be to press its knob.
+  bool own_doors_as_they_are = false;
+  bool drives = false;         // moves the base: checks its own precondition, no tuck after failing
+  bool symbolic_only = false;  // no physical execution (act fails it); offered in symbolic action spaces only
   // rad: base poses drawn face the target within +-half this (side-on: pi);
   // reach() takes an approach from a base facing its point within +-this
   // (the base arrives a little turned).

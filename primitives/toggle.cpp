@@ -93,7 +93,8 @@ const PrimitiveDef& toggle_on_primitive() {
                                 .act = [](Executor& e) { return press(e, true); },
                                 .model = [](const std::vector<SymbolicObject>& objects,
                                             const SymbolicArgs& a) { return model(objects, a, true); },
-                                .approaches = approaches};
+                                .approaches = approaches,
+                                .own_doors_as_they_are = true};
   return def;
 }
 
@@ -104,7 +105,8 @@ const PrimitiveDef& toggle_off_primitive() {
       .act = [](Executor& e) { return press(e, false); },
       .model = [](const std::vector<SymbolicObject>& objects,
                   const SymbolicArgs& a) { return model(objects, a, false); },
-      .approaches = approaches};
+      .approaches = approaches,
+      .own_doors_as_they_are = true};
   return def;
 }
 

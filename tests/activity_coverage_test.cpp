@@ -168,11 +168,22 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
                    "- countertop.n.01 floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01) (:init (ontop apple.n.01_1 "
                    "countertop.n.01_1) (inroom countertop.n.01_1 kitchen) (inroom floor.n.01_1 kitchen) (ontop "
                    "agent.n.01_1 floor.n.01_1)) (:goal (and (inside apple.n.01_1 countertop.n.01_1))))");
+  // The same apple as a distractor: the goal wants a pear from the counter on
+  // the breakfast table. Every instance leaves the apple out of reach, and
+  // the env builds: what must be in reach is what a plan acts on.
+  test::write_file(dir / "high_apple_beside.bddl",
+                   "(define (problem high_apple_beside) (:domain omnigibson) (:objects apple.n.01_1 - apple.n.01 "
+                   "pear.n.01_1 - pear.n.01 statue.n.01_1 - statue.n.01 countertop.n.01_1 - countertop.n.01 "
+                   "breakfast_table.n.01_1 - breakfast_table.n.01 floor.n.01_1 - floor.n.01 agent.n.01_1 - agent.n.01) "
+                   "(:init (ontop statue.n.01_1 floor.n.01_1) (ontop apple.n.01_1 statue.n.01_1) (ontop pear.n.01_1 "
+                   "countertop.n.01_1) (inroom countertop.n.01_1 kitchen) (inroom breakfast_table.n.01_1 kitchen) "
+                   "(inroom floor.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)) "
+                   "(:goal (and (ontop pear.n.01_1 breakfast_table.n.01_1))))");
   std::ostringstream log;
   const std::string sheet = (dir / "solved.png").string();
   const nlohmann::json c =
       activity_coverage({.dir = dir.string(), .threads = 2, .sheet = sheet, .solve = ExecutionMode::symbolic}, log);
-  ASSERT_EQ(c["activities"].size(), 3u);
+  ASSERT_EQ(c["activities"].size(), 4u);
   const nlohmann::json& steak = c["activities"][0]["solve"];
   EXPECT_TRUE(steak["solved"].get<bool>()) << steak.dump(1);
   EXPECT_EQ(steak["q"], 1.0);
@@ -182,25 +193,32 @@ TEST(ActivitySolve, APlanCountsWhenItsExecutionEndsInSuccess) {
   EXPECT_EQ(plan.back(), "[heat(steak.n.01_1)]");
   const nlohmann::json& high = c["activities"][1]["solve"];
   EXPECT_FALSE(high["built"].get<bool>());
-  EXPECT_NE(high["reason"].get<std::string>().find("had everything within the robot's reach; the last: "
-                                                   "pick(apple.n.01_1)"),
-            std::string::npos)
+  EXPECT_NE(
+      high["reason"].get<std::string>().find("had what a plan for its goal acts on within the robot's reach; the last: "
+                                             "pick(apple.n.01_1)"),
+      std::string::npos)
       << high["reason"];
-  const nlohmann::json& never = c["activities"][2]["solve"];
+  const nlohmann::json& beside = c["activities"][2]["solve"];
+  EXPECT_TRUE(beside["solved"].get<bool>()) << beside.dump(1);
+  EXPECT_EQ(beside["plan"],
+            nlohmann::json::array({"navigate(pear.n.01_1)", "pick(pear.n.01_1)", "navigate(breakfast_table.n.01_1)",
+                                   "place(breakfast_table.n.01_1)"}));
+  const nlohmann::json& never = c["activities"][3]["solve"];
   EXPECT_TRUE(never["built"].get<bool>());
   EXPECT_FALSE(never["found"].get<bool>());
   EXPECT_EQ(never["reason"],
             "no plan: no sequence of the primitives and the world's steps reaches the goal: "
             "(inside apple.n.01_1 countertop.n.01_1): no step makes it");
-  EXPECT_EQ(c["built"], 2);
-  EXPECT_EQ(c["planned"], 1);
-  EXPECT_EQ(c["solved"], 1);
+  EXPECT_EQ(c["built"], 3);
+  EXPECT_EQ(c["planned"], 2);
+  EXPECT_EQ(c["solved"], 2);
   EXPECT_NE(format_solve(c).find("cook_a_steak: solved, 6 primitives"), std::string::npos) << format_solve(c);
-  // The contact sheet of the solved: the steak's final state alone, its
-  // head camera beside the view from above, 160 pixels each, drawn.
+  // The contact sheet of the solved: the steak's and the pear's final states
+  // side by side, each its head camera beside the view from above, 160
+  // pixels each, drawn.
   const cv::Mat picture = cv::imread(sheet);
   ASSERT_FALSE(picture.empty());
-  EXPECT_EQ(picture.cols, 2 * 160);
+  EXPECT_EQ(picture.cols, 2 * 2 * 160);
   EXPECT_EQ(picture.rows, 160 + 12);
   cv::Scalar mean, spread;
   cv::meanStdDev(picture, mean, spread);
@@ -459,6 +477,18 @@ std::string first_instance_out_of_reach(const std::string& name, uint64_t seed) 
 TEST(ActivitySolve, AClothHangingOverACountersEdgeIsPickedFromItsTop) {
   EXPECT_EQ(first_instance_out_of_reach("wash_lettuce", 0), "");
   EXPECT_EQ(solved_seeds("wash_lettuce", 0, 1), std::vector<bool>(2, true));
+}
+
+// cook_sweet_potatoes: the potatoes go into an oven 1.97 m wide (grown for
+// what goes in), then it is turned on. The reach checks pulled its door open
+// for every check but push, as the pick of what is inside needs: the door,
+// hinged at the bottom, then covered the floor before the oven's knob and
+// toggle_on had no base pose ("2000 in collision"). A toggle is checked with
+// its own object's doors as they are (closed): heating needs the oven shut,
+// and a plan shuts it first. (Not solved yet: with a potato in hand the base
+// finds no pose by the oven.)
+TEST(ActivitySolve, AnOvensKnobIsReachedWithItsDoorShut) {
+  EXPECT_EQ(first_instance_out_of_reach("cook_sweet_potatoes", 0), "");
 }
 
 // clean_a_faucet: the stains in a bathroom sink, wiped. The sink's basin

@@ -2,6 +2,8 @@
 // activities with known answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "planner/reachability.hpp"
 #include "planner/task_planner.hpp"
 #include "tasks/goal.hpp"
@@ -377,6 +379,17 @@ TEST(TaskPlanner, PlansThroughThePrimitivesAndTheWorldsSteps) {
   const Plan cut = plan_task(floor.symbolic, ground_goal(floor.problem), {.max_expansions = 2});
   EXPECT_FALSE(cut.found);
   EXPECT_EQ(cut.reason, "no plan within 2 expansions");
+  // What a plan would act on is known before any search: the relaxed plan's
+  // primitives from the start (the env's reach checks take them when the
+  // search runs out), here one of the shortest plans' four, unordered. None
+  // where no option is reachable even relaxed.
+  std::vector<std::string> relaxed = cut.relaxed;
+  std::sort(relaxed.begin(), relaxed.end());
+  EXPECT_TRUE(std::any_of(shortest.begin(), shortest.end(), [&](std::vector<std::string> plan) {
+    std::sort(plan.begin(), plan.end());
+    return plan == relaxed;
+  })) << testing::PrintToString(relaxed);
+  EXPECT_TRUE(none.relaxed.empty());
 }
 
 // Where no sequence reaches the goal, the reason follows the first missing

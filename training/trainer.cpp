@@ -107,7 +107,7 @@ EnvConfig env_config_from_json(const nlohmann::json& j) {
     // ...and drew an instance at every reset.
     c.instances = j.value("instances", std::string("resample"));
     c.instance = j.value("instance", uint64_t{0});
-    // ...and had all the primitives act on within reach.
+    // ...and had what the primitives act on within reach.
     c.reachable_instances = j.value("reachable_instances", true);
     c.reward = j.at("reward").get<std::string>();
     c.reach_target = j.at("reach_target").get<std::array<double, 3>>();
