@@ -218,17 +218,17 @@ LinkSpec bed(const Eigen::Vector3d& s, double mass, const Rgb& rgb) {
   return root;
 }
 
+constexpr double kBoard = 0.02;  // m: a shelf's boards and sides
+
 LinkSpec shelf(const Eigen::Vector3d& s, double mass, const Rgb& rgb) {
   LinkSpec root;
   root.mass = mass;
-  const double t = 0.02;
-  const int boards = std::clamp(static_cast<int>(s.z() / 0.35), 1, 8);
+  const double t = kBoard;
   for (double side : {-1.0, 1.0})
     root.geoms.push_back(box({t / 2, s.y() / 2, s.z() / 2}, {side * (s.x() - t) / 2, 0, s.z() / 2}, rgb));
   root.geoms.push_back(box({s.x() / 2 - t, t / 2, s.z() / 2}, {0, s.y() / 2 - t / 2, s.z() / 2}, rgb));
-  for (int b = 0; b <= boards; ++b) {
-    const double z = std::min(s.z() - t / 2, t / 2 + b * (s.z() - t) / boards);
-    root.geoms.push_back(box({s.x() / 2 - t, s.y() / 2 - t / 2, t / 2}, {0, -t / 2, z}, shade(rgb, 1.1)));
+  for (const double top : shelf_boards(s).tops) {
+    root.geoms.push_back(box({s.x() / 2 - t, s.y() / 2 - t / 2, t / 2}, {0, -t / 2, top - t / 2}, shade(rgb, 1.1)));
   }
   return root;
 }
@@ -295,6 +295,15 @@ const char* to_string(Archetype a) {
   static const char* const names[] = {"cloth", "cabinet",          "basin",          "door", "table", "seat", "bed",
                                       "shelf", "lidded_container", "open_container", "ball", "block"};
   return names[static_cast<int>(a)];
+}
+
+ShelfBoards shelf_boards(const Eigen::Vector3d& size) {
+  const double t = kBoard;
+  const int boards = std::clamp(static_cast<int>(size.z() / 0.35), 1, 8);
+  ShelfBoards out;
+  for (int b = 0; b <= boards; ++b) out.tops.push_back(std::min(size.z(), t + b * (size.z() - t) / boards));
+  out.clearance = (size.z() - t) / boards - t;
+  return out;
 }
 
 std::shared_ptr<const CategoryModels> CategoryModels::load(std::shared_ptr<const KnowledgeBase> kb,

@@ -48,6 +48,15 @@ enum class Archetype {
 };
 const char* to_string(Archetype archetype);
 
+// A shelf's boards (Archetype::shelf), as the model builds them: the heights
+// of their tops above the shelf's bottom, lowest first, the shelf's own top
+// last, and the room between one board's top and the next's underside.
+struct ShelfBoards {
+  std::vector<double> tops;
+  double clearance = 0;
+};
+ShelfBoards shelf_boards(const Eigen::Vector3d& size);
+
 class CategoryModels {
  public:
   // The BEHAVIOR-1K knowledge base with the size table under `assets` and

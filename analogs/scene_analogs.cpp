@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 
@@ -151,7 +152,8 @@ struct RoomLayout {
     Rect top;
     double height;
     std::vector<Rect> taken;
-    int turns;  // of the furniture it tops: its front faces the room
+    int turns;                                                   // of the furniture it tops: its front faces the room
+    double clearance = std::numeric_limits<double>::infinity();  // m up to the board above (a shelf's)
   };
   std::vector<Surface> surfaces;
   // Stretches of wall free for wall items: per side (0 bottom, 1 right, 2 top, 3 left), intervals used.
@@ -455,7 +457,7 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
     if (fixture) turns = s.turns;
     const Eigen::Vector2d half = half_footprint(size, turns);
     const Rect top = s.top.grown(-0.02);
-    if (2 * half.x() > top.width() || 2 * half.y() > top.depth()) continue;
+    if (2 * half.x() > top.width() || 2 * half.y() > top.depth() || size.z() > s.clearance) continue;
     const Eigen::Vector2d c(uniform(rng, top.x0 + half.x(), top.x1 - half.x()),
                             uniform(rng, top.y0 + half.y(), top.y1 - half.y()));
     const Rect r = footprint(c, half);
@@ -473,7 +475,8 @@ bool place_small(RoomLayout& room, const Eigen::Vector3d& size, Rng& rng, Eigen:
 // A piece of furniture placed (fixed) with its top as a surface for small
 // objects when it has a flat one at a height they are put at.
 bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
-             const std::vector<std::string>& clear_tops, Rng& rng, Builder& builder) {
+             const std::vector<std::string>& clear_tops, std::map<std::string, int>& kept_clear, Rng& rng,
+             Builder& builder) {
   const Eigen::Vector3d size = models.size(synset);
   const Archetype archetype = models.archetype(synset);
   Eigen::Vector2d at;
@@ -494,6 +497,22 @@ bool furnish(RoomLayout& room, const Models& models, const std::string& synset,
       std::any_of(clear_tops.begin(), clear_tops.end(), [&](const std::string& s) { return models.is_a(synset, s); });
   if (flat_top && !clear && size.z() > 0.3 && size.z() < 1.6) {
     room.surfaces.push_back({top, size.z(), {}, turns});
+  }
+  // A shelf's boards below its top hold things too, as a store's and a
+  // bookcase's do: strewn on the floor instead (a grocery store's 1,400
+  // items), they left the base no pose before the shelves. Clear are only
+  // as many shelves of a synset as the activity names (the first ones
+  // placed, which the activity binds: tasks/activity.cpp), not a store's
+  // every shelf.
+  const auto named =
+      std::count_if(clear_tops.begin(), clear_tops.end(), [&](const std::string& s) { return models.is_a(synset, s); });
+  const bool boards_clear = named > kept_clear[synset];
+  if (boards_clear) ++kept_clear[synset];
+  if (archetype == Archetype::shelf && !boards_clear) {
+    const ShelfBoards boards = shelf_boards(size);
+    for (size_t b = 0; b + 1 < boards.tops.size(); ++b) {
+      room.surfaces.push_back({top, boards.tops[b], {}, turns, boards.clearance});
+    }
   }
   return true;
 }
@@ -585,6 +604,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
     file.ceiling_lights.push_back({{(r.x0 + r.x1) / 2, (r.y0 + r.y1) / 2, file.wall_height - 0.1}, {0.5, 0.5, 0.5}});
   }
   Builder builder(models, analog);
+  std::map<std::string, int> kept_clear;  // furnish(): shelves of each synset whose boards stay clear
   // Floors asked for as objects: a slab over the room inside its walls, its
   // top the floor's, in the floor's colour; under everything, taking no space.
   for (const std::string& name : extras.floors) {
@@ -620,7 +640,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
     });
     for (const auto& [synset, count] : furniture) {
       for (int n = 0; n < count; ++n) {
-        analog.left_out += !furnish(room, models, synset, extras.clear_tops, rng, builder);
+        analog.left_out += !furnish(room, models, synset, extras.clear_tops, kept_clear, rng, builder);
       }
     }
   }
@@ -635,7 +655,7 @@ SceneAnalog generate_scene_analog(const SceneInventory& inventory, const Categor
       if (e.future || is_furniture(models, e) != (pass == 0)) continue;
       RoomLayout& room = rooms[room_of(inventory, e)];
       if (pass == 0) {
-        analog.left_out += !furnish(room, models, e.synset, extras.clear_tops, rng, builder);
+        analog.left_out += !furnish(room, models, e.synset, extras.clear_tops, kept_clear, rng, builder);
         continue;
       }
       Eigen::Vector3d at;

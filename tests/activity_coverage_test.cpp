@@ -491,6 +491,15 @@ TEST(ActivitySolve, AnOvensKnobIsReachedWithItsDoorShut) {
   EXPECT_EQ(first_instance_out_of_reach("cook_sweet_potatoes", 0), "");
 }
 
+// cook_beef: a saucepot of ground beef stands on the oven. The oven's toggle
+// point was the top centre of its box: under the pot, where the hand coming
+// down touched the pot at every base pose ("toggle_on(oven.n.01_1): no base
+// pose ..."), and, the door pulled open, half a door's swing nearer the
+// robot. What opens is now pressed at its carcass's top front edge.
+TEST(ActivitySolve, AnOvenWithAPotOnItIsTurnedOnAtItsFront) {
+  EXPECT_EQ(first_instance_out_of_reach("cook_beef", 0), "");
+}
+
 // clean_a_faucet: the stains in a bathroom sink, wiped. The sink's basin
 // was the sink's whole height, its dirt 3 cm above the floor, where the hand
 // does not get (no env at seeds 0-2: "wipe(sink.n.01_1): 5 dirt particles on

@@ -154,7 +154,26 @@ bool within_thermal_reach(const World& w, int source, const ThermalSource& t, in
 
 Eigen::Vector3d toggle_point(const World& w, int object) {
   const Aabb box = object_aabb(w, object);
-  return {box.center().x(), box.center().y(), box.hi.z()};
+  const SceneObject& o = w.scene().objects()[object];
+  if (o.joints.empty() || o.body < 0) return {box.center().x(), box.center().y(), box.hi.z()};
+  // What opens (an oven, a washer) is worked from the front its door or
+  // drawer opens to (its frame's -y), as an appliance's panel is: the top's
+  // front edge, kFrontInset in, of its carcass (the root body's geoms, so
+  // that the door, open or shut, does not move it). At the top's centre it
+  // stood under the pot on a stove, and moved half a door's swing as the
+  // door opened.
+  constexpr double kFrontInset = 0.05;
+  const mjModel* m = w.model();
+  Aabb carcass;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] == o.body) carcass.grow(geom_aabb(w, g));
+  }
+  Eigen::Vector3d front = -object_frame(w, object).rot.col(1);
+  front.z() = 0;
+  if (carcass.lo.x() > carcass.hi.x() || front.norm() < 1e-9) return {box.center().x(), box.center().y(), box.hi.z()};
+  front.normalize();
+  const Eigen::Vector3d edge = carcass.center() + front * std::max(0.0, carcass.half_across(front) - kFrontInset);
+  return {edge.x(), edge.y(), carcass.hi.z()};
 }
 
 void update_states_after_env_step(World& w, double dt) {

@@ -23,7 +23,8 @@ void update_states_after_physics_step(World& world, double dt);
 // forces or positions they act the same again.
 void update_states_at_motion_waypoint(World& world, double dt, int moved, const Aabb& moved_box,
                                       const std::vector<mjContact_>& moved_contacts);
-// Where the hand presses to toggle an object: the top centre of its box. The
+// Where the hand presses to toggle an object: the top centre of its box;
+// for what opens, the front edge of its carcass's top (its frame's -y). The
 // rule toggles it after ObjectStates::kToggleSteps consecutive env steps with
 // the fingers (from the hand's centre to the fingertips) held within
 // ObjectStates::kToggleDistance of it (the hand slower than
