@@ -165,8 +165,9 @@ Eigen::Vector3d toggle_point(const World& w, int object) {
   constexpr double kFrontInset = 0.05;
   const mjModel* m = w.model();
   Aabb carcass;
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (m->geom_bodyid[g] == o.body) carcass.grow(geom_aabb(w, g));
+  // (The root body's own geoms: this runs every env step for each toggleable object.)
+  for (int g = m->body_geomadr[o.body]; g >= 0 && g < m->body_geomadr[o.body] + m->body_geomnum[o.body]; ++g) {
+    carcass.grow(geom_aabb(w, g));
   }
   Eigen::Vector3d front = -object_frame(w, object).rot.col(1);
   front.z() = 0;
