@@ -508,6 +508,24 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
     if (s->predicate == "grasped") holding = true;
   }
   if (!holding) p.init.insert(literal(kHandEmpty, {}));
+  // What lies in a container inside something that opens is inside that too,
+  // as the world's inside() finds it: the primitives reach it only once that
+  // is open (only_while_open). Said of the direct container alone, an ice
+  // cube in a cup in a shut fridge was picked without opening the fridge,
+  // and no base pose reached it through the door. (BEHAVIOR nests two deep.)
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const SymbolicLiteral& in : std::set<SymbolicLiteral>(p.init)) {
+      if (in.predicate != "inside" || in.args.size() != 2) continue;
+      for (const SymbolicLiteral& out : std::set<SymbolicLiteral>(p.init)) {
+        if (out.predicate != "inside" || out.args.size() != 2 || out.args[0] != in.args[1] ||
+            out.args[1] == in.args[0] || !p.objects[out.args[1]].has("openable")) {
+          continue;
+        }
+        grew |= p.init.insert(literal("inside", {in.args[0], out.args[1]})).second;
+      }
+    }
+  }
   for (int i = 0; i < static_cast<int>(p.objects.size()); ++i) {
     if (p.init.count({"future", {i}})) continue;
     if (p.objects[i].kind != Kind::substance) {

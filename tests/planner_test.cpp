@@ -509,6 +509,27 @@ TEST(TaskPlanner, OpensWhatHoldsTheObjectAndBoilsTheWaterThatFilledTheMug) {
   EXPECT_EQ(boiling.back(), "[substance_cooking:water.n.06-cooking]");
 }
 
+// make_lemon_or_lime_water: an ice cube in a cup in the closed fridge. :init
+// says where each is directly; the fridge shuts the cube in as well, and the
+// plan opens it before the pick. (Said of the cup alone, the plan picked the
+// cube through the fridge's door, and no base pose reached it.)
+TEST(TaskPlanner, OpensWhatHoldsTheContainerTheObjectIsIn) {
+  const Case iced = solve(
+      "ice_cube.n.01_1 - ice_cube.n.01 cup.n.01_1 - cup.n.01 electric_refrigerator.n.01_1 - electric_refrigerator.n.01 "
+      "water_glass.n.02_1 - water_glass.n.02 countertop.n.01_1 - countertop.n.01 floor.n.01_1 - floor.n.01 "
+      "agent.n.01_1 - agent.n.01",
+      "(inside ice_cube.n.01_1 cup.n.01_1) (inside cup.n.01_1 electric_refrigerator.n.01_1) "
+      "(ontop water_glass.n.02_1 countertop.n.01_1) (inroom electric_refrigerator.n.01_1 kitchen) "
+      "(inroom countertop.n.01_1 kitchen) (inroom floor.n.01_1 kitchen) (ontop agent.n.01_1 floor.n.01_1)",
+      "(and (inside ?ice_cube.n.01_1 ?water_glass.n.02_1))");
+  const Plan out = plan_task(iced.symbolic, ground_goal(iced.problem));
+  ASSERT_TRUE(out.found) << out.reason;
+  const std::vector<std::string> steps = names(out);
+  const auto at = [&](const char* step) { return position(steps, step); };
+  ASSERT_LT(at("pick(ice_cube.n.01_1)"), static_cast<long>(steps.size()));
+  EXPECT_LT(at("push(electric_refrigerator.n.01_1)"), at("pick(ice_cube.n.01_1)"));
+}
+
 // cool_cakes: a hot cake in an oven that is on, to cool on a cookie sheet.
 // The plan went to the cake first, while the oven was shut, to let it cool
 // there; the base-pose search finds no pose to what a door shuts in, and the
