@@ -184,10 +184,11 @@ std::string joined(const std::vector<std::string>& names) {
 // Containers and surfaces large enough for what :init puts inside or on
 // them, as BEHAVIOR's scenes have them: room for 2.5x the footprints of the
 // contents (each turned any way: its diagonal squared), no side shorter than
-// the largest diagonal, and, inside, the tallest under the lid; walls, doors
-// and the sampler's margins beside. A container grows along both sides, a
-// surface along its width. Nested ones (a tupperware in the fridge) are sized
-// inside out. The least inner heights (AnalogExtras::least_inner_heights)
+// the largest diagonal (furniture keeps its depth), and, inside, the tallest
+// under the lid; walls, doors and the sampler's margins beside. A container
+// grows along both sides, a surface along its width. Nested ones (a
+// tupperware in the fridge) are sized inside out; a like thing on its like
+// (stacked plates) is no load. The least inner heights (AnalogExtras::least_inner_heights)
 // beside: the tallest content and the margins above it. And furniture that
 // :init puts something on (or attaches something to, which hangs from its
 // top) no taller than keeps that within an arm's reach from above
@@ -216,14 +217,18 @@ void support_sizes(const Problem& problem, const CategoryModels& models, AnalogE
   };
   struct Load {
     bool inside = false;
-    double area = 0, diagonal = 0, height = 0;
+    double area = 0, diagonal = 0, narrow = 0, height = 0;  // narrow: the widest content's narrow side
   };
   for (int depth = 0; depth < 3; ++depth) {  // BEHAVIOR nests two deep at most
     std::map<std::string, Load> loads;       // support instance -> what goes on or in it
     for (const Literal& l : problem.init) {
       if (l.negated || l.args.size() != 2) continue;
       const std::string what = object_synset(l.args[0]), support = object_synset(l.args[1]);
-      if (what.empty() || support.empty()) continue;
+      // A like thing on its like (a plate stacked on a plate, french toast
+      // on french toast) is no load: sizes are the synset's, and grown for
+      // its own kind a synset grew 2.5x at every pass (french toast 3 m
+      // long on plates 2.5 m across on a breakfast table 8.5 m long).
+      if (what.empty() || support.empty() || what == support) continue;
       const Eigen::Vector3d s = size(what);
       if ((l.predicate == "ontop" || l.predicate == "attached") && kb.has_property(support, "sceneObject")) {
         const double highest = std::max(kLowestTop, kReachedTop - s.z());
@@ -243,6 +248,7 @@ void support_sizes(const Problem& problem, const CategoryModels& models, AnalogE
           l.predicate == "inside" || held_by == Archetype::open_container || held_by == Archetype::lidded_container;
       load.area += diagonal * diagonal;
       load.diagonal = std::max(load.diagonal, diagonal);
+      load.narrow = std::max(load.narrow, s.head<2>().minCoeff() + 0.02);
       if (l.predicate == "inside") load.height = std::max(load.height, s.z());
     }
     for (const auto& [instance, load] : loads) {
@@ -261,7 +267,15 @@ void support_sizes(const Problem& problem, const CategoryModels& models, AnalogE
         double& inner = extras.least_inner_heights[synset];
         inner = std::max(inner, load.height + kWalls);
       } else {
-        need = {std::max(load.diagonal, kSpace * load.area / std::max(own.y(), load.diagonal)), load.diagonal, 0};
+        // A surface grows along its width, and no shallower than what lies
+        // on it is across; furniture no shallower than that is narrow, for
+        // what lies on it squared to its sides (world/sampling.cpp's
+        // try_place). Grown as deep as a board grown for a fish was long,
+        // a counter against its wall was 1.36 m deep, the board at its back
+        // beyond every base pose (clean_a_fish).
+        const bool furniture = kb.has_property(synset, "sceneObject");
+        need = {std::max(load.diagonal, kSpace * load.area / std::max(own.y(), load.diagonal)),
+                furniture ? load.narrow : load.diagonal, 0};
       }
       const auto [it, fresh] = least.try_emplace(synset, need);
       if (!fresh) it->second = it->second.cwiseMax(need);

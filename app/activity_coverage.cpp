@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -363,6 +364,36 @@ bool is_domain_file(const fs::path& path) {
   return std::regex_search(head, std::regex(R"(^\s*\(\s*define\s*\(\s*domain\b)"));
 }
 
+// The activities under `dir`, sorted, through symbolic links to folders too
+// (a corpus gathered as links to its activities' folders): each file once,
+// by the first of its paths in order, and a link back to a folder above it
+// not followed again.
+std::vector<std::string> activity_files(const fs::path& dir) {
+  std::map<fs::path, std::string> by_target;  // canonical path -> the first path to it
+  std::set<fs::path> folders = {fs::canonical(dir)};
+  std::vector<fs::path> paths;
+  for (auto it = fs::recursive_directory_iterator(
+           dir, fs::directory_options::follow_directory_symlink | fs::directory_options::skip_permission_denied);
+       it != fs::recursive_directory_iterator(); ++it) {
+    std::error_code error;
+    if (it->is_symlink(error) && it->is_directory(error) && !folders.insert(fs::canonical(it->path(), error)).second) {
+      it.disable_recursion_pending();
+    } else if (it->is_regular_file(error) && it->path().extension() == ".bddl") {
+      paths.push_back(it->path());
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  std::vector<std::string> files;
+  for (const fs::path& path : paths) {
+    std::error_code error;
+    const fs::path target = fs::canonical(path, error);
+    if (!error && by_target.emplace(target, path.string()).second && !is_domain_file(path)) {
+      files.push_back(path.string());
+    }
+  }
+  return files;
+}
+
 }  // namespace
 
 nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& log) {
@@ -372,13 +403,8 @@ nlohmann::json activity_coverage(const CoverageOptions& options, std::ostream& l
   } else if (!fs::is_directory(options.dir)) {
     throw Error("activity coverage: '" + options.dir + "' is neither a folder nor a .bddl file");
   } else {
-    for (const auto& entry : fs::recursive_directory_iterator(options.dir)) {
-      if (entry.is_regular_file() && entry.path().extension() == ".bddl" && !is_domain_file(entry.path())) {
-        files.push_back(entry.path().string());
-      }
-    }
+    files = activity_files(options.dir);
   }
-  std::sort(files.begin(), files.end());
   if (files.empty()) throw Error("activity coverage: no .bddl file under '" + options.dir + "'");
   if (options.goals_only && (options.steps > 0 || options.primitive_steps > 0 || !options.sheet.empty())) {
     throw Error("activity coverage: --goals-only builds no world: drop --steps, --primitive-steps and --sheet");

@@ -146,6 +146,29 @@ TEST(ActivityCoverage, GoalLiteralsNoPrimitiveOrRuleMakes) {
             std::string::npos);
 }
 
+// A corpus gathered as links to activities' folders is read through them:
+// each activity once, whatever the links to it, and a link back to a folder
+// above it not followed round again.
+TEST(ActivityCoverage, ActivitiesAreFoundThroughLinksToTheirFolders) {
+  const auto dir = test::scratch_dir("coverage_links");
+  test::write_file(dir / "corpus" / "apple" / "problem0.bddl",
+                   "(define (problem r) (:domain omnigibson) (:objects agent.n.01_1 - agent.n.01 apple.n.01_1 - "
+                   "apple.n.01 floor.n.01_1 - floor.n.01) (:init (ontop agent.n.01_1 floor.n.01_1) (ontop "
+                   "apple.n.01_1 floor.n.01_1) (inroom floor.n.01_1 kitchen)) (:goal (ontop ?apple.n.01_1 "
+                   "?floor.n.01_1)))");
+  std::filesystem::create_directories(dir / "gathered");
+  std::filesystem::create_directory_symlink(dir / "corpus" / "apple", dir / "gathered" / "apple");
+  std::filesystem::create_directory_symlink(dir / "corpus" / "apple", dir / "gathered" / "apple_again");
+  std::filesystem::create_directory_symlink(dir / "gathered", dir / "gathered" / "round_again");
+  std::filesystem::create_directory_symlink(dir / "missing", dir / "gathered" / "dangling");
+  std::ostringstream log;
+  const nlohmann::json c = activity_coverage({.dir = (dir / "gathered").string(), .goals_only = true}, log);
+  EXPECT_EQ(c["total"], 1);
+  EXPECT_EQ(c["parsed"], 1);
+  ASSERT_EQ(c["activities"].size(), 1u);
+  EXPECT_EQ(c["activities"][0]["file"], (dir / "gathered" / "apple" / "problem0.bddl").string());
+}
+
 // `chore activity solve`: planned, executed, and solved only at Q = 1; one
 // whose instances leave something out of reach is not built; one without
 // a plan says why.

@@ -525,6 +525,81 @@ TEST(SceneAnalogs, ABowlGrowsBothWaysForWhatLiesOnIt) {
   EXPECT_LT(std::max(bowl.x(), bowl.y()), 0.85) << bowl.transpose();
 }
 
+// clearing_table_after_breakfast: french toast on french toast on a plate on
+// a table. Sizes are the synset's: grown for what lies on it, french toast
+// grew for its own kind at every pass, 3 m long, and with it the plate
+// (2.5 m across) and the table (8.5 m), the banana on it beyond every base
+// pose. A like thing on its like is no load.
+TEST(SceneAnalogs, ALikeThingOnItsLikeGrowsNeither) {
+  const fs::path file = write_activity("analog_stack", "toast_on_toast", R"((define (problem toast_on_toast-0)
+    (:domain omnigibson)
+    (:objects
+        french_toast.n.01_1 french_toast.n.01_2 - french_toast.n.01
+        plate.n.04_1 - plate.n.04
+        breakfast_table.n.01_1 - breakfast_table.n.01
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (ontop french_toast.n.01_2 french_toast.n.01_1)
+        (ontop french_toast.n.01_1 plate.n.04_1)
+        (ontop plate.n.04_1 breakfast_table.n.01_1)
+        (inroom breakfast_table.n.01_1 dining_room)
+        (inroom floor.n.01_1 dining_room)
+        (ontop agent.n.01_1 floor.n.01_1))
+    (:goal (and (ontop ?french_toast.n.01_1 ?breakfast_table.n.01_1))))
+)");
+  Env env(unpictured(file));
+  env.reset(0);
+  const World& world = env.world();
+  const Activity& activity = *env.activity();
+  const Eigen::Vector3d toast = object_aabb(world, activity.object("french_toast.n.01_2")).extent();
+  const Eigen::Vector3d own = shipped().size("french_toast.n.01");
+  EXPECT_LT(toast.head<2>().maxCoeff(), 1.01 * own.head<2>().norm()) << toast.transpose();
+  const Eigen::Vector3d plate = object_aabb(world, activity.object("plate.n.04_1")).extent();
+  EXPECT_LT(plate.head<2>().maxCoeff(), 0.6) << plate.transpose();
+  const Eigen::Vector3d table = object_aabb(world, activity.object("breakfast_table.n.01_1")).extent();
+  EXPECT_LT(table.head<2>().maxCoeff(), 2.5) << table.transpose();
+  EXPECT_TRUE(ontop(world, activity.object("french_toast.n.01_2"), activity.object("french_toast.n.01_1")));
+  EXPECT_TRUE(ontop(world, activity.object("french_toast.n.01_1"), activity.object("plate.n.04_1")));
+}
+
+// make_a_steak: two steaks on a chopping board on a counter. The board grows
+// for them; the counter under it keeps its depth (grown as deep as the board
+// was long, 1.4 m, its back was beyond the arm) and grows along its width.
+TEST(SceneAnalogs, FurnitureKeepsItsDepthForWhatLiesOnIt) {
+  const fs::path file = write_activity("analog_counter", "steaks_on_a_board", R"((define (problem steaks_on_a_board-0)
+    (:domain omnigibson)
+    (:objects
+        steak.n.01_1 steak.n.01_2 - steak.n.01
+        chopping_board.n.01_1 - chopping_board.n.01
+        countertop.n.01_1 - countertop.n.01
+        floor.n.01_1 - floor.n.01
+        agent.n.01_1 - agent.n.01)
+    (:init
+        (ontop steak.n.01_1 chopping_board.n.01_1)
+        (ontop steak.n.01_2 chopping_board.n.01_1)
+        (ontop chopping_board.n.01_1 countertop.n.01_1)
+        (inroom countertop.n.01_1 kitchen)
+        (inroom floor.n.01_1 kitchen)
+        (ontop agent.n.01_1 floor.n.01_1))
+    (:goal (and (ontop ?steak.n.01_1 ?countertop.n.01_1))))
+)");
+  Env env(unpictured(file));
+  env.reset(0);
+  const World& world = env.world();
+  const Activity& activity = *env.activity();
+  const Eigen::Vector3d board = object_aabb(world, activity.object("chopping_board.n.01_1")).extent();
+  const Eigen::Vector3d own_board = shipped().size("chopping_board.n.01");
+  EXPECT_GT(board.head<2>().maxCoeff(), own_board.head<2>().maxCoeff() + 0.1) << "grown for the steaks";
+  const Eigen::Vector3d counter = object_aabb(world, activity.object("countertop.n.01_1")).extent();
+  const Eigen::Vector3d own_counter = shipped().size("countertop.n.01");
+  EXPECT_NEAR(counter.head<2>().minCoeff(), own_counter.head<2>().minCoeff(), 0.01) << counter.transpose();
+  EXPECT_GE(counter.head<2>().maxCoeff(), board.head<2>().maxCoeff()) << counter.transpose();
+  for (const char* steak : {"steak.n.01_1", "steak.n.01_2"}) {
+    EXPECT_TRUE(ontop(world, activity.object(steak), activity.object("chopping_board.n.01_1"))) << steak;
+  }
+}
+
 // BDDL's attached: a rod attached to a wall nail is welded where it was
 // sampled, stays there as the world steps, and is let go at the next reset.
 TEST(SceneAnalogs, AttachedObjectsAreWeldedWhereSampled) {

@@ -19,7 +19,9 @@ const Eigen::Vector3d kDown(0, 0, -1), kUp(0, 0, 1);
 struct Footprint {
   double radius;  // horizontal radius of its box: fits any yaw
   double height;
-  double bottom;  // body origin height above the box bottom
+  double bottom;           // body origin height above the box bottom
+  Eigen::Vector2d half;    // half the box's sides at heading 0
+  Eigen::Vector2d centre;  // the box's centre from the body origin at heading 0
 };
 
 int free_joint_qpos(const World& w, int a) {
@@ -41,7 +43,8 @@ Footprint footprint(World& w, int a) {
   const Eigen::Vector3d origin = object_frame(w, a).pos;
   place(w, a, origin.x(), origin.y(), origin.z(), 0);
   const Aabb box = object_aabb(w, a);
-  return {0.5 * box.extent().head<2>().norm(), box.extent().z(), origin.z() - box.lo.z()};
+  return {0.5 * box.extent().head<2>().norm(), box.extent().z(), origin.z() - box.lo.z(), 0.5 * box.extent().head<2>(),
+          0.5 * (box.lo + box.hi).head<2>() - origin.head<2>()};
 }
 
 void place(World& w, int a, double x, double y, double z, double yaw) {
@@ -89,10 +92,36 @@ void settle(World& w, const SampleOptions& options) {
   w.step(static_cast<int>(std::lround(options.settle_seconds / w.model()->opt.timestep)));
 }
 
+// How far the footprint at (x, y) turned by `yaw` reaches past `within`
+// (summed over the four sides).
+double overhang(const Footprint& f, double x, double y, double yaw, const Aabb& within) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  const Eigen::Vector2d centre(x + c * f.centre.x() - s * f.centre.y(), y + s * f.centre.x() + c * f.centre.y());
+  const Eigen::Vector2d half(std::abs(c) * f.half.x() + std::abs(s) * f.half.y(),
+                             std::abs(s) * f.half.x() + std::abs(c) * f.half.y());
+  double out = 0;
+  for (int i = 0; i < 2; ++i) {
+    out += std::max(0.0, centre[i] + half[i] - within.hi[i]) + std::max(0.0, within.lo[i] - (centre[i] - half[i]));
+  }
+  return out;
+}
+
 // Places `a` with its bottom on height `support` at (x, y), random heading;
-// false if it would overlap anything.
-bool try_place(World& w, int a, const Footprint& f, double x, double y, double support, Rng& rng) {
-  place(w, a, x, y, support + kDropHeight + f.bottom, uniform(rng, -M_PI, M_PI));
+// false if it would overlap anything. With `within` (what it is put on), a
+// heading at which it reaches past that is squared to within's sides,
+// whichever way reaches past least: a chopping board longer than the
+// counter is deep lies along it, not across it into the wall behind. The
+// draw is the same either way.
+bool try_place(World& w, int a, const Footprint& f, double x, double y, double support, Rng& rng,
+               const Aabb* within = nullptr) {
+  double yaw = uniform(rng, -M_PI, M_PI);
+  if (within && overhang(f, x, y, yaw, *within) > 0) {
+    const double square = std::round(yaw / (M_PI / 2)) * (M_PI / 2);
+    for (const double turned : {square, square + M_PI / 2}) {
+      if (overhang(f, x, y, turned, *within) < overhang(f, x, y, yaw, *within)) yaw = turned;
+    }
+  }
+  place(w, a, x, y, support + kDropHeight + f.bottom, yaw);
   return !touches_anything(w, a);
 }
 
@@ -162,8 +191,8 @@ bool sample_ontop(World& w, int a, int b, Rng& rng, const SampleOptions& options
     if (strict && !options.prefer({p.x(), p.y(), start.z() - to_b}, f.height, false)) return false;
     // Where a rim stands above the surface (a plate onto a plate of its
     // size), on top of b's box: it settles onto the rim.
-    return (!cloth && try_place(w, a, f, p.x(), p.y(), start.z() - to_b, rng)) ||
-           try_place(w, a, f, p.x(), p.y(), box.hi.z(), rng);
+    return (!cloth && try_place(w, a, f, p.x(), p.y(), start.z() - to_b, rng, &box)) ||
+           try_place(w, a, f, p.x(), p.y(), box.hi.z(), rng, cloth ? nullptr : &box);
   });
 }
 
