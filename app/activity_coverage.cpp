@@ -369,7 +369,7 @@ bool is_domain_file(const fs::path& path) {
 // by the first of its paths in order, and a link back to a folder above it
 // not followed again.
 std::vector<std::string> activity_files(const fs::path& dir) {
-  std::map<fs::path, std::string> by_target;  // canonical path -> the first path to it
+  std::set<fs::path> seen;  // canonical paths of the files kept
   std::set<fs::path> folders = {fs::canonical(dir)};
   std::vector<fs::path> paths;
   for (auto it = fs::recursive_directory_iterator(
@@ -387,7 +387,7 @@ std::vector<std::string> activity_files(const fs::path& dir) {
   for (const fs::path& path : paths) {
     std::error_code error;
     const fs::path target = fs::canonical(path, error);
-    if (!error && by_target.emplace(target, path.string()).second && !is_domain_file(path)) {
+    if (!error && seen.insert(target).second && !is_domain_file(path)) {
       files.push_back(path.string());
     }
   }

@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "tasks/vocabulary.hpp"
 
@@ -513,16 +515,21 @@ SymbolicProblem symbolic_problem(const Problem& problem, const KnowledgeBase& kb
   // is open (only_while_open). Said of the direct container alone, an ice
   // cube in a cup in a shut fridge was picked without opening the fridge,
   // and no base pose reached it through the door. (BEHAVIOR nests two deep.)
+  std::vector<std::pair<int, int>> inside;  // (what, container) of each inside literal
+  for (const SymbolicLiteral& l : p.init) {
+    if (l.predicate == "inside" && l.args.size() == 2) inside.emplace_back(l.args[0], l.args[1]);
+  }
   for (bool grew = true; grew;) {
     grew = false;
-    for (const SymbolicLiteral& in : std::set<SymbolicLiteral>(p.init)) {
-      if (in.predicate != "inside" || in.args.size() != 2) continue;
-      for (const SymbolicLiteral& out : std::set<SymbolicLiteral>(p.init)) {
-        if (out.predicate != "inside" || out.args.size() != 2 || out.args[0] != in.args[1] ||
-            out.args[1] == in.args[0] || !p.objects[out.args[1]].has("openable")) {
-          continue;
+    for (size_t i = 0, n = inside.size(); i < n; ++i) {
+      for (size_t j = 0; j < n; ++j) {
+        const auto [what, container] = inside[i];
+        const auto [held, outer] = inside[j];
+        if (held != container || outer == what || !p.objects[outer].has("openable")) continue;
+        if (p.init.insert(literal("inside", {what, outer})).second) {
+          inside.emplace_back(what, outer);
+          grew = true;
         }
-        grew |= p.init.insert(literal("inside", {in.args[0], out.args[1]})).second;
       }
     }
   }

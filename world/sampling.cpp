@@ -115,10 +115,15 @@ double overhang(const Footprint& f, double x, double y, double yaw, const Aabb& 
 bool try_place(World& w, int a, const Footprint& f, double x, double y, double support, Rng& rng,
                const Aabb* within = nullptr) {
   double yaw = uniform(rng, -M_PI, M_PI);
-  if (within && overhang(f, x, y, yaw, *within) > 0) {
+  double least = within ? overhang(f, x, y, yaw, *within) : 0.0;
+  if (least > 0) {
     const double square = std::round(yaw / (M_PI / 2)) * (M_PI / 2);
     for (const double turned : {square, square + M_PI / 2}) {
-      if (overhang(f, x, y, turned, *within) < overhang(f, x, y, yaw, *within)) yaw = turned;
+      const double reach_past = overhang(f, x, y, turned, *within);
+      if (reach_past < least) {
+        yaw = turned;
+        least = reach_past;
+      }
     }
   }
   place(w, a, x, y, support + kDropHeight + f.bottom, yaw);
