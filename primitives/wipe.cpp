@@ -143,8 +143,8 @@ Eigen::Vector3d line_end(const World& w, int object, const Approach& a, const Po
 // clean. The tool coming down onto a particle cleans what lies within
 // kCleaningRadius of its contact (world/state_rules.cpp), before any stroke:
 // a particle within half that of one reached is reached too. Searched one by
-// one, 5 of the 20 on a clam 7 cm across were beyond every pose, their
-// neighbours 1-2 cm away within reach (clean_clams).
+// one, 5 of the 20 on a clam 7 cm across were beyond every pose while 10
+// others on it were within reach (clean_clams).
 std::string out_of_reach(ReachSearch& s) {
   constexpr double kCleanedBeside = ObjectStates::kCleaningRadius / 2;
   std::vector<Eigen::Vector3d> reached, missed;
